@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs what attenuvis needs from Debian 12 (only what is missing), then
+# configures and builds the Release tree in build/.  Idempotent: run it as
+# often as you like.  Used by scripts/main.sh and scripts/test.sh.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake ninja-build
+  libboost-dev libboost-math-dev       # Boost.Math quadrature/special functions, Boost.Multiprecision
+  libeigen3-dev libembree-dev libtinyobjloader-dev libtbb-dev libnanoflann-dev
+  libcli11-dev nlohmann-json3-dev catch2 libbenchmark-dev
+  python3 python3-matplotlib python3-numpy
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  if [ "$(id -u)" -eq 0 ]; then sudo=""; else sudo="sudo"; fi
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+set -f  # ATTENUVIS_CMAKE_ARGS may hold a Catch2 spec like ~[slow]; never glob it
+build_dir=${ATTENUVIS_BUILD_DIR:-build}
+cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release ${ATTENUVIS_CMAKE_ARGS:-} >/dev/null
+cmake --build "$build_dir" --parallel "$(nproc)"

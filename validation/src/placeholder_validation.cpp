@@ -1,0 +1,2 @@
+// Placeholder translation unit so the library target exists before its sources land.
+namespace attenuvis { namespace validation_placeholder { int unused = 0; } }
