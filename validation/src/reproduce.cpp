@@ -1,0 +1,260 @@
+// The reproduction job: runs the sections in order inside a staging
+// directory, draws the figures with matplotlib, writes report.html last and
+// only then moves everything into the output directory.
+#include "attenuvis/validation/reproduce.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include <unistd.h>
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
+#include "sections.hpp"
+
+namespace fs = std::filesystem;
+
+namespace attenuvis::validation {
+namespace detail {
+
+Progress::Progress(std::ostream* os, bool tty) : os_(os), tty_(tty), start_(std::chrono::steady_clock::now()) {}
+
+double Progress::elapsed() const { return seconds_since(start_); }
+
+void Progress::step(const std::string& section, const std::string& what) {
+  if (!os_) return;
+  char t[32];
+  std::snprintf(t, sizeof t, "%6.1f s", elapsed());
+  if (tty_) *os_ << "\r\033[K";
+  *os_ << "reproduce [" << t << "] " << section << ": " << what;
+  if (!tty_) *os_ << "\n";
+  os_->flush();
+}
+
+void Progress::done() {
+  if (os_ && tty_) *os_ << "\r\033[K";
+  if (os_) os_->flush();
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string sig(double v, int digits) { return format_number(v, digits); }
+
+Table& add_table(Context& ctx, Section& s, Table t) {
+  write_table_csv(t, (fs::path(ctx.dir) / (t.id + ".csv")).string());
+  return s.table(std::move(t));
+}
+
+}  // namespace detail
+
+namespace {
+
+using detail::Context;
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) {
+    if (c == '\'') q += "'\\''";
+    else q += c;
+  }
+  return q + "'";
+}
+
+std::string tail_of_file(const fs::path& p, std::size_t max_chars) {
+  std::ifstream f(p);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  std::string s = ss.str();
+  if (s.size() > max_chars) s = "..." + s.substr(s.size() - max_chars);
+  return s;
+}
+
+// Draws every figure of the report in one interpreter (matplotlib's import
+// costs about a second; once is enough).  Any failure fails the job.
+void draw_figures(const Report& report, const std::string& dir, detail::Progress* progress) {
+  nlohmann::json spec;
+  spec["figures"] = nlohmann::json::array();
+  std::vector<std::string> ids;
+  for (const auto& s : report.sections)
+    for (const auto& b : s.blocks)
+      if (auto f = std::get_if<Figure>(&b)) {
+        nlohmann::json j = f->spec;
+        j["id"] = f->id;
+        spec["figures"].push_back(j);
+        ids.push_back(f->id);
+      }
+  if (ids.empty()) return;
+  if (progress) progress->step("figures", "drawing " + std::to_string(ids.size()) + " figures with matplotlib");
+  const fs::path spec_path = fs::path(dir) / "figures.json";
+  write_file_atomically(spec_path.string(), spec.dump());
+  const fs::path log = fs::path(dir) / "figures.log";
+  const std::string python = ATTENUVIS_PYTHON;
+  const std::string script = std::string(ATTENUVIS_SCRIPTS_DIR) + "/report_figures.py";
+  if (python.empty() || !fs::exists(python))
+    throw std::runtime_error("figures: no Python interpreter (ATTENUVIS_PYTHON='" + python +
+                             "'); install python3-matplotlib and python3-numpy (scripts/setup.sh)");
+  const std::string cmd = "MPLCONFIGDIR=" + shell_quote((fs::path(dir) / ".mpl").string()) + " " +
+                          shell_quote(python) + " " + shell_quote(script) + " " + shell_quote(spec_path.string()) +
+                          " " + shell_quote(dir) + " >" + shell_quote(log.string()) + " 2>&1";
+  const int rc = std::system(cmd.c_str());
+  if (rc != 0)
+    throw std::runtime_error("figures: " + python + " " + script + " failed (status " + std::to_string(rc) +
+                             "); no report written. Its output:\n" + tail_of_file(log, 2000));
+  for (const auto& id : ids)
+    if (!fs::exists(fs::path(dir) / (id + ".png")))
+      throw std::runtime_error("figures: " + id + ".png was not drawn; no report written");
+  fs::remove(spec_path);
+  fs::remove(log);
+  fs::remove_all(fs::path(dir) / ".mpl");
+}
+
+std::string machine_line(int threads) {
+  std::string cpu = "unknown CPU";
+  std::ifstream f("/proc/cpuinfo");
+  for (std::string line; std::getline(f, line);)
+    if (line.rfind("model name", 0) == 0) {
+      cpu = line.substr(line.find(':') + 2);
+      break;
+    }
+  return cpu + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads, " +
+         std::to_string(threads) + " used";
+}
+
+std::string utc_now() {
+  std::time_t t = std::time(nullptr);
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&t));
+  return buf;
+}
+
+}  // namespace
+
+ReproduceResult reproduce(const ReproduceOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const fs::path out = options.out_dir.empty() ? fs::path("out") : fs::path(options.out_dir);
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec || !fs::is_directory(out))
+    throw std::runtime_error("cannot create output directory '" + out.string() + "': " + ec.message());
+  const fs::path staging = out / (".reproduce-staging-" + std::to_string(::getpid()));
+  fs::remove_all(staging);
+  fs::create_directories(staging);
+  // Whatever happens before the final move, the staging directory goes away.
+  struct Cleanup {
+    fs::path dir;
+    ~Cleanup() {
+      std::error_code e;
+      fs::remove_all(dir, e);
+    }
+  } cleanup{staging};
+
+  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+
+  detail::Progress progress(options.progress, options.progress == &std::cerr && ::isatty(2));
+  Report report;
+  report.title = "attenuvis: reproduction of Schwartz, Vinnikov & Federici (SimAUD 2021) and Mie validation";
+  Context ctx;
+  ctx.options = options;
+  ctx.dir = staging.string();
+  ctx.threads = threads;
+  ctx.progress = &progress;
+  ctx.key = &report.key;
+  ctx.closing = &report.closing;
+
+  detail::SeedConditions seed;
+  struct Step {
+    const char* id;
+    const char* title;
+    std::function<void(Section&)> run;
+  };
+  const std::vector<Step> steps = {
+      {"mie", "1. Mie validation", [&](Section& s) { detail::section_mie(ctx, s); }},
+      {"weather", "2. Size distributions and weather", [&](Section& s) { detail::section_weather(ctx, s, seed); }},
+      {"layouts", "3. Visibility graphs: the seed's five layouts",
+       [&](Section& s) { detail::section_layouts(ctx, s, seed); }},
+      {"city", "4. The city", [&](Section& s) { detail::section_city(ctx, s, seed); }},
+      {"performance", "5. Visibility-graph performance", [&](Section& s) { detail::section_performance(ctx, s); }},
+  };
+  for (const auto& step : steps) {
+    Section s;
+    s.id = step.id;
+    s.title = step.title;
+    ctx.step(step.id, "starting");
+    const auto ts = std::chrono::steady_clock::now();
+    try {
+      step.run(s);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(std::string("section '") + step.title + "' failed: " + e.what() +
+                               " (no report written)");
+    }
+    s.seconds = detail::seconds_since(ts);
+    report.key["time." + std::string(step.id) + "_s"] = s.seconds;
+    report.sections.push_back(std::move(s));
+  }
+
+  if (options.figures) draw_figures(report, staging.string(), &progress);
+
+  ReproduceResult result;
+  result.seconds = detail::seconds_since(t0);
+  report.key["time.total_s"] = result.seconds;
+  report.preamble = std::string("Computed on ") + utc_now() + " by `attenuvis reproduce" +
+                    (options.quick ? " --quick" : "") + "` on " + machine_line(threads) + "; total " +
+                    format_number(result.seconds, 3) +
+                    " s. Every number below was computed in this run; the only numbers typed in are the "
+                    "published values we compare against, each shown with its source." +
+                    (options.quick ? " QUICK MODE: coarse grids and a small city; the numbers that depend on "
+                                     "grid size are not the seed's configuration."
+                                   : "");
+  for (const auto& s : report.sections)
+    if (!s.available) result.missing.push_back(s.title);
+
+  // Summary lines.
+  result.summary.push_back("attenuvis reproduce" + std::string(options.quick ? " --quick" : "") + ": " +
+                           format_number(result.seconds, 3) + " s on " + std::to_string(threads) + " thread(s)");
+  for (const auto& s : report.sections) {
+    result.summary.push_back(s.title + (s.available ? "" : "  [NOT AVAILABLE IN THIS BUILD]") + "  (" +
+                             format_number(s.seconds, 3) + " s)");
+    for (const auto& line : s.summary) result.summary.push_back("  " + line);
+  }
+
+  write_key_json(report, (staging / "key.json").string());
+  if (options.figures) write_report_html(report, (staging / "report.html").string());
+
+  // Move everything out of staging; report.html last, so its presence means
+  // the whole set is there.
+  progress.step("output", "moving files into " + out.string());
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(staging))
+    if (e.is_regular_file() && e.path().filename() != "report.html") files.push_back(e.path());
+  for (const auto& f : files) fs::rename(f, out / f.filename());
+  if (options.figures) {
+    fs::rename(staging / "report.html", out / "report.html");
+    result.report_path = (out / "report.html").string();
+    result.summary.push_back("report: " + result.report_path);
+  } else {
+    result.summary.push_back("figures skipped: no report.html written (tables and key.json in " + out.string() + ")");
+  }
+  if (!result.missing.empty()) {
+    std::string m = "MISSING (not available in this build):";
+    for (const auto& s : result.missing) m += " [" + s + "]";
+    result.summary.push_back(m);
+  }
+  progress.done();
+  result.key = report.key;
+  return result;
+}
+
+}  // namespace attenuvis::validation

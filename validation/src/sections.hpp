@@ -1,0 +1,87 @@
+// Private to the reproduction job: the context every section receives and the
+// section entry points (one file each: section_mie.cpp, section_weather.cpp,
+// section_layouts.cpp, section_city.cpp, section_performance.cpp).
+#pragma once
+
+#include <chrono>
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "attenuvis/validation/report.hpp"
+#include "attenuvis/validation/reproduce.hpp"
+
+namespace attenuvis::validation::detail {
+
+// A single progress line on a terminal (rewritten in place), one line per
+// step otherwise, so logs stay readable.
+class Progress {
+ public:
+  Progress(std::ostream* os, bool tty);
+  void step(const std::string& section, const std::string& what);
+  void done();
+  double elapsed() const;
+
+ private:
+  std::ostream* os_;
+  bool tty_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+struct Context {
+  ReproduceOptions options;
+  std::string dir;                       // staging directory: every table/figure goes here
+  int threads = 1;                       // threads the run may use (already applied to TBB)
+  Progress* progress = nullptr;
+  std::map<std::string, double>* key = nullptr;
+  std::vector<Paragraph>* closing = nullptr;   // the report's closing note
+
+
+  void step(const std::string& section, const std::string& what) const {
+    if (progress) progress->step(section, what);
+  }
+  void set(const std::string& name, double value) const { (*key)[name] = value; }
+  // A line of the closing note: kind "agree", "disagree", "missing" or "text".
+  void conclude(const std::string& kind, std::string text) const { closing->push_back(Paragraph{kind, std::move(text)}); }
+};
+
+// The σ values every visibility section uses, computed once by the weather
+// section (in both conventions) and read by the layout and city sections.
+struct SeedConditions {
+  bool available = false;
+  std::string why_missing;
+  // Names in the seed's order: clear, rain 8 mm/h, heavy advection fog,
+  // moderate radiation fog, dry snow 4 mm/h.
+  struct Row {
+    std::string name;        // e.g. "rain 8 mm/h"
+    std::string condition;   // the condition grammar string, e.g. "rain:8"
+    double seed_published;   // the seed paper's σ [1/m]
+    std::string seed_where;  // where in the seed paper
+    double itu = 0.0;        // σ [1/m], convention itu (power laws in dB/km)
+    double seed = 0.0;       // σ [1/m], convention seed (power laws read as 1/km)
+    double error_itu = 0.0;  // error estimate [1/m] as reported by the weather module
+    double error_seed = 0.0;
+    std::string model;       // model used, as the weather module names it
+  };
+  std::vector<Row> rows;
+  const Row* find(const std::string& condition) const {
+    for (const auto& r : rows)
+      if (r.condition == condition) return &r;
+    return nullptr;
+  }
+};
+
+void section_mie(Context& ctx, Section& s);
+void section_weather(Context& ctx, Section& s, SeedConditions& seed);
+void section_layouts(Context& ctx, Section& s, const SeedConditions& seed);
+void section_city(Context& ctx, Section& s, const SeedConditions& seed);
+void section_performance(Context& ctx, Section& s);
+
+// Shared helpers (reproduce.cpp).
+// Writes a table's CSV into the staging directory and adds it to the section.
+Table& add_table(Context& ctx, Section& s, Table t);
+std::string sig(double v, int digits = 4);     // format_number shorthand for prose
+double seconds_since(std::chrono::steady_clock::time_point t0);
+
+}  // namespace attenuvis::validation::detail
