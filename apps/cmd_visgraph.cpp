@@ -1,6 +1,243 @@
-// Placeholder: the visgraph subcommand(s) arrive with their issue.
+// `attenuvis vg`: weather-weighted visibility graph of a scene.  Parses the
+// arguments, turns condition strings into sigma through the weather module
+// and calls the visgraph library; `attenuvis scene` is registered from
+// cmd_scene.cpp.
 #include "commands.hpp"
 
+#include <attenuvis/visgraph.hpp>
+
+#if __has_include(<attenuvis/weather.hpp>)
+#include <attenuvis/weather.hpp>
+#define ATTENUVIS_VG_HAS_WEATHER 1
+#endif
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
 namespace attenuvis::cli {
-void register_visgraph(CLI::App& /*app*/) {}
+
+// cmd_scene.cpp (colleague's file).  Weak until it lands, so this program
+// links without it; the call is skipped while it is absent.
+void register_scene_command(CLI::App& app) __attribute__((weak));
+
+namespace {
+namespace vg = attenuvis::visgraph;
+
+struct VgArguments {
+  std::string scene;
+  double spacing = 1.0;
+  double eye_height = 1.7;
+  std::string walkable;
+  double max_slope = 90.0;
+  std::string nodes_file, targets_file, target_point;
+  std::string conditions;
+  std::string convention = "itu";
+  std::string wavelength = "550nm";
+  double tolerance = 0;
+  double max_distance = std::numeric_limits<double>::infinity();
+  int threads = 0;
+  bool distances = false;
+  std::string out, ply, heatmap, summary, edges, color_by;
+  bool quiet = false;
+};
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, separator)) parts.push_back(part);
+  return parts;
+}
+
+#ifdef ATTENUVIS_VG_HAS_WEATHER
+std::string as_text(const std::string& s) { return s; }
+std::string as_text(weather::Convention c) { return weather::to_string(c); }
+#endif
+
+// One ConditionInfo per comma-separated condition, in the user's spelling.
+std::vector<vg::ConditionInfo> conditions_to_sigma(const VgArguments& a, double& wavelength_m) {
+  std::vector<vg::ConditionInfo> out;
+  const std::vector<std::string> labels = split(a.conditions, ',');
+  if (labels.empty()) throw std::invalid_argument("--conditions: give at least one condition");
+#ifdef ATTENUVIS_VG_HAS_WEATHER
+  weather::Settings settings;
+  settings.wavelength_m = weather::parse_wavelength(a.wavelength);
+  settings.convention = weather::parse_convention(a.convention);
+  wavelength_m = settings.wavelength_m;
+#else
+  // Until the weather module lands: only plain `sigma:VALUE` (1/m).
+  wavelength_m = 0;
+  if (a.convention != "itu" && a.convention != "seed")
+    throw std::invalid_argument("--convention: expected itu or seed, got '" + a.convention + "'");
+#endif
+  for (const std::string& label : labels) {
+    if (label.empty()) throw std::invalid_argument("--conditions: empty condition in '" + a.conditions + "'");
+    for (const vg::ConditionInfo& seen : out)
+      if (seen.label == label) throw std::invalid_argument("--conditions: '" + label + "' given twice");
+    vg::ConditionInfo info;
+    info.label = label;
+#ifdef ATTENUVIS_VG_HAS_WEATHER
+    const weather::Sigma s = weather::sigma(weather::parse_condition(label), settings);
+    info.sigma = s.per_m;
+    info.sigma_error = s.error_per_m;
+    info.model = as_text(s.model);
+    info.convention = as_text(s.convention);
+    info.note = as_text(s.note);
+#else
+    const std::string prefix = "sigma:";
+    if (label.compare(0, prefix.size(), prefix) != 0)
+      throw std::invalid_argument("unknown condition '" + label +
+                                  "' (this build knows only sigma:VALUE, VALUE in 1/m)");
+    std::size_t used = 0;
+    const std::string value = label.substr(prefix.size());
+    try {
+      info.sigma = std::stod(value, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != value.size() || !std::isfinite(info.sigma) || info.sigma < 0)
+      throw std::invalid_argument("condition '" + label + "': sigma must be a finite number >= 0 (1/m)");
+    info.model = "given sigma";
+    info.convention = "none";
+#endif
+    out.push_back(info);
+  }
+  return out;
+}
+
+std::vector<std::string> default_walkable(const std::string& scene) {
+  if (scene.rfind("layout:", 0) == 0) return {"floor"};
+  if (scene == "city" || scene.rfind("city:", 0) == 0) return {"sidewalk", "crosswalk"};
+  return {};
+}
+
+void run_vg(const VgArguments& a) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!a.targets_file.empty() && !a.target_point.empty())
+    throw std::invalid_argument("give --targets or --target-point, not both");
+  double wavelength_m = 0;
+  const std::vector<vg::ConditionInfo> conditions = conditions_to_sigma(a, wavelength_m);
+
+  const vg::Mesh mesh = vg::is_scene_spec(a.scene) ? vg::scene_from_spec(a.scene) : vg::load_obj(a.scene);
+  const vg::Scene scene(mesh);
+  if (!a.quiet) std::cerr << "scene " << a.scene << ": " << vg::describe(scene) << "\n";
+
+  std::unique_ptr<vg::NodeSet> grid;
+  std::vector<Eigen::Vector3d> eyes;
+  if (!a.nodes_file.empty()) {
+    eyes = vg::read_nodes_csv(a.nodes_file);
+  } else {
+    vg::NodeGridOptions options;
+    options.spacing = a.spacing;
+    options.eye_height = a.eye_height;
+    options.max_slope_deg = a.max_slope;
+    options.walkable = a.walkable.empty() ? default_walkable(a.scene) : split(a.walkable, ',');
+    grid = std::make_unique<vg::NodeSet>(vg::generate_nodes(scene, options));
+    eyes = grid->eyes;
+    if (!a.quiet)
+      std::cerr << "nodes: " << eyes.size() << " of " << grid->cells << " grid cells (dropped: " << grid->covered
+                << " covered, " << grid->too_steep << " too steep, " << grid->no_headroom << " without headroom, "
+                << grid->no_surface << " over no surface)\n";
+    if (eyes.empty()) throw std::runtime_error("no walkable surface under the node grid: no nodes");
+  }
+  std::vector<Eigen::Vector3d> targets;
+  if (!a.targets_file.empty()) targets = vg::read_nodes_csv(a.targets_file);
+  if (!a.target_point.empty()) targets.push_back(vg::parse_point(a.target_point));
+
+  vg::VisibilityOptions options;
+  for (const vg::ConditionInfo& c : conditions) options.sigmas.push_back(c.sigma);
+  options.distance_stats = a.distances;
+  options.tolerance = a.tolerance;
+  options.max_distance = a.max_distance;
+  options.threads = a.threads;
+  options.progress = !a.quiet;
+
+  vg::VisibilityResult result;
+  auto run = [&] {
+    result = targets.empty() ? vg::all_to_all(scene, eyes, options) : vg::to_targets(scene, eyes, targets, options);
+  };
+  if (a.edges.empty()) {
+    run();
+  } else {
+    vg::write_atomically(a.edges, [&](std::ostream& out) {
+      out << (targets.empty() ? "i,j,distance\n" : "node,target,distance\n");
+      out.precision(std::numeric_limits<double>::max_digits10);
+      options.edge_sink = [&out](const std::vector<vg::Edge>& edges) {
+        for (const vg::Edge& e : edges) out << e.i << "," << e.j << "," << e.distance << "\n";
+      };
+      run();
+    });
+  }
+
+  vg::ScoreTable table;
+  table.eyes = &eyes;
+  table.result = &result;
+  for (const vg::ConditionInfo& c : conditions) table.labels.push_back(c.label);
+  const std::string color_by =
+      !a.color_by.empty() ? a.color_by : result.degree_exact ? "avg:" + table.labels[0] : "sum:" + table.labels[0];
+  if (!a.ply.empty() || !a.heatmap.empty()) vg::score_values(table, color_by);  // check the name before writing
+  vg::write_csv(a.out, table);
+  if (!a.ply.empty()) vg::write_ply(a.ply, table, color_by);
+  if (!a.heatmap.empty()) vg::write_heatmap(a.heatmap, a.out, color_by, a.scene + ": " + color_by);
+  if (!a.summary.empty()) {
+    vg::RunInfo info;
+    info.scene = a.scene;
+    info.scene_report = vg::describe(scene);
+    info.mode = targets.empty() ? "all-to-all" : "to-targets";
+    info.targets = targets.size();
+    info.grid = grid.get();
+    info.wavelength_m = wavelength_m;
+    info.threads = a.threads;
+    info.conditions = conditions;
+    info.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const std::string json = vg::summary_json(table, info);
+    vg::write_atomically(a.summary, [&](std::ostream& out) { out << json; });
+  }
+  if (!a.quiet)
+    std::cerr << "visibility: " << result.nodes << " nodes, " << result.pairs_total << " pairs ("
+              << result.pairs_cast << " cast, " << result.pairs_visible << " visible) in " << result.seconds
+              << " s = " << (result.seconds > 0 ? result.pairs_total / result.seconds / 1e6 : 0.0)
+              << " M pairs/s\n";
+}
+}  // namespace
+
+void register_visgraph(CLI::App& app) {
+  auto args = std::make_shared<VgArguments>();
+  CLI::App* vgc = app.add_subcommand("vg", "Visibility graph weighted by contrast ratio C = exp(-sigma d)");
+  vgc->add_option("scene", args->scene, "OBJ file, or layout:0..4, city, city:SEED")->required();
+  vgc->add_option("--spacing", args->spacing, "node grid spacing (m)")->capture_default_str();
+  vgc->add_option("--eye-height", args->eye_height, "eye height above the walkable surface (m)")->capture_default_str();
+  vgc->add_option("--walkable", args->walkable,
+                  "walkable OBJ groups, comma-separated (default: all; floor for layouts; sidewalk,crosswalk for city)");
+  vgc->add_option("--max-slope", args->max_slope, "steepest walkable surface (degrees)")->capture_default_str();
+  auto* nodes = vgc->add_option("--nodes", args->nodes_file, "CSV x,y,z of eye positions instead of the grid");
+  vgc->add_option("--targets", args->targets_file, "CSV x,y,z of targets: nodes -> targets instead of all pairs");
+  vgc->add_option("--target-point", args->target_point, "one target x,y,z");
+  vgc->add_option("--conditions", args->conditions,
+                  "comma-separated conditions, e.g. clear,rain:8,fog:advection,snow:dry:4,sigma:0.01")
+      ->required();
+  vgc->add_option("--convention", args->convention, "itu | seed (P.1817 power laws in dB/km or 1/km)")->capture_default_str();
+  vgc->add_option("--wavelength", args->wavelength, "wavelength, e.g. 550nm")->capture_default_str();
+  vgc->add_option("--tolerance", args->tolerance, "prune pairs whose C < eps for every condition (certified bound)");
+  vgc->add_option("--max-distance", args->max_distance, "pairs farther than this (m) are not lines of sight");
+  vgc->add_option("--threads", args->threads, "worker threads (0 = all cores)")->capture_default_str();
+  vgc->add_flag("--distances", args->distances, "add mean_distance and max_distance columns");
+  vgc->add_option("--out", args->out, "CSV of per-node scores")->required();
+  vgc->add_option("--ply", args->ply, "PLY point cloud coloured by --color-by");
+  vgc->add_option("--heatmap", args->heatmap, "PNG top-view heatmap of --color-by");
+  vgc->add_option("--color-by", args->color_by, "score column for --ply/--heatmap (default avg:FIRST)");
+  vgc->add_option("--summary", args->summary, "JSON summary");
+  vgc->add_option("--edges", args->edges, "CSV edge list i,j,distance (O(edges) output)");
+  vgc->add_flag("--quiet", args->quiet, "no report or progress on stderr");
+  (void)nodes;
+  vgc->callback([args] { run_vg(*args); });
+  if (register_scene_command) register_scene_command(app);
+}
+
 }  // namespace attenuvis::cli

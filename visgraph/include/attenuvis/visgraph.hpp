@@ -1,0 +1,10 @@
+// attenuvis::visgraph — Embree visibility graph weighted by contrast ratio
+// C = exp(-sigma d) (Schwartz, Vinnikov, Federici, SimAUD 2021).
+#pragma once
+
+#include <attenuvis/visgraph/generators.hpp>
+#include <attenuvis/visgraph/mesh.hpp>
+#include <attenuvis/visgraph/nodes.hpp>
+#include <attenuvis/visgraph/outputs.hpp>
+#include <attenuvis/visgraph/scene.hpp>
+#include <attenuvis/visgraph/visibility.hpp>

@@ -1,0 +1,74 @@
+// Writing visibility results: CSV table, PLY point cloud, PNG heatmap, JSON
+// summary.  Every file is written atomically (a temporary file in the same
+// directory, renamed into place), so a failed run leaves no partial output.
+// Positions are always in the world (original, un-recentred) frame.
+#pragma once
+
+#include <attenuvis/visgraph/nodes.hpp>
+#include <attenuvis/visgraph/visibility.hpp>
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace attenuvis::visgraph {
+
+// A visibility result with the names the user gave its conditions.
+struct ScoreTable {
+  const std::vector<Eigen::Vector3d>* eyes = nullptr;  // world frame
+  const VisibilityResult* result = nullptr;
+  std::vector<std::string> labels;                     // one per sigma, as the user wrote it
+};
+
+// Column names in CSV order: x,y,z, then degree (when exact), sum:L for each
+// label, avg:L (when degree is exact), mean_distance,max_distance (when
+// computed), sum_error_bound (when pruning).
+std::vector<std::string> score_columns(const ScoreTable& table);
+// Values of one score column ("degree", "sum:L", "avg:L", "mean_distance",
+// "max_distance", "sum_error_bound"); throws std::invalid_argument naming
+// the available columns otherwise.
+std::vector<double> score_values(const ScoreTable& table, const std::string& column);
+
+void write_csv(const std::string& path, const ScoreTable& table);
+
+// ASCII PLY: x y z (double), red green blue (uchar, viridis colour map over
+// the column's finite range; NaN grey) and the value itself (double).
+void write_ply(const std::string& path, const ScoreTable& table, const std::string& column);
+
+// Top-view heatmap of `column` drawn from an existing CSV by
+// validation/scripts/vg_heatmap.py with Debian's python3 (matplotlib).
+void write_heatmap(const std::string& png_path, const std::string& csv_path, const std::string& column,
+                   const std::string& title);
+
+// How each sigma was obtained, for the summary.
+struct ConditionInfo {
+  std::string label;
+  double sigma = 0;        // 1/m
+  double sigma_error = 0;  // 1/m (0 if not known)
+  std::string model, convention, note;
+};
+
+struct RunInfo {
+  std::string scene;              // file or generator spec
+  std::string scene_report;       // describe(scene)
+  std::string mode;               // "all-to-all" or "to-targets"
+  std::size_t targets = 0;
+  const NodeSet* grid = nullptr;  // null for given nodes
+  double wavelength_m = 0;
+  int threads = 0;
+  double total_seconds = 0;
+  std::vector<ConditionInfo> conditions;
+};
+
+// JSON summary: nodes, pairs cast, visible fraction, min/max/mean per score,
+// sigma with units and convention, pruning bound, time, pairs/s.
+std::string summary_json(const ScoreTable& table, const RunInfo& info);
+
+// Writes through `fill` into a temporary file beside `path`, renamed into
+// place on success; removed (and the error rethrown) on failure.
+void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& fill);
+
+}  // namespace attenuvis::visgraph

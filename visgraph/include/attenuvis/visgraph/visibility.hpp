@@ -1,0 +1,100 @@
+// Lines of sight weighted by contrast ratio C = exp(-sigma d).
+//
+// For every node the library reports, in ONE pass over the rays and for every
+// requested extinction coefficient sigma_k (1/m):
+//   degree      number of nodes it sees,
+//   S_S[k]      = sum over visible partners of exp(-sigma_k d)   (seed paper, "sum score"),
+//   S_A[k]      = S_S[k] / degree                                 ("average score"),
+//   and optionally the mean and the maximum visible distance.
+//
+// Line-of-sight policy.  A pair (a, b) of eye points is visible when no
+// triangle meets the segment a→b shortened at BOTH ends by
+//     gap(d) = 1e-4 m + 1e-6 d,
+// the absolute term covering the float rounding of recentred coordinates for
+// scenes up to ~1 km from their centre (float spacing 6e-5 m there), the
+// relative term the rounding of a direction of length d.  Pairs with d <
+// 1e-6 m are coincident: never cast, neither visible nor counted (reported
+// as `coincident_pairs`).  Pairs with d <= 2 gap(d) but not coincident are
+// visible without a ray (no room for geometry between them).
+//
+// Determinism.  Contributions are accumulated as 64-bit integers in fixed
+// point (C in units of 2^-40, distance in units of 2^-20 m): integer addition
+// is associative, so results are bit-identical for any thread count or
+// schedule.  The price is rounding each C to 2^-41 (4.5e-13): |S_S error| <=
+// partners x 2^-41 in addition to the double evaluation of exp (~2 ulp).
+//
+// Pruning.  With tolerance eps > 0 and sigma_min > 0, pairs farther than
+// R = ln(1/eps)/sigma_min are never cast (candidates from a kd-tree radius
+// search).  Each skipped partner would have contributed at most
+// exp(-sigma_k R) <= eps to S_S[k], so |S_S error| <= pruned x eps, reported
+// per node (`pruned`).  Degree and distance statistics need every pair, so
+// they are reported only when no pair within max_distance is pruned.
+#pragma once
+
+#include <attenuvis/visgraph/scene.hpp>
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <vector>
+
+namespace attenuvis::visgraph {
+
+struct Edge {
+  std::uint32_t i, j;  // node indices (targets mode: j indexes the targets)
+  double distance;     // m
+};
+
+struct VisibilityOptions {
+  std::vector<double> sigmas;            // extinction coefficients, 1/m, each finite and >= 0
+  bool distance_stats = false;           // mean and max visible distance
+  double tolerance = 0;                  // eps; 0 = exact (every pair cast)
+  double max_distance = std::numeric_limits<double>::infinity();  // farther pairs are not lines of sight
+  int threads = 0;                       // 0 = all cores
+  // If set, receives the visible edges in (i, j) order, in blocks (so the
+  // edge list is never held whole in memory).
+  std::function<void(const std::vector<Edge>&)> edge_sink;
+  bool progress = false;                 // progress line on stderr after ~3 s
+};
+
+struct VisibilityResult {
+  std::size_t nodes = 0;
+  bool degree_exact = true;                 // false: degree/distances withheld (pruning)
+  std::vector<std::uint32_t> degree;        // empty unless degree_exact
+  std::vector<std::vector<double>> sum;     // sum[k][node] = S_S for sigmas[k]
+  std::vector<double> mean_distance;        // empty unless distance_stats && degree_exact; NaN if degree 0
+  std::vector<double> max_distance;         // likewise; NaN if degree 0
+  std::vector<std::uint32_t> pruned;        // partners not cast per node (pruning), else zeros
+  double tolerance = 0;
+  double pruning_radius = std::numeric_limits<double>::infinity();  // m
+  std::uint64_t pairs_total = 0;            // pairs considered (unordered, or source x target)
+  std::uint64_t pairs_cast = 0;             // pairs given to Embree
+  std::uint64_t pairs_visible = 0;
+  std::uint64_t coincident_pairs = 0;
+  double seconds = 0;                       // wall time of the pass
+
+  // S_A for condition k at node i (NaN when degree is 0 or withheld).
+  double average(std::size_t k, std::size_t i) const;
+  // Certified bound on |S_S error| at node i from pruning.
+  double sum_error_bound(std::size_t i) const { return pruned.empty() ? 0.0 : pruned[i] * tolerance; }
+};
+
+// Every unordered pair of `eyes` (world frame) once, both ends credited.
+VisibilityResult all_to_all(const Scene& scene, const std::vector<Eigen::Vector3d>& eyes,
+                            const VisibilityOptions& options);
+
+// Group to group: every source against every target, the source credited
+// (the seed's single-point analysis: sources = all nodes, one target).
+VisibilityResult to_targets(const Scene& scene, const std::vector<Eigen::Vector3d>& sources,
+                            const std::vector<Eigen::Vector3d>& targets, const VisibilityOptions& options);
+
+// The ceiling for benchmarks: the same unordered pairs as all_to_all (same
+// epsilon policy), occlusion only, no scoring.  Returns visible pairs.
+enum class RawMethod { single_rays, packets16 };
+std::uint64_t raw_visible_pairs(const Scene& scene, const std::vector<Eigen::Vector3d>& eyes, int threads,
+                                RawMethod method);
+
+}  // namespace attenuvis::visgraph

@@ -1,0 +1,231 @@
+// CSV, PLY, heatmap and JSON outputs of a visibility pass.
+#include <attenuvis/visgraph/outputs.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <unistd.h>
+
+#ifndef ATTENUVIS_PYTHON
+#define ATTENUVIS_PYTHON "/usr/bin/python3"
+#endif
+#ifndef ATTENUVIS_VG_HEATMAP_SCRIPT
+#define ATTENUVIS_VG_HEATMAP_SCRIPT "vg_heatmap.py"
+#endif
+
+namespace attenuvis::visgraph {
+
+namespace {
+std::string temporary_beside(const std::string& path) {
+  return path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
+}
+
+bool has_pruning(const VisibilityResult& r) {
+  return r.tolerance > 0 && std::isfinite(r.pruning_radius);
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// Viridis, sampled at 9 points (matplotlib's _viridis_data at 0, 1/8, ..., 1).
+Eigen::Vector3d viridis(double t) {
+  static const double map[9][3] = {{0.267004, 0.004874, 0.329415}, {0.282623, 0.140926, 0.457517},
+                                   {0.253935, 0.265254, 0.529983}, {0.206756, 0.371758, 0.553117},
+                                   {0.163625, 0.471133, 0.558148}, {0.127568, 0.566949, 0.550556},
+                                   {0.134692, 0.658636, 0.517649}, {0.266941, 0.748751, 0.440573},
+                                   {0.993248, 0.906157, 0.143936}};
+  t = std::clamp(t, 0.0, 1.0) * 8.0;
+  const int i = std::min(7, static_cast<int>(t));
+  const double f = t - i;
+  return (1 - f) * Eigen::Vector3d(map[i][0], map[i][1], map[i][2]) +
+         f * Eigen::Vector3d(map[i + 1][0], map[i + 1][1], map[i + 1][2]);
+}
+}  // namespace
+
+void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& fill) {
+  const std::string temp = temporary_beside(path);
+  try {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error("cannot write '" + path + "'");
+    fill(out);
+    out.flush();
+    if (!out) throw std::runtime_error("error while writing '" + path + "'");
+    out.close();
+    if (std::rename(temp.c_str(), path.c_str()) != 0) throw std::runtime_error("cannot rename onto '" + path + "'");
+  } catch (...) {
+    std::remove(temp.c_str());
+    throw;
+  }
+}
+
+std::vector<std::string> score_columns(const ScoreTable& table) {
+  const VisibilityResult& r = *table.result;
+  std::vector<std::string> columns = {"x", "y", "z"};
+  if (r.degree_exact) columns.push_back("degree");
+  for (const std::string& label : table.labels) columns.push_back("sum:" + label);
+  if (r.degree_exact)
+    for (const std::string& label : table.labels) columns.push_back("avg:" + label);
+  if (!r.mean_distance.empty()) {
+    columns.push_back("mean_distance");
+    columns.push_back("max_distance");
+  }
+  if (has_pruning(r)) columns.push_back("sum_error_bound");
+  return columns;
+}
+
+std::vector<double> score_values(const ScoreTable& table, const std::string& column) {
+  const VisibilityResult& r = *table.result;
+  const std::size_t N = r.nodes;
+  std::vector<double> v(N);
+  const std::vector<std::string> columns = score_columns(table);
+  if (std::find(columns.begin(), columns.end(), column) == columns.end() || column == "x" || column == "y" ||
+      column == "z") {
+    std::string list;
+    for (std::size_t c = 3; c < columns.size(); ++c) list += (list.empty() ? "" : ", ") + columns[c];
+    throw std::invalid_argument("no score column '" + column + "' (available: " + list + ")");
+  }
+  for (std::size_t k = 0; k < table.labels.size(); ++k) {
+    if (column == "sum:" + table.labels[k]) {
+      for (std::size_t i = 0; i < N; ++i) v[i] = r.sum[k][i];
+      return v;
+    }
+    if (column == "avg:" + table.labels[k]) {
+      for (std::size_t i = 0; i < N; ++i) v[i] = r.average(k, i);
+      return v;
+    }
+  }
+  for (std::size_t i = 0; i < N; ++i) {
+    if (column == "degree") v[i] = r.degree[i];
+    else if (column == "mean_distance") v[i] = r.mean_distance[i];
+    else if (column == "max_distance") v[i] = r.max_distance[i];
+    else v[i] = r.sum_error_bound(i);
+  }
+  return v;
+}
+
+void write_csv(const std::string& path, const ScoreTable& table) {
+  const std::vector<std::string> columns = score_columns(table);
+  std::vector<std::vector<double>> values;
+  for (std::size_t c = 3; c < columns.size(); ++c) values.push_back(score_values(table, columns[c]));
+  write_atomically(path, [&](std::ostream& out) {
+    for (std::size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c];
+    out << "\n";
+    out.precision(std::numeric_limits<double>::max_digits10);
+    for (std::size_t i = 0; i < table.result->nodes; ++i) {
+      const Eigen::Vector3d& p = (*table.eyes)[i];
+      out << p.x() << "," << p.y() << "," << p.z();
+      for (const auto& column : values) {
+        out << ",";
+        if (std::isnan(column[i])) out << "nan";
+        else out << column[i];
+      }
+      out << "\n";
+    }
+  });
+}
+
+void write_ply(const std::string& path, const ScoreTable& table, const std::string& column) {
+  const std::vector<double> v = score_values(table, column);
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (double x : v)
+    if (std::isfinite(x)) lo = std::min(lo, x), hi = std::max(hi, x);
+  write_atomically(path, [&](std::ostream& out) {
+    out << "ply\nformat ascii 1.0\ncomment attenuvis visibility graph, coloured by " << column
+        << " (viridis)\nelement vertex " << v.size()
+        << "\nproperty double x\nproperty double y\nproperty double z\n"
+           "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty double value\nend_header\n";
+    out.precision(std::numeric_limits<double>::max_digits10);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const Eigen::Vector3d& p = (*table.eyes)[i];
+      Eigen::Vector3d rgb(0.5, 0.5, 0.5);
+      if (std::isfinite(v[i])) rgb = viridis(hi > lo ? (v[i] - lo) / (hi - lo) : 0.5);
+      out << p.x() << " " << p.y() << " " << p.z();
+      for (int c = 0; c < 3; ++c) out << " " << static_cast<int>(std::lround(255 * rgb[c]));
+      out << " " << (std::isnan(v[i]) ? 0.0 : v[i]) << "\n";
+    }
+  });
+}
+
+void write_heatmap(const std::string& png_path, const std::string& csv_path, const std::string& column,
+                   const std::string& title) {
+  const std::string temp = temporary_beside(png_path);
+  const std::string command = shell_quote(ATTENUVIS_PYTHON) + " " + shell_quote(ATTENUVIS_VG_HEATMAP_SCRIPT) + " " +
+                              shell_quote(csv_path) + " " + shell_quote(column) + " " + shell_quote(temp) +
+                              " --title " + shell_quote(title);
+  const int status = std::system(command.c_str());
+  if (status != 0) {
+    std::remove(temp.c_str());
+    throw std::runtime_error("heatmap: '" + command + "' failed (status " + std::to_string(status) + ")");
+  }
+  if (std::rename(temp.c_str(), png_path.c_str()) != 0) {
+    std::remove(temp.c_str());
+    throw std::runtime_error("cannot rename onto '" + png_path + "'");
+  }
+}
+
+std::string summary_json(const ScoreTable& table, const RunInfo& info) {
+  using nlohmann::json;
+  const VisibilityResult& r = *table.result;
+  json j;
+  j["scene"] = {{"source", info.scene}, {"report", info.scene_report}};
+  j["mode"] = info.mode;
+  if (info.mode == "to-targets") j["targets"] = info.targets;
+  j["nodes"] = r.nodes;
+  if (info.grid)
+    j["node_grid"] = {{"cells", info.grid->cells},           {"nodes", info.grid->eyes.size()},
+                      {"dropped_no_surface", info.grid->no_surface}, {"dropped_covered", info.grid->covered},
+                      {"dropped_too_steep", info.grid->too_steep},   {"dropped_no_headroom", info.grid->no_headroom}};
+  j["pairs"] = {{"considered", r.pairs_total},
+                {"cast", r.pairs_cast},
+                {"visible", r.pairs_visible},
+                {"coincident_skipped", r.coincident_pairs},
+                {"visible_fraction_of_considered",
+                 r.pairs_total ? static_cast<double>(r.pairs_visible) / r.pairs_total : 0.0}};
+  json conditions = json::array();
+  for (const ConditionInfo& c : info.conditions)
+    conditions.push_back({{"label", c.label},
+                          {"sigma_per_m", c.sigma},
+                          {"sigma_error_per_m", c.sigma_error},
+                          {"units", "1/m"},
+                          {"model", c.model},
+                          {"convention", c.convention},
+                          {"note", c.note}});
+  j["conditions"] = conditions;
+  if (info.wavelength_m > 0) j["wavelength_m"] = info.wavelength_m;
+  json scores = json::object();
+  const std::vector<std::string> columns = score_columns(table);
+  for (std::size_t c = 3; c < columns.size(); ++c) {
+    const std::vector<double> v = score_values(table, columns[c]);
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo, sum = 0;
+    std::size_t n = 0;
+    for (double x : v)
+      if (std::isfinite(x)) lo = std::min(lo, x), hi = std::max(hi, x), sum += x, ++n;
+    scores[columns[c]] = n ? json{{"min", lo}, {"max", hi}, {"mean", sum / n}, {"nodes_with_value", n}}
+                           : json{{"nodes_with_value", 0}};
+  }
+  j["scores"] = scores;
+  double worst_bound = 0;
+  for (std::size_t i = 0; i < r.nodes; ++i) worst_bound = std::max(worst_bound, r.sum_error_bound(i));
+  j["pruning"] = {{"tolerance", r.tolerance},
+                  {"radius_m", std::isfinite(r.pruning_radius) ? json(r.pruning_radius) : json(nullptr)},
+                  {"degree_exact", r.degree_exact},
+                  {"max_sum_error_bound", worst_bound},
+                  {"fixed_point_rounding_bound_per_partner", std::ldexp(1.0, -41)}};
+  j["threads"] = info.threads;
+  j["time_s"] = {{"visibility", r.seconds}, {"total", info.total_seconds}};
+  j["pairs_per_s"] = r.seconds > 0 ? static_cast<double>(r.pairs_total) / r.seconds : 0.0;
+  j["cast_pairs_per_s"] = r.seconds > 0 ? static_cast<double>(r.pairs_cast) / r.seconds : 0.0;
+  return j.dump(2) + "\n";
+}
+
+}  // namespace attenuvis::visgraph

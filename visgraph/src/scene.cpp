@@ -1,0 +1,152 @@
+// Scene: recentres a Mesh in double precision and builds an Embree BVH.
+#include <attenuvis/visgraph/scene.hpp>
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace attenuvis::visgraph {
+
+struct Scene::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  std::size_t triangles = 0;
+  BoundingBox bounds;
+  Eigen::Vector3d origin{0, 0, 0};
+  std::vector<GroupInfo> groups;
+  std::vector<std::uint32_t> triangle_group;
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+Scene::Scene(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
+  if (mesh.triangles.empty() || mesh.vertices.empty())
+    throw std::invalid_argument("scene is empty: the mesh has no triangles");
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (!mesh.vertices[v].allFinite())
+      throw std::invalid_argument("scene: vertex " + std::to_string(v + 1) + " is not finite");
+  BoundingBox box{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
+                  Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (std::uint32_t index : mesh.triangles[t]) {
+      if (index >= mesh.vertices.size())
+        throw std::invalid_argument("scene: triangle " + std::to_string(t + 1) + " refers to missing vertex " +
+                                    std::to_string(index + 1));
+      box.min = box.min.cwiseMin(mesh.vertices[index]);
+      box.max = box.max.cwiseMax(mesh.vertices[index]);
+    }
+  impl_->bounds = box;
+  impl_->origin = box.centre();
+  impl_->triangles = mesh.triangles.size();
+  impl_->triangle_group = mesh.triangle_group;
+  impl_->triangle_group.resize(mesh.triangles.size(), 0);
+  impl_->groups.resize(std::max<std::size_t>(mesh.groups.size(), 1));
+  for (std::size_t g = 0; g < mesh.groups.size(); ++g) impl_->groups[g].name = mesh.groups[g];
+  for (std::uint32_t& g : impl_->triangle_group) {
+    if (g >= impl_->groups.size()) g = 0;
+    ++impl_->groups[g].triangles;
+  }
+
+  impl_->device = rtcNewDevice(nullptr);
+  if (!impl_->device) throw std::runtime_error("scene: Embree device could not be created");
+  impl_->scene = rtcNewScene(impl_->device);
+  // ROBUST: a segment grazing the shared edge of two wall triangles must not
+  // slip through the crack (it would add a false line of sight).
+  rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                               3 * sizeof(float), mesh.vertices.size()));
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(unsigned), mesh.triangles.size()));
+  if (!vertices || !indices) {
+    rtcReleaseGeometry(geometry);
+    throw std::runtime_error("scene: Embree could not allocate the geometry buffers");
+  }
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+    const Eigen::Vector3d local = mesh.vertices[v] - impl_->origin;  // subtract in double, round once
+    for (int c = 0; c < 3; ++c) vertices[3 * v + c] = static_cast<float>(local[c]);
+  }
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int c = 0; c < 3; ++c) indices[3 * t + c] = mesh.triangles[t][c];
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(impl_->scene, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(impl_->scene);
+  if (rtcGetDeviceError(impl_->device) != RTC_ERROR_NONE)
+    throw std::runtime_error("scene: Embree failed to build the BVH");
+}
+
+Scene::~Scene() = default;
+
+std::size_t Scene::triangle_count() const { return impl_->triangles; }
+const BoundingBox& Scene::bounds() const { return impl_->bounds; }
+const Eigen::Vector3d& Scene::origin() const { return impl_->origin; }
+const std::vector<GroupInfo>& Scene::groups() const { return impl_->groups; }
+std::uint32_t Scene::triangle_group(std::size_t triangle) const { return impl_->triangle_group.at(triangle); }
+void* Scene::embree_scene() const { return impl_->scene; }
+
+Scene::Hit Scene::intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_near, double t_far) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh{};
+  rh.ray.org_x = static_cast<float>(o.x());
+  rh.ray.org_y = static_cast<float>(o.y());
+  rh.ray.org_z = static_cast<float>(o.z());
+  rh.ray.dir_x = static_cast<float>(d.x());
+  rh.ray.dir_y = static_cast<float>(d.y());
+  rh.ray.dir_z = static_cast<float>(d.z());
+  rh.ray.tnear = static_cast<float>(t_near);
+  rh.ray.tfar = static_cast<float>(t_far);
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &context, &rh);
+  Hit hit;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+  hit.found = true;
+  hit.t = rh.ray.tfar;
+  hit.normal = Eigen::Vector3d(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+  const double n = hit.normal.norm();
+  if (n > 0) hit.normal /= n;
+  hit.triangle = rh.hit.primID;
+  return hit;
+}
+
+bool Scene::occluded(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double end_gap) const {
+  const Eigen::Vector3d d = b - a;
+  const double length = d.norm();
+  if (!(length > 2 * end_gap)) return false;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray{};
+  ray.org_x = static_cast<float>(a.x());
+  ray.org_y = static_cast<float>(a.y());
+  ray.org_z = static_cast<float>(a.z());
+  ray.dir_x = static_cast<float>(d.x());
+  ray.dir_y = static_cast<float>(d.y());
+  ray.dir_z = static_cast<float>(d.z());
+  ray.tnear = static_cast<float>(end_gap / length);
+  ray.tfar = static_cast<float>(1.0 - end_gap / length);
+  ray.mask = 0xFFFFFFFFu;
+  rtcOccluded1(impl_->scene, &context, &ray);
+  return ray.tfar < 0;  // Embree sets tfar = -inf when something is hit
+}
+
+std::string describe(const Scene& scene) {
+  std::ostringstream out;
+  const BoundingBox& b = scene.bounds();
+  out.precision(10);
+  out << scene.triangle_count() << " triangles; bounding box [" << b.min.x() << ", " << b.max.x() << "] x ["
+      << b.min.y() << ", " << b.max.y() << "] x [" << b.min.z() << ", " << b.max.z() << "] m; groups:";
+  for (const GroupInfo& g : scene.groups())
+    out << " " << (g.name.empty() ? "(default)" : g.name) << " (" << g.triangles << ")";
+  return out.str();
+}
+
+}  // namespace attenuvis::visgraph
