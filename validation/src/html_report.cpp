@@ -40,6 +40,14 @@ pre{background:#f6f6f8;padding:.6em;overflow-x:auto}
 )";
 
 void write_paragraph(std::ostringstream& os, const Paragraph& p) {
+  if (p.kind == "data") {
+    const auto bar = p.text.find('|');
+    const std::string file = p.text.substr(0, bar);
+    const std::string what = bar == std::string::npos ? "" : p.text.substr(bar + 1);
+    os << "<p class=\"source\"><b>Data:</b> <a href=\"" << escape(file) << "\">" << escape(file) << "</a> "
+       << escape(what) << "</p>\n";
+    return;
+  }
   os << "<p class=\"" << escape(p.kind) << "\">";
   if (p.kind == "source") os << "<b>Source:</b> ";
   if (p.kind == "agree") os << "<b>Agrees:</b> ";

@@ -57,6 +57,23 @@ Table& add_table(Context& ctx, Section& s, Table t) {
   return s.table(std::move(t));
 }
 
+void write_data_csv(Context& ctx, const std::string& file, const std::vector<std::string>& header,
+                    const std::vector<const std::vector<double>*>& columns) {
+  if (header.size() != columns.size()) throw std::logic_error("write_data_csv: header/column count differ for " + file);
+  const std::size_t n = columns.empty() ? 0 : columns[0]->size();
+  std::string text;
+  for (std::size_t c = 0; c < header.size(); ++c) text += (c ? "," : "") + header[c];
+  text += "\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (columns[c]->size() != n) throw std::logic_error("write_data_csv: ragged columns in " + file);
+      text += (c ? "," : "") + exact_number((*columns[c])[i]);
+    }
+    text += "\n";
+  }
+  write_file_atomically((fs::path(ctx.dir) / file).string(), text);
+}
+
 }  // namespace detail
 
 namespace {

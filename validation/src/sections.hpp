@@ -72,6 +72,24 @@ struct SeedConditions {
   }
 };
 
+// The seed's five conditions with their published σ (value and place in the
+// paper); itu/seed left NaN for the weather section to fill.
+SeedConditions seed_published_conditions();
+
+// One σ to run a visibility graph with.  `tag` is file-name safe.
+struct VgCondition {
+  std::string label;   // for tables and figure titles, e.g. "rain 8 mm/h (seed convention)"
+  std::string tag;     // e.g. "rain8_seed"
+  std::string short_label;  // for figure panels, e.g. "rain 8, seed"
+  std::string condition;  // grammar string, e.g. "rain:8"
+  std::string convention; // "itu", "seed", "both" (σ the same in both) or "published"
+  double sigma = 0;       // 1/m
+};
+// The σ values of `condition` for the visibility sections: one entry when
+// both conventions give the same σ, two (itu, then seed) otherwise; the
+// seed's printed σ (labelled so) when the weather module is not in the build.
+std::vector<VgCondition> vg_conditions(const SeedConditions& seed, const std::string& condition);
+
 void section_mie(Context& ctx, Section& s);
 void section_weather(Context& ctx, Section& s, SeedConditions& seed);
 void section_layouts(Context& ctx, Section& s, const SeedConditions& seed);
@@ -81,6 +99,10 @@ void section_performance(Context& ctx, Section& s);
 // Shared helpers (reproduce.cpp).
 // Writes a table's CSV into the staging directory and adds it to the section.
 Table& add_table(Context& ctx, Section& s, Table t);
+// Writes a data file (per-node scores) into the staging directory: one column
+// per header entry, all columns the same length; numbers in round-trip form.
+void write_data_csv(Context& ctx, const std::string& file, const std::vector<std::string>& header,
+                    const std::vector<const std::vector<double>*>& columns);
 std::string sig(double v, int digits = 4);     // format_number shorthand for prose
 double seconds_since(std::chrono::steady_clock::time_point t0);
 

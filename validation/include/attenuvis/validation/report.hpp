@@ -54,7 +54,8 @@ struct Figure {
 
 // A paragraph of plain text (HTML-escaped when written).  `kind` styles it:
 // "text", "source" (where a published value comes from), "agree",
-// "disagree" (with the reason), "missing" (not available in this build).
+// "disagree" (with the reason), "missing" (not available in this build),
+// "data" (a data file beside the report: `text` is "FILE|description").
 struct Paragraph {
   std::string kind = "text";
   std::string text;
@@ -77,6 +78,9 @@ struct Section {
   void missing(std::string t) {
     available = false;
     blocks.push_back(Paragraph{"missing", std::move(t)});
+  }
+  void data(const std::string& file, const std::string& description) {
+    blocks.push_back(Paragraph{"data", file + "|" + description});
   }
   Table& table(Table t) {
     blocks.push_back(std::move(t));
