@@ -1,0 +1,102 @@
+// attenuvis::mie — Lorenz–Mie scattering by a homogeneous sphere.
+//
+// Conventions (Bohren & Huffman 1983, "Absorption and Scattering of Light by
+// Small Particles", ch. 4; referred to as B&H below):
+//  * Time dependence e^{-iωt}.  The relative refractive index is m = n + ik with
+//    k >= 0 for an absorbing sphere (same sign as B&H and Wiscombe's MIEV0).
+//  * Size parameter x = 2πr/λ with λ the wavelength in the surrounding medium;
+//    m is the sphere's index divided by the medium's.
+//  * Efficiencies are cross sections divided by the geometric cross section πr²:
+//      Qext = (2/x²) Σ (2n+1) Re(aₙ+bₙ)                  (B&H 4.62)
+//      Qsca = (2/x²) Σ (2n+1) (|aₙ|²+|bₙ|²)              (B&H 4.61)
+//      Qabs = Qext − Qsca, computed from a sum of its own (each term is
+//             −Im(·)/|·|², see mie/series.hpp) so it keeps full relative
+//             accuracy even when k is tiny and Qabs ≪ Qsca.
+//      Qback = 4|S1(π)|²/x² = (1/x²) |Σ (2n+1)(−1)ⁿ(aₙ−bₙ)|²  (B&H 4.82).
+//             This is B&H's (and MIEV0's) backscattering efficiency.  Draine's
+//             BHMIE returns Qback/(4π) (a "per steradian" value); multiply its
+//             figure by 4π to compare.
+//      g    = <cos θ>, the asymmetry parameter (B&H 4.74); Qpr = Qext − g Qsca
+//             is the radiation-pressure efficiency (B&H 4.77).
+//  * Amplitudes S1(θ), S2(θ) are B&H's (4.74): S1 = Σ (2n+1)/(n(n+1)) (aₙπₙ+bₙτₙ),
+//    S2 = Σ (2n+1)/(n(n+1)) (aₙτₙ+bₙπₙ); S1(0) = S2(0) and Qext = 4 Re S1(0)/x².
+//    θ is the scattering angle in degrees (0 = forward).
+//  * aₙ, bₙ are B&H's (4.53); a perfectly conducting sphere is the limit
+//    |m| → ∞ : aₙ = ψₙ'(x)/ξₙ'(x), bₙ = ψₙ(x)/ξₙ(x).
+//
+// Everything is computed from ratio/logarithmic-derivative recurrences, so
+// nothing overflows or underflows for 1e-8 <= x <= 1e7 and any 0 < n, 0 <= k.
+// The numerical method and its traps are described in mie/series.hpp.
+#pragma once
+
+#include <complex>
+#include <cstddef>
+#include <vector>
+
+namespace attenuvis::mie {
+
+// Complex<Real>: the complex type that goes with a real floating type.  Other
+// real types (the 50-digit referee) specialise ComplexOf in their own header.
+template <class Real>
+struct ComplexOf {
+  using type = std::complex<Real>;
+};
+template <class Real>
+using Complex = typename ComplexOf<Real>::type;
+
+template <class Real>
+struct Efficiencies {
+  Real qext{}, qsca{}, qabs{}, qback{}, qpr{}, g{};
+  std::size_t terms = 0;  // number of series terms summed (n = 1..terms)
+};
+
+// How many terms of the series are summed.
+enum class TermRule {
+  // Default: keep adding terms (beyond n > x) until the next one is below
+  // ~1e-4·ε of every accumulated sum, ε the unit round-off of Real.  This is
+  // what keeps Qback and absorbing spheres within 1e-10 of the exact value.
+  converged,
+  // Wiscombe (1980, Appl. Opt. 19:1505, eq. 19) / MIEV0: N = x + 4.05 x^{1/3} + 2
+  // (truncated to an integer).  Provided to reproduce other codes and to
+  // measure its truncation error; it is NOT accurate to 1e-10 (trap 1).
+  wiscombe,
+};
+
+struct Options {
+  TermRule terms = TermRule::converged;
+};
+
+// Extra outputs of scatter(): the Mie coefficients and/or the amplitude
+// functions at the given scattering angles (degrees).
+struct Extras {
+  bool coefficients = false;
+  std::vector<double> angles_deg;
+};
+
+template <class Real>
+struct Scattering {
+  Efficiencies<Real> q;
+  std::vector<Complex<Real>> a, b;   // aₙ, bₙ for n = 1..q.terms at index n-1 (if requested)
+  std::vector<double> angles_deg;    // copy of the request
+  std::vector<Complex<Real>> s1, s2; // S1(θ), S2(θ), one per angle
+};
+
+// Tag for a perfectly conducting (|m| → ∞) sphere.
+struct PerfectConductor {};
+
+// Efficiencies of a homogeneous sphere with size parameter x > 0 and relative
+// refractive index m = n + ik (n > 0, k >= 0).  Throws std::invalid_argument
+// for x <= 0, x > 2e7, non-finite input, n <= 0 or k < 0.
+Efficiencies<double> sphere(double x, std::complex<double> m, const Options& options = {});
+Efficiencies<double> sphere(double x, PerfectConductor, const Options& options = {});
+
+// The same, plus the coefficients and/or amplitudes asked for in `extras`.
+Scattering<double> scatter(double x, std::complex<double> m, const Extras& extras,
+                           const Options& options = {});
+Scattering<double> scatter(double x, PerfectConductor, const Extras& extras,
+                           const Options& options = {});
+
+// Wiscombe's term count N = floor(x + 4.05 x^{1/3} + 2) (see TermRule::wiscombe).
+std::size_t wiscombe_terms(double x);
+
+}  // namespace attenuvis::mie

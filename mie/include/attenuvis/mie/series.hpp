@@ -1,0 +1,244 @@
+// The Mie series for a homogeneous sphere, templated on the floating type.
+//
+// Template implementation detail; included only by mie/src/sphere_double.cpp
+// (Real = double) and mie/src/sphere_referee.cpp (Real = 50-digit), so the
+// code that weather/ and the CLI include stays template-free.
+//
+// Method (B&H ch. 4 rewritten in ratios, cf. Wiscombe 1979 NCAR/TN-140+STR §3):
+//   aₙ = Rₙ (Dₙ(mx)/m − Dₙ(x)) / (Dₙ(mx)/m − Gₙ(x))
+//   bₙ = Rₙ (m Dₙ(mx) − Dₙ(x)) / (m Dₙ(mx) − Gₙ(x))
+// with Rₙ = ψₙ(x)/ξₙ(x), Gₙ = ξₙ'/ξₙ.  This follows from B&H 4.88 after
+// dividing by ψₙ (numerator) and ξₙ (denominator) and using ψ_{n-1}/ψₙ =
+// Dₙ + n/x, ξ_{n-1}/ξₙ = Gₙ + n/x.
+//   * Real argument (trap 3, small x): ψₙ(x) enters only through Pₙ(x) =
+//     ψ_{n-1}/ψₙ from the downward recurrence (Lentz start), and ξₙ through
+//     ρₙ = ξ_{n-1}/ξₙ from 1/ρₙ = (2n−1)/x − ρ_{n-1}, ρ₀ = ξ₋₁/ξ₀ = i (upward,
+//     stable since ξ is the dominant solution).  Rₙ = R_{n-1} ρₙ/Pₙ with
+//     R₀ = ψ₀/ξ₀ = sin²x + i sin x cos x.  No ψ₁ = sin x/x − cos x anywhere,
+//     and Gₙ + n/x = ρₙ is never formed by subtraction.
+//   * Absorption: Re aₙ − |aₙ|² = −Im(T) / (|ξₙ|² |T − Gₙ|²) with T = Dₙ(mx)/m
+//     (bₙ: T = m Dₙ(mx)), from the Wronskian ψₙ'χₙ − ψₙχₙ' = 1.  Summing this
+//     gives Qabs to full relative accuracy even when Qabs ≪ Qsca, where
+//     Qext − Qsca would cancel.  1/|ξₙ|² = Π|ρ_k|² (|ξ₀| = 1) is carried as a
+//     product, so it underflows harmlessly instead of overflowing.
+//   * Dₙ(mx): downward from a Lentz start (log_derivative.hpp, with the Δ
+//     difference for trap 4), or — when the continued fraction would need far
+//     more steps than the series has terms and the upward recurrence is
+//     provably stable — upward from cot(mx); see choose_method().
+//   * Sums are compensated (Kahan) so that 1e6 terms of alternating sign
+//     (Qback, g) keep their digits.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include <boost/math/special_functions/cos_pi.hpp>
+
+#include "attenuvis/mie.hpp"
+#include "attenuvis/mie/log_derivative.hpp"
+
+namespace attenuvis::mie::detail {
+
+template <class Real>
+struct KahanSum {
+  Real sum{0}, carry{0};
+  void add(const Real& v) {
+    const Real y = v - carry;
+    const Real t = sum + y;
+    carry = (t - sum) - y;
+    sum = t;
+  }
+  Real value() const { return sum - carry; }
+};
+
+// −ln of the relative size of the last term kept: the series stops once a
+// term is below 1e-4·ε of the sums.
+template <class Real>
+double tail_log_tolerance() {
+  using std::log;
+  return -std::log(static_cast<double>(std::numeric_limits<Real>::epsilon())) + 9.3;
+}
+
+// Upper bound on the number of terms the converged rule may need.  Beyond
+// n ≈ x the terms fall like the square of an Airy function,
+// exp(−(4/3) s^{3/2}) with s = (n−x)(2/x)^{1/3}; solving for a term ratio
+// e^{−L} gives n − x = (3L/4)^{2/3} (x/2)^{1/3}.  We allocate 20% more, plus
+// L/2 terms for x ≲ 1 where the asymptotics do not yet hold.
+template <class Real>
+std::size_t max_terms(double x) {
+  const double L = tail_log_tolerance<Real>();
+  const double c = 1.2 * std::pow(0.75 * L, 2.0 / 3.0) / std::cbrt(2.0);
+  return static_cast<std::size_t>(x + c * std::cbrt(x) + 0.5 * L) + 1;
+}
+
+inline std::size_t wiscombe_term_count(double x) {
+  return static_cast<std::size_t>(x + 4.05 * std::cbrt(x) + 2.0);
+}
+
+enum class DMethod { downward, upward };
+
+// Dₙ(mx) for n <= N: the Lentz continued fraction at index N needs about
+// |mx| − N steps when |mx| > N (oscillatory region), fewer when Im(mx) is
+// large: the downward map contracts by about exp(−2n Im z/|z|²) per step, so
+// K steps beyond N damp by exp(−(K² + 2NK) Im z/|z|²).  The upward
+// recurrence amplifies errors by exp(E), E = N² Im z/|z|² (Kattawar & Plass
+// 1967; Wiscombe 1979 §3.b), and is unstable for n > |z|.  We go upward only
+// when the continued fraction would cost more than 2N + 1000 steps, N < |z|
+// by that margin, and E <= 3 (error growth < 20 ε).  Otherwise the fraction
+// costs at most N(√(1+L/3) − 1) < 3N steps (double) — bounded either way.
+template <class Real, class C>
+DMethod choose_method(double x, std::complex<double> m, std::size_t N) {
+  const std::complex<double> z = m * x;
+  const double az = std::abs(z);
+  const double n = static_cast<double>(N);
+  if (az <= n) return DMethod::downward;
+  const double b = z.imag();
+  const double E = n * n * b / (az * az);
+  const double L = tail_log_tolerance<Real>();
+  double k = az - n;
+  if (E > 0) k = std::min(k, n * (std::sqrt(1.0 + L / E) - 1.0));
+  if (k <= 2.0 * n + 1000.0) return DMethod::downward;
+  return E <= 3.0 ? DMethod::upward : DMethod::downward;
+}
+
+// The series.  pec: perfectly conducting sphere (m ignored).
+template <class Real>
+Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& extras,
+                            const Options& options) {
+  using C = Complex<Real>;
+  using std::cos;
+  using std::sin;
+  const double xd = static_cast<double>(x);
+  const std::complex<double> md(static_cast<double>(m.real()), static_cast<double>(m.imag()));
+  const bool converged_rule = options.terms == TermRule::converged;
+  const std::size_t N = converged_rule ? max_terms<Real>(xd) : std::max<std::size_t>(1, wiscombe_term_count(xd));
+
+  // Real-argument ratios Pₙ(x) and the Δₙ of log_derivative.hpp.
+  std::vector<Real> p;
+  std::vector<C> delta;
+  DMethod method = pec ? DMethod::downward : choose_method<Real, C>(xd, md, N);
+  if (pec) {
+    // Only Pₙ(x) is needed; run the same pass with m = 1 (Δ ≡ 0).
+    downward_ratios<Real, C>(x, C(Real(1)), N, p, delta);
+  } else if (method == DMethod::downward) {
+    downward_ratios<Real, C>(x, m, N, p, delta);
+  } else {
+    std::vector<C> unused;
+    downward_ratios<Real, C>(x, C(Real(1)), N, p, unused);
+  }
+  UpwardLogDerivative<Real, C> upward(method == DMethod::upward ? C(m * x) : C(Real(1)));
+
+  Scattering<Real> out;
+  out.angles_deg = extras.angles_deg;
+  const std::size_t na = extras.angles_deg.size();
+  std::vector<Real> mu(na), pi_prev(na, Real(0)), pi_cur(na, Real(1));
+  for (std::size_t j = 0; j < na; ++j)
+    mu[j] = boost::math::cos_pi(Real(extras.angles_deg[j]) / Real(180));
+  out.s1.assign(na, C(Real(0)));
+  out.s2.assign(na, C(Real(0)));
+
+  const Real inv_x = Real(1) / x;
+  const C m_minus_1 = m - C(Real(1));
+  const double tol = std::exp(-tail_log_tolerance<Real>());
+  KahanSum<Real> ext, sca, abs_, back_re, back_im, g_re;
+  C rho(Real(0), Real(1));                       // ρ₀ = i
+  C R(sin(x) * sin(x), sin(x) * cos(x));         // R₀ = ψ₀/ξ₀
+  Real s(1);                                     // 1/|ξ₀|²
+  C a_prev(Real(0)), b_prev(Real(0));
+  std::size_t n = 1;
+  for (; n <= N; ++n) {
+    const Real rn = Real(n);
+    const Real n_over_x = rn * inv_x;
+    rho = recip(C(inv_x * Real(2 * n - 1)) - rho);
+    R = R * rho * (Real(1) / p[n]);
+    s *= norm2(rho);
+    const Real dx = p[n] - n_over_x;
+    const C G = rho - C(n_over_x);
+    C a, b;
+    Real alpha(0), beta(0);
+    if (pec) {
+      a = R * C(dx) * recip(G);
+      b = R;
+    } else {
+      C dmx, num_a, num_b;
+      if (method == DMethod::downward) {
+        dmx = C(dx) + delta[n];
+        num_a = delta[n] - m_minus_1 * dx;
+        num_b = m * delta[n] + m_minus_1 * dx;
+      } else {
+        dmx = upward.next(n);
+        num_a = dmx - m * dx;
+        num_b = m * dmx - C(dx);
+      }
+      const C inv_da = recip(dmx - m * G);
+      const C mdmx = m * dmx;
+      const C inv_db = recip(mdmx - G);
+      a = R * num_a * inv_da;
+      b = R * num_b * inv_db;
+      // −Im(Dₙ(mx)/m)·|m|² = −Im(Dₙ(mx) m̄);  −Im(m Dₙ(mx)).
+      const Real im_t_a = dmx.imag() * m.real() - dmx.real() * m.imag();
+      alpha = -im_t_a * s * norm2(inv_da);
+      beta = -mdmx.imag() * s * norm2(inv_db);
+    }
+    const Real w = Real(2 * n + 1);
+    ext.add(w * (a.real() + b.real()));
+    sca.add(w * (norm2(a) + norm2(b)));
+    abs_.add(w * (alpha + beta));
+    const C ab = a - b;
+    if (n % 2 == 0) { back_re.add(w * ab.real()); back_im.add(w * ab.imag()); }
+    else { back_re.add(-w * ab.real()); back_im.add(-w * ab.imag()); }
+    // g (B&H 4.74): Σ n(n+2)/(n+1) Re(aₙa*ₙ₊₁ + bₙb*ₙ₊₁) + Σ (2n+1)/(n(n+1)) Re(aₙb*ₙ)
+    if (n >= 2) {
+      const Real k = Real(n - 1);
+      const Real cross = a_prev.real() * a.real() + a_prev.imag() * a.imag() +
+                         b_prev.real() * b.real() + b_prev.imag() * b.imag();
+      g_re.add(k * (k + 2) / (k + 1) * cross);
+    }
+    g_re.add(w / (rn * (rn + 1)) * (a.real() * b.real() + a.imag() * b.imag()));
+    a_prev = a;
+    b_prev = b;
+    if (extras.coefficients) {
+      out.a.push_back(a);
+      out.b.push_back(b);
+    }
+    if (na > 0) {
+      const Real f = w / (rn * (rn + 1));
+      for (std::size_t j = 0; j < na; ++j) {
+        Real pi_n = pi_cur[j];
+        if (n >= 2) {
+          pi_n = (Real(2 * n - 1) * mu[j] * pi_cur[j] - rn * pi_prev[j]) / Real(n - 1);
+          pi_prev[j] = pi_cur[j];
+          pi_cur[j] = pi_n;
+        }
+        const Real tau = rn * mu[j] * pi_n - (rn + 1) * pi_prev[j];
+        const C fa = a * f, fb = b * f;
+        out.s1[j] += fa * pi_n + fb * tau;
+        out.s2[j] += fa * tau + fb * pi_n;
+      }
+    }
+    if (converged_rule && static_cast<double>(n) > xd) {
+      using std::abs;
+      const Real term = w * (abs(a.real()) + abs(a.imag()) + abs(b.real()) + abs(b.imag()));
+      const Real scale = (std::min)(abs(ext.sum), abs(back_re.sum) + abs(back_im.sum));
+      if (term <= Real(tol) * scale) break;
+    }
+  }
+  if (n > N) n = N;
+  Efficiencies<Real>& q = out.q;
+  const Real f = Real(2) * inv_x * inv_x;
+  q.terms = n;
+  const Real br = back_re.value(), bi = back_im.value(), ssum = sca.value();
+  q.qext = f * ext.value();
+  q.qsca = f * ssum;
+  q.qabs = pec ? Real(0) : f * abs_.value();
+  q.qback = (br * br + bi * bi) * inv_x * inv_x;
+  q.g = ssum > 0 ? Real(2) * g_re.value() / ssum : Real(0);
+  q.qpr = q.qext - q.g * q.qsca;
+  return out;
+}
+
+}  // namespace attenuvis::mie::detail

@@ -1,0 +1,59 @@
+// The double-precision Mie entry points (the product).  The series itself is
+// the template in attenuvis/mie/series.hpp, instantiated here for double.
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "attenuvis/mie.hpp"
+#include "attenuvis/mie/series.hpp"
+
+namespace attenuvis::mie {
+namespace {
+
+void check_x(double x) {
+  if (!std::isfinite(x) || x <= 0.0 || x > 2e7) {
+    std::ostringstream os;
+    os.precision(17);
+    os << "mie: size parameter x must be finite and in (0, 2e7], got " << x;
+    throw std::invalid_argument(os.str());
+  }
+}
+
+void check_m(std::complex<double> m) {
+  if (!std::isfinite(m.real()) || !std::isfinite(m.imag()) || m.real() < 0.0 || m.imag() < 0.0 ||
+      m == std::complex<double>(0.0)) {
+    std::ostringstream os;
+    os.precision(17);
+    os << "mie: refractive index m = n + ik needs finite n >= 0, k >= 0 (k > 0 absorbs) and m != 0, got "
+       << m.real() << (m.imag() < 0 ? " - " : " + ") << std::abs(m.imag()) << "i";
+    throw std::invalid_argument(os.str());
+  }
+}
+
+}  // namespace
+
+std::size_t wiscombe_terms(double x) {
+  check_x(x);
+  return detail::wiscombe_term_count(x);
+}
+
+Efficiencies<double> sphere(double x, std::complex<double> m, const Options& options) {
+  return scatter(x, m, Extras{}, options).q;
+}
+
+Efficiencies<double> sphere(double x, PerfectConductor pec, const Options& options) {
+  return scatter(x, pec, Extras{}, options).q;
+}
+
+Scattering<double> scatter(double x, std::complex<double> m, const Extras& extras, const Options& options) {
+  check_x(x);
+  check_m(m);
+  return detail::mie_series<double>(x, m, false, extras, options);
+}
+
+Scattering<double> scatter(double x, PerfectConductor, const Extras& extras, const Options& options) {
+  check_x(x);
+  return detail::mie_series<double>(x, std::complex<double>(1.0), true, extras, options);
+}
+
+}  // namespace attenuvis::mie
