@@ -1,0 +1,21 @@
+// attenuvis::weather: size distributions, refractive-index tables, ITU-R
+// P.1817-1 weather models, units, the condition grammar and sigma tables.
+// Typical use (what the visibility-graph app does):
+//
+//   auto c = attenuvis::weather::parse_condition("rain:8");
+//   auto s = attenuvis::weather::sigma(c, {});          // s.per_m, s.error_per_m, s.convention
+//
+#pragma once
+
+#include "attenuvis/weather/bulk_optics.hpp"
+#include "attenuvis/weather/condition.hpp"
+#include "attenuvis/weather/distribution_file.hpp"
+#include "attenuvis/weather/empirical_models.hpp"
+#include "attenuvis/weather/quadrature_tradeoff.hpp"
+#include "attenuvis/weather/refractive_index.hpp"
+#include "attenuvis/weather/settings.hpp"
+#include "attenuvis/weather/sigma.hpp"
+#include "attenuvis/weather/sigma_table.hpp"
+#include "attenuvis/weather/size_distribution.hpp"
+#include "attenuvis/weather/units.hpp"
+#include "attenuvis/weather/visibility.hpp"

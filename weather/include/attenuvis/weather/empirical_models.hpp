@@ -1,0 +1,58 @@
+// Closed-form attenuation models: ITU-R P.1817-1 rain and snow power laws and
+// the visibility-based fog models (Kruse, Kim, Al Naboulsi).
+//
+// The power laws give a value in the Recommendation's unit, dB/km.  Which unit
+// the value is read in is the Convention (units.hpp): itu reads dB/km, seed
+// reads 1/km as the seed paper does.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "attenuvis/weather/units.hpp"
+
+namespace attenuvis::weather {
+
+// gamma = k R^alpha, R in mm/h.
+struct RainPowerLaw {
+  std::string name;
+  double k, alpha;
+  std::string source;
+};
+// Presets: "seed" (k=1.17, alpha=0.65; seed paper Sec. Rain), "carbonneau"
+// (k=1.076, alpha=0.67; ITU-R P.1817-1, after Carbonneau et al. 1998),
+// "p1814" (k=1.2924, alpha=0.6436; ITU-R P.1814-1 with mu = 0).
+const std::vector<RainPowerLaw>& rain_power_laws();
+const RainPowerLaw& rain_power_law(const std::string& name);  // throws listing the presets
+
+enum class SnowType { wet, dry };
+// a(lambda) S^b, S in mm/h (P.1817-1; seed Table "Wet and Dry Snow"):
+//   wet a = 0.0001023 lambda_nm + 3.7855466, b = 0.72
+//   dry a = 0.0000542 lambda_nm + 5.4958776, b = 1.38
+struct SnowCoefficients { double a, b; };
+SnowCoefficients snow_coefficients(SnowType type, double wavelength_m);
+
+// A power-law value (dB/km as published) read under `c`, in 1/m.
+double power_law_sigma_per_m(double published_value, Convention c);
+
+enum class VisibilityFogModel { kruse, kim, naboulsi_advection, naboulsi_radiation };
+std::string to_string(VisibilityFogModel m);
+
+struct EmpiricalResult {
+  double sigma_per_m = 0;
+  std::string model;    // formula and source
+  std::string warning;  // non-empty when outside the model's stated validity
+};
+// Kruse et al. (1962) and Kim et al. (2001): sigma = (3.912 / V) (lambda / 550 nm)^-q, with q
+// from V (Kruse: 1.6 V > 50 km, 1.3 6-50 km, 0.585 V^1/3 below; Kim: 1.6, 1.3, 0.16 V + 0.34
+// for 1-6 km, V - 0.5 for 0.5-1 km, 0 below 0.5 km).  The 3.912 is the 2 % threshold these
+// models were defined with, independent of Settings::contrast_threshold.
+// Al Naboulsi et al. (2004): advection (0.11478 lambda_um + 3.8367)/V,
+// radiation (0.18126 lambda_um^2 + 0.13709 lambda_um + 3.7502)/V, 1/km with V in km,
+// stated for 690-1550 nm; outside that range the result carries a warning.
+EmpiricalResult fog_from_visibility(VisibilityFogModel model, double visibility_m, double wavelength_m);
+
+// The seed paper's clear-air value (Sec. Results): 0.00015 1/m.
+inline constexpr double kSeedClearSigmaPerM = 0.00015;
+
+}  // namespace attenuvis::weather

@@ -1,0 +1,29 @@
+// Error against run time for the quadrature settings (tolerance, Gauss-Kronrod
+// order, tail cut), for the reproduction report and the benchmark.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace attenuvis::weather {
+
+struct QuadratureTradeoffRow {
+  std::string case_name;      // e.g. "fog:advection @ 550 nm"
+  double rel_tolerance = 0;
+  int kronrod_points = 0;
+  double tail_fraction = 0;
+  double sigma_per_m = 0;
+  double reported_quadrature_tail_error = 0;  // what the integrator claims (quadrature + tails)
+  double actual_error = 0;    // |sigma - reference|; reference: tol 1e-13, G-K 61, tail 1e-16
+  double resonance_error = 0; // the separate unresolved-resonance term (same for every row of a case)
+  std::size_t evaluations = 0;
+  double milliseconds = 0;    // wall time of one call, best of `repeats`
+};
+
+// Fog advection and radiation at `wavelength_m` (Hale & Querry water) over a
+// grid of tolerances x orders x tail cuts.  Takes a few seconds.
+std::vector<QuadratureTradeoffRow> quadrature_tradeoff(double wavelength_m = 550e-9, int repeats = 3);
+std::string quadrature_tradeoff_csv(const std::vector<QuadratureTradeoffRow>& rows);
+
+}  // namespace attenuvis::weather

@@ -1,0 +1,48 @@
+// Complex refractive index m = n + i k (k >= 0 absorbing) of water and ice
+// from tables, interpolated in wavelength.
+//
+// Tables (data/refractive-index/*.csv, each carrying its citation):
+//   water-hale-querry-1973   Hale & Querry, Appl. Opt. 12, 555 (1973), 25 C, 0.2-200 um
+//   water-segelstein-1981    Segelstein, M.S. thesis UMKC (1981), 25 C, 0.01 um - 10 m
+//   ice-warren-brandt-2008   Warren & Brandt, J. Geophys. Res. 113, D14220 (2008), -7 C
+//
+// Interpolation scheme: between neighbouring table wavelengths, n is linear in
+// ln(lambda) and ln(k) is linear in ln(lambda) (k spans 10 decades across the
+// visible and infrared, so it is interpolated as a power law; where either
+// neighbour has k = 0, k is linear in ln(lambda)).  Outside the table's range
+// is an error, never an extrapolation.
+//
+// The data directory is $ATTENUVIS_DATA_DIR if set, else the path compiled in
+// by CMake (<repo>/data); tables are read once and cached (thread-safe).
+#pragma once
+
+#include <complex>
+#include <string>
+#include <vector>
+
+namespace attenuvis::weather {
+
+class RefractiveIndexTable {
+ public:
+  // Reads a "wavelength_um,n,k" CSV whose '#' lines hold the citation.
+  static RefractiveIndexTable read(const std::string& path, const std::string& name);
+
+  std::complex<double> at(double wavelength_m) const;  // throws outside the table
+  const std::string& name() const { return name_; }
+  const std::string& citation() const { return citation_; }
+  double min_wavelength_m() const { return wavelength_m_.front(); }
+  double max_wavelength_m() const { return wavelength_m_.back(); }
+
+ private:
+  std::string name_, citation_;
+  std::vector<double> wavelength_m_, n_, k_;
+};
+
+// Directory holding refractive-index/: $ATTENUVIS_DATA_DIR, else the compiled-in path.
+std::string data_directory();
+
+// Named tables: "water-hale-querry-1973", "water-segelstein-1981", "ice-warren-brandt-2008",
+// and the short names "water" (= Hale & Querry 1973, the default), "hale-querry", "segelstein", "ice".
+const RefractiveIndexTable& refractive_index_table(const std::string& name);
+
+}  // namespace attenuvis::weather

@@ -1,0 +1,143 @@
+// CSV size-distribution reader with line-numbered validation.
+#include "attenuvis/weather/distribution_file.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace attenuvis::weather {
+namespace {
+
+std::string trim(const std::string& s) {
+  auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  auto e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+std::vector<std::string> split_csv(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) out.push_back(trim(cell));
+  if (!line.empty() && line.back() == ',') out.push_back("");
+  return out;
+}
+
+// Metres per radius unit in a column name ending in _um, _m or _mm.
+double radius_scale(const std::string& col, const std::string& stem, bool& ok) {
+  ok = true;
+  if (col == stem + "_um") return 1e-6;
+  if (col == stem + "_mm") return 1e-3;
+  if (col == stem + "_m") return 1.0;
+  ok = false;
+  return 0;
+}
+
+[[noreturn]] void fail(const std::string& source, int line, const std::string& what) {
+  throw std::invalid_argument(source + ":" + std::to_string(line) + ": " + what);
+}
+
+}  // namespace
+
+const char* distribution_file_format() {
+  return "size-distribution CSV: '#' comments, then a header naming units, then rows:\n"
+         "  radius_um,dNdr_per_cm3_per_um      (radius_m|radius_mm; dNdr_per_m3_per_m)  points, >= 2\n"
+         "  radius_um,dNdlnr_per_cm3           (dNdlnr_per_m3)                          points, >= 2\n"
+         "  radius_lo_um,radius_hi_um,count_per_cm3   (_m|_mm; count_per_m3)            bins, >= 1";
+}
+
+SizeDistribution read_distribution_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument("cannot open size-distribution file '" + path + "'");
+  return read_distribution_csv(in, path);
+}
+
+SizeDistribution read_distribution_csv(std::istream& in, const std::string& source) {
+  enum class Kind { dndr, dndlnr, bins } kind = Kind::dndr;
+  double r_scale = 0, r2_scale = 0, n_scale = 0;
+  bool have_header = false;
+  std::vector<TabulatedSegment> segments;
+  std::vector<std::pair<double, double>> points;  // (r, n) in SI
+  std::vector<int> point_lines;
+  std::string raw;
+  int line_no = 0;
+  while (std::getline(in, raw)) {
+    ++line_no;
+    std::string line = trim(raw);
+    if (line.empty() || line[0] == '#') continue;
+    auto cells = split_csv(line);
+    if (!have_header) {
+      have_header = true;
+      bool ok1 = false, ok2 = false;
+      if (cells.size() == 2) {
+        r_scale = radius_scale(cells[0], "radius", ok1);
+        if (cells[1] == "dNdr_per_cm3_per_um") { kind = Kind::dndr; n_scale = 1e12; ok2 = true; }
+        else if (cells[1] == "dNdr_per_m3_per_m") { kind = Kind::dndr; n_scale = 1; ok2 = true; }
+        else if (cells[1] == "dNdlnr_per_cm3") { kind = Kind::dndlnr; n_scale = 1e6; ok2 = true; }
+        else if (cells[1] == "dNdlnr_per_m3") { kind = Kind::dndlnr; n_scale = 1; ok2 = true; }
+      } else if (cells.size() == 3) {
+        kind = Kind::bins;
+        bool ok3 = false;
+        r_scale = radius_scale(cells[0], "radius_lo", ok1);
+        r2_scale = radius_scale(cells[1], "radius_hi", ok3);
+        ok1 = ok1 && ok3;
+        if (cells[2] == "count_per_cm3") { n_scale = 1e6; ok2 = true; }
+        else if (cells[2] == "count_per_m3") { n_scale = 1; ok2 = true; }
+      }
+      if (!ok1 || !ok2)
+        fail(source, line_no, "header '" + line + "' does not state the columns and units; expected\n" +
+                                  distribution_file_format());
+      continue;
+    }
+    std::size_t want = kind == Kind::bins ? 3 : 2;
+    if (cells.size() != want)
+      fail(source, line_no, "expected " + std::to_string(want) + " comma-separated values, found " +
+                                std::to_string(cells.size()));
+    std::vector<double> v;
+    for (const auto& c : cells) {
+      std::size_t used = 0;
+      double x = 0;
+      try { x = std::stod(c, &used); } catch (const std::exception&) { used = 0; }
+      if (c.empty() || used != c.size() || !std::isfinite(x)) fail(source, line_no, "'" + c + "' is not a finite number");
+      v.push_back(x);
+    }
+    if (kind == Kind::bins) {
+      double lo = v[0] * r_scale, hi = v[1] * r2_scale, count = v[2] * n_scale;
+      if (!(lo > 0)) fail(source, line_no, "bin lower radius must be > 0");
+      if (!(hi > lo)) fail(source, line_no, "bin upper radius must exceed its lower radius");
+      if (count < 0) fail(source, line_no, "negative count");
+      if (!segments.empty() && lo < segments.back().r1)
+        fail(source, line_no, "bins must increase and not overlap (lower radius below the previous bin's upper)");
+      double n = count / (hi - lo);
+      segments.push_back({lo, hi, n, n});
+    } else {
+      double r = v[0] * r_scale, n = v[1] * n_scale;
+      if (!(r > 0)) fail(source, line_no, "radius must be > 0");
+      if (n < 0) fail(source, line_no, "negative density");
+      if (!points.empty() && !(r > points.back().first))
+        fail(source, line_no, "radii must strictly increase");
+      if (kind == Kind::dndlnr) n /= r;
+      points.emplace_back(r, n);
+      point_lines.push_back(line_no);
+    }
+  }
+  if (!have_header)
+    throw std::invalid_argument(source + ": empty file; expected\n" + std::string(distribution_file_format()));
+  if (kind != Kind::bins) {
+    if (points.size() < 2)
+      throw std::invalid_argument(source + ": a point table needs at least 2 rows (found " +
+                                  std::to_string(points.size()) + "); for a single size use one bin " +
+                                  "(radius_lo_um,radius_hi_um,count_per_cm3)");
+    for (std::size_t i = 0; i + 1 < points.size(); ++i)
+      segments.push_back({points[i].first, points[i + 1].first, points[i].second, points[i + 1].second});
+  }
+  if (segments.empty()) throw std::invalid_argument(source + ": no bins after the header");
+  auto d = SizeDistribution::tabulated(std::move(segments), source);
+  if (!(d.moment(0) > 0)) throw std::invalid_argument(source + ": the distribution holds no particles (all zero)");
+  return d;
+}
+
+}  // namespace attenuvis::weather

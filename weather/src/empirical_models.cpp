@@ -1,0 +1,83 @@
+// P.1817-1 power laws and visibility-based fog models.
+#include "attenuvis/weather/empirical_models.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace attenuvis::weather {
+
+const std::vector<RainPowerLaw>& rain_power_laws() {
+  static const std::vector<RainPowerLaw> laws = {
+      {"seed", 1.17, 0.65, "seed paper (Schwartz et al. 2021), Sec. Rain: k=1.17, alpha=0.65"},
+      {"carbonneau", 1.076, 0.67, "ITU-R P.1817-1 (Carbonneau et al. 1998): k=1.076, alpha=0.67"},
+      {"p1814", 1.2924, 0.6436, "ITU-R P.1814-1 (mu=0): k=1.2924, alpha=0.6436"},
+  };
+  return laws;
+}
+
+const RainPowerLaw& rain_power_law(const std::string& name) {
+  for (const auto& l : rain_power_laws())
+    if (l.name == name) return l;
+  throw std::invalid_argument("unknown rain model '" + name + "' (seed, carbonneau, p1814 or mie)");
+}
+
+SnowCoefficients snow_coefficients(SnowType type, double wavelength_m) {
+  double nm = wavelength_m * 1e9;
+  if (type == SnowType::wet) return {0.0001023 * nm + 3.7855466, 0.72};
+  return {0.0000542 * nm + 5.4958776, 1.38};
+}
+
+double power_law_sigma_per_m(double value, Convention c) {
+  return c == Convention::itu ? dB_per_km_to_per_m(value) : per_km_to_per_m(value);
+}
+
+std::string to_string(VisibilityFogModel m) {
+  switch (m) {
+    case VisibilityFogModel::kruse: return "kruse";
+    case VisibilityFogModel::kim: return "kim";
+    case VisibilityFogModel::naboulsi_advection: return "naboulsi-advection";
+    case VisibilityFogModel::naboulsi_radiation: return "naboulsi-radiation";
+  }
+  return "?";
+}
+
+EmpiricalResult fog_from_visibility(VisibilityFogModel model, double visibility_m, double wavelength_m) {
+  if (!(visibility_m > 0)) throw std::invalid_argument("visibility must be > 0");
+  double v_km = visibility_m * 1e-3, nm = wavelength_m * 1e9, um = wavelength_m * 1e6;
+  EmpiricalResult r;
+  std::ostringstream warn;
+  if (model == VisibilityFogModel::kruse || model == VisibilityFogModel::kim) {
+    double q = 0;
+    if (v_km > 50) q = 1.6;
+    else if (v_km > 6) q = 1.3;
+    else if (model == VisibilityFogModel::kruse) q = 0.585 * std::cbrt(v_km);
+    else if (v_km > 1) q = 0.16 * v_km + 0.34;
+    else if (v_km > 0.5) q = v_km - 0.5;
+    else q = 0;
+    r.sigma_per_m = 3.912 / visibility_m * std::pow(nm / 550.0, -q);
+    if (model == VisibilityFogModel::kruse) {
+      r.model = "Kruse et al. (1962): (3.912/V)(lambda/550nm)^-q, q=" + std::to_string(q);
+      if (v_km < 6) warn << "Kruse's q is not meant for fog (V < 6 km; Kim et al. 2001); consider fog:kim. ";
+    } else {
+      r.model = "Kim et al. (2001): (3.912/V)(lambda/550nm)^-q, q=" + std::to_string(q);
+    }
+    if (nm < 400 || nm > 1600) warn << "wavelength " << nm << " nm is outside 400-1600 nm, where this model was fit. ";
+  } else {
+    double per_km = model == VisibilityFogModel::naboulsi_advection
+                        ? (0.11478 * um + 3.8367) / v_km
+                        : (0.18126 * um * um + 0.13709 * um + 3.7502) / v_km;
+    r.sigma_per_m = per_km_to_per_m(per_km);
+    r.model = model == VisibilityFogModel::naboulsi_advection
+                  ? "Al Naboulsi et al. (2004) advection fog: (0.11478 lambda_um + 3.8367)/V_km 1/km"
+                  : "Al Naboulsi et al. (2004) radiation fog: (0.18126 lambda_um^2 + 0.13709 lambda_um + 3.7502)/V_km 1/km";
+    if (nm < 690 || nm > 1550) warn << "wavelength " << nm << " nm is outside the model's stated 690-1550 nm. ";
+    if (visibility_m < 50 || visibility_m > 1000)
+      warn << "visibility " << visibility_m << " m is outside fog visibilities 50-1000 m the model was fit for. ";
+  }
+  r.warning = warn.str();
+  if (!r.warning.empty() && r.warning.back() == ' ') r.warning.pop_back();
+  return r;
+}
+
+}  // namespace attenuvis::weather

@@ -1,0 +1,125 @@
+// sigma for every kind of condition.
+#include "attenuvis/weather/sigma.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "attenuvis/weather/distribution_file.hpp"
+#include "attenuvis/weather/refractive_index.hpp"
+#include "attenuvis/weather/visibility.hpp"
+
+namespace attenuvis::weather {
+namespace {
+std::string g4(double v) {
+  std::ostringstream o;
+  o.precision(4);
+  o << v;
+  return o.str();
+}
+}  // namespace
+
+SizeDistribution condition_distribution(const Condition& c) {
+  if (!c.needs_mie()) throw std::invalid_argument("condition '" + c.text + "' has no size distribution");
+  SizeDistribution d = c.kind == ConditionKind::rain_mie ? SizeDistribution::marshall_palmer(c.value)
+                       : c.model.rfind("file=", 0) == 0  ? read_distribution_csv(c.model.substr(5))
+                                                         : preset_distribution(c.model);
+  if (c.number_per_cm3 > 0) d = normalised_to_number(d, c.number_per_cm3 * 1e6);
+  if (c.lwc_g_m3 > 0) d = normalised_to_water_content(d, c.lwc_g_m3 * 1e-3);
+  return d;
+}
+
+std::complex<double> condition_refractive_index(const Condition& c, const Settings& s, std::string* source) {
+  if (c.refractive_index) {
+    if (source) *source = "constant m = " + g4(c.refractive_index->real()) + "+" + g4(c.refractive_index->imag()) + "i";
+    return *c.refractive_index;
+  }
+  const auto& table = refractive_index_table(c.water_table.empty() ? s.water_table : c.water_table);
+  auto m = table.at(s.wavelength_m);
+  if (source) {
+    std::ostringstream o;
+    o.precision(7);
+    o << "m = " << m.real() << "+" << m.imag() << "i from " << table.name() << " (" << table.citation()
+      << "), interpolated in ln(lambda)";
+    *source = o.str();
+  }
+  return m;
+}
+
+BulkOptics condition_bulk_optics(const Condition& c, const Settings& s) {
+  QuadratureSettings q;
+  q.rel_tolerance = s.rel_tolerance;
+  if (c.kind == ConditionKind::rain_mie) q.asymptotic_x = s.rain_asymptotic_x;
+  return bulk_optics(condition_distribution(c), s.wavelength_m, condition_refractive_index(c, s), q);
+}
+
+Sigma sigma(const Condition& c, const Settings& s) {
+  Sigma out;
+  out.convention = "n/a";
+  switch (c.kind) {
+    case ConditionKind::clear:
+      if (c.value > 0) {
+        out.per_m = sigma_from_visibility_per_m(c.value, s.contrast_threshold);
+        out.model = "clear air from visibility " + g4(c.value) + " m (Koschmieder, threshold " +
+                    g4(s.contrast_threshold) + ")";
+      } else {
+        out.per_m = kSeedClearSigmaPerM;
+        out.model = "clear air, seed paper value 0.00015 1/m";
+      }
+      break;
+    case ConditionKind::visibility:
+      out.per_m = sigma_from_visibility_per_m(c.value, s.contrast_threshold);
+      out.model = "visibility " + g4(c.value) + " m (Koschmieder, threshold " + g4(s.contrast_threshold) + ")";
+      break;
+    case ConditionKind::sigma:
+      out.per_m = c.value;
+      out.model = "given sigma";
+      break;
+    case ConditionKind::rain_power_law: {
+      const auto& law = rain_power_law(c.model);
+      double published = law.k * std::pow(c.value, law.alpha);
+      out.per_m = power_law_sigma_per_m(published, s.convention);
+      out.convention = to_string(s.convention);
+      out.model = "rain " + g4(c.value) + " mm/h, power law " + law.source + " = " + g4(published) +
+                  (s.convention == Convention::itu ? " dB/km" : " 1/km (seed reading)");
+      break;
+    }
+    case ConditionKind::snow: {
+      auto co = snow_coefficients(c.snow, s.wavelength_m);
+      double published = co.a * std::pow(c.value, co.b);
+      out.per_m = power_law_sigma_per_m(published, s.convention);
+      out.convention = to_string(s.convention);
+      out.model = std::string(c.snow == SnowType::wet ? "wet" : "dry") + " snow " + g4(c.value) +
+                  " mm/h, P.1817-1 a S^b with a=" + g4(co.a) + " b=" + g4(co.b) + " = " + g4(published) +
+                  (s.convention == Convention::itu ? " dB/km" : " 1/km (seed reading)");
+      break;
+    }
+    case ConditionKind::fog_visibility: {
+      auto r = fog_from_visibility(c.fog_model, c.value, s.wavelength_m);
+      out.per_m = r.sigma_per_m;
+      out.model = r.model + ", V=" + g4(c.value) + " m";
+      out.note = r.warning;
+      break;
+    }
+    case ConditionKind::rain_mie:
+    case ConditionKind::fog_mie: {
+      std::string index_source;
+      condition_refractive_index(c, s, &index_source);
+      BulkOptics b = condition_bulk_optics(c, s);
+      out.per_m = b.extinction.value;
+      out.error_per_m = b.extinction.error();
+      out.model = "Mie over " + condition_distribution(c).describe();
+      std::ostringstream note;
+      note.precision(3);
+      note << index_source << "; " << b.method << "; error = quadrature " << b.extinction.quadrature_error
+           << " + tails " << b.extinction.tail_error << " + unresolved resonances " << b.extinction.resonance_error;
+      if (b.extinction.asymptotic_error > 0) note << " + large-x expansion " << b.extinction.asymptotic_error;
+      note << " 1/m";
+      out.note = note.str();
+      break;
+    }
+  }
+  return out;
+}
+
+}  // namespace attenuvis::weather
