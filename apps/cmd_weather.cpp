@@ -1,6 +1,194 @@
-// Placeholder: the weather subcommand(s) arrive with their issue.
+// attenuvis sigma | table | distribution: argument parsing only; the work is
+// in attenuvis::weather.
+#include <iostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "attenuvis/weather.hpp"
 #include "commands.hpp"
 
 namespace attenuvis::cli {
-void register_weather(CLI::App& /*app*/) {}
+namespace {
+
+namespace w = attenuvis::weather;
+
+struct CommonOptions {
+  std::string wavelength = "550nm";
+  std::string units = "m";
+  std::string convention = "itu";
+  double threshold = 0.02;
+  double tolerance = 1e-9;
+  std::string water = "hale-querry";
+};
+
+void add_common(CLI::App* cmd, CommonOptions& o) {
+  cmd->add_option("--units", o.units, "sigma units: m (1/m), km (1/km) or dB/km")->capture_default_str();
+  cmd->add_option("--convention", o.convention,
+                  "how P.1817 rain/snow power laws are read: itu (dB/km) or seed (1/km, 4.34x larger)")
+      ->capture_default_str();
+  cmd->add_option("--threshold", o.threshold, "Koschmieder contrast threshold: 0.02 (3.912) or 0.05 (2.996)")
+      ->capture_default_str();
+  cmd->add_option("--tolerance", o.tolerance, "relative tolerance of Mie size integrals")->capture_default_str();
+  cmd->add_option("--water", o.water, "water refractive-index table: hale-querry or segelstein")
+      ->capture_default_str();
+}
+
+w::Settings settings_from(const CommonOptions& o) {
+  w::Settings s;
+  s.wavelength_m = w::parse_wavelength(o.wavelength);
+  s.convention = w::parse_convention(o.convention);
+  s.contrast_threshold = o.threshold;
+  s.rel_tolerance = o.tolerance;
+  s.water_table = o.water;
+  w::koschmieder_visibility_m(1.0, o.threshold);  // validates the threshold
+  return s;
+}
+
+std::string num(double v, int precision = 6) {
+  std::ostringstream o;
+  o.precision(precision);
+  o << v;
+  return o.str();
+}
+
+void run_sigma(const std::vector<std::string>& conditions, const CommonOptions& o, bool json) {
+  w::Settings s = settings_from(o);
+  w::SigmaUnit unit = w::parse_sigma_unit(o.units);
+  std::vector<w::Condition> parsed;
+  for (const auto& text : conditions) parsed.push_back(w::parse_condition(text));  // all parse before any work
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& c : parsed) {
+    w::Sigma r = w::sigma(c, s);
+    double vis = r.per_m > 0 ? w::koschmieder_visibility_m(r.per_m, s.contrast_threshold) : INFINITY;
+    if (json) {
+      nlohmann::json row = {{"condition", c.text},
+                            {"wavelength_nm", s.wavelength_m * 1e9},
+                            {"sigma", w::convert_from_per_m(r.per_m, unit)},
+                            {"error", w::convert_from_per_m(r.error_per_m, unit)},
+                            {"units", w::to_string(unit)},
+                            {"convention", r.convention},
+                            {"contrast_threshold", s.contrast_threshold},
+                            {"model", r.model},
+                            {"note", r.note}};
+      if (std::isfinite(vis)) row["visibility_m"] = vis;
+      else row["visibility_m"] = nullptr;
+      out.push_back(row);
+    } else {
+      std::cout << c.text << ": sigma = " << num(w::convert_from_per_m(r.per_m, unit), 10) << " +- "
+                << num(w::convert_from_per_m(r.error_per_m, unit), 3) << " " << w::to_string(unit)
+                << " at " << num(s.wavelength_m * 1e9) << " nm, convention " << r.convention << ", visibility "
+                << num(vis) << " m (contrast " << num(100 * s.contrast_threshold) << " %)\n"
+                << "  model: " << r.model << "\n";
+      if (!r.note.empty()) std::cout << "  note: " << r.note << "\n";
+    }
+  }
+  if (json) std::cout << out.dump(2) << "\n";
+}
+
+std::vector<std::string> split_conditions(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  std::string part;
+  while (std::getline(ss, part, ','))
+    if (!part.empty()) out.push_back(part);
+  return out;
+}
+
+void run_table(const std::string& conditions, const std::string& wavelengths, const std::string& format,
+               const std::string& path, int threads, const CommonOptions& o) {
+  CommonOptions with_wavelength = o;
+  w::Settings s = settings_from(with_wavelength);
+  std::vector<w::Condition> parsed;
+  for (const auto& text : split_conditions(conditions)) {
+    auto expanded = w::expand_conditions(text);
+    parsed.insert(parsed.end(), expanded.begin(), expanded.end());
+  }
+  if (parsed.empty()) throw std::invalid_argument("--conditions is empty\n" + std::string(w::condition_grammar()));
+  auto table = w::sigma_table(parsed, w::parse_wavelength_list(wavelengths), s, threads);
+  w::write_sigma_table(table, path, w::parse_table_format(format), w::parse_sigma_unit(o.units));
+  std::cout << "wrote " << table.cells.size() << " sigma values (" << table.wavelengths_m.size() << " wavelengths x "
+            << parsed.size() << " conditions) to " << path << "\n";
+}
+
+void run_distribution(const std::string& what, double density, bool json) {
+  w::SizeDistribution d = w::is_preset_distribution(what) ? w::preset_distribution(what)
+                                                          : w::read_distribution_csv(what);
+  w::Moments m = w::moments(d, density);
+  auto support = d.support(2.0, 1e-12);
+  bool ok = std::isfinite(m.number_per_m3) && m.number_per_m3 > 0 && std::isfinite(m.water_content_kg_m3);
+  if (json) {
+    nlohmann::json out = {{"distribution", d.describe()},
+                          {"number_per_cm3", m.number_per_m3 * 1e-6},
+                          {"water_content_g_per_m3", m.water_content_kg_m3 * 1e3},
+                          {"bulk_density_kg_per_m3", density},
+                          {"effective_radius_um", m.effective_radius_m * 1e6},
+                          {"mode_radius_um", m.mode_radius_m * 1e6},
+                          {"mean_radius_um", m.mean_radius_m * 1e6},
+                          {"r2_support_um", {support.breakpoints_m.front() * 1e6, support.breakpoints_m.back() * 1e6}},
+                          {"geometric_cross_section_per_m", 3.14159265358979323846 * support.total_moment},
+                          {"checks_passed", ok}};
+    std::cout << out.dump(2) << "\n";
+  } else {
+    std::cout << "distribution: " << d.describe() << "\n"
+              << "  N                 = " << num(m.number_per_m3 * 1e-6, 8) << " cm^-3\n"
+              << "  water content     = " << num(m.water_content_kg_m3 * 1e3, 8) << " g/m^3 (bulk density "
+              << density << " kg/m^3)\n"
+              << "  effective radius  = " << num(m.effective_radius_m * 1e6, 8) << " um (<r^3>/<r^2>)\n"
+              << "  mode radius       = " << num(m.mode_radius_m * 1e6, 8) << " um\n"
+              << "  mean radius       = " << num(m.mean_radius_m * 1e6, 8) << " um\n"
+              << "  r^2-weight range  = " << num(support.breakpoints_m.front() * 1e6) << " - "
+              << num(support.breakpoints_m.back() * 1e6) << " um (all but 1e-12)\n"
+              << "  checks            : " << (ok ? "finite, positive number and water content" : "FAILED") << "\n";
+  }
+  if (!ok) exit_status() = 1;
+}
+
+}  // namespace
+
+void register_weather(CLI::App& app) {
+  {
+    auto* cmd = app.add_subcommand("sigma", std::string("extinction coefficient of weather conditions\n") +
+                                                w::condition_grammar());
+    auto conditions = std::make_shared<std::vector<std::string>>();
+    auto opts = std::make_shared<CommonOptions>();
+    auto json = std::make_shared<bool>(false);
+    cmd->add_option("conditions", *conditions, "conditions, e.g. clear rain:8 fog:advection")->required();
+    cmd->add_option("--wavelength", opts->wavelength, "wavelength, e.g. 550nm or 10.6um")->capture_default_str();
+    add_common(cmd, *opts);
+    cmd->add_flag("--json", *json, "print JSON");
+    cmd->callback([=] { run_sigma(*conditions, *opts, *json); });
+  }
+  {
+    auto* cmd = app.add_subcommand("table", "sigma over wavelengths x conditions, written atomically");
+    auto conditions = std::make_shared<std::string>();
+    auto wavelengths = std::make_shared<std::string>("550nm");
+    auto format = std::make_shared<std::string>("csv");
+    auto out = std::make_shared<std::string>();
+    auto threads = std::make_shared<int>(0);
+    auto opts = std::make_shared<CommonOptions>();
+    cmd->add_option("--conditions", *conditions, "comma-separated conditions; sweeps like rain:1..100")->required();
+    cmd->add_option("--wavelengths", *wavelengths, "START:STOP:STEPunit (400:800:10nm) or a list (550nm,10.6um)")
+        ->capture_default_str();
+    cmd->add_option("--format", *format, "csv or json")->capture_default_str();
+    cmd->add_option("--out", *out, "output file")->required();
+    cmd->add_option("--threads", *threads, "worker threads (0: all cores)")->capture_default_str();
+    add_common(cmd, *opts);
+    cmd->callback([=] { run_table(*conditions, *wavelengths, *format, *out, *threads, *opts); });
+  }
+  {
+    auto* cmd = app.add_subcommand("distribution", std::string("moments and checks of a size distribution: a preset "
+                                                               "(advection, radiation, marshall-palmer:R, "
+                                                               "gunn-marshall:R) or a CSV file\n") +
+                                                       w::distribution_file_format());
+    auto what = std::make_shared<std::string>();
+    auto density = std::make_shared<double>(1000.0);
+    auto json = std::make_shared<bool>(false);
+    cmd->add_option("distribution", *what, "preset name or CSV path")->required();
+    cmd->add_option("--bulk-density", *density, "kg/m^3 for the water content (ice: 917)")->capture_default_str();
+    cmd->add_flag("--json", *json, "print JSON");
+    cmd->callback([=] { run_distribution(*what, *density, *json); });
+  }
+}
+
 }  // namespace attenuvis::cli

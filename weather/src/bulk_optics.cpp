@@ -27,6 +27,7 @@ struct Panel {
   Vec kronrod{}, error{};
   double qext_max = 0;
   double x_span = 0;  // size-parameter width of the panel
+  bool floor = false; // narrower than the resonance floor: not split, its error counted as resonance error
 };
 
 // Rule nodes/weights on [-1, 1] taken from Boost.Math's gauss_kronrod tables.
@@ -208,12 +209,21 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
     if (cuts[i] >= u_lo && cuts[i + 1] <= u_hi) panels.push_back(integ.evaluate(cuts[i], cuts[i + 1]));
 
+  Vec floor_error{};
   auto totals = [&](Vec& value, Vec& error) {
     value.fill(0);
     error.fill(0);
+    floor_error.fill(0);
     for (const auto& p : panels)
-      for (int c = 0; c < kComponents; ++c) { value[c] += p.kronrod[c]; error[c] += p.error[c]; }
+      for (int c = 0; c < kComponents; ++c) {
+        value[c] += p.kronrod[c];
+        (p.floor ? floor_error : error)[c] += p.error[c];
+      }
   };
+  // Nearly non-absorbing spheres: panels are not split below resonance_x_span
+  // in x; what such panels still disagree on (|K - G| and the aliasing bound)
+  // is resonance structure finer than the floor, reported as resonance error.
+  double x_floor = s.estimate_resonances ? s.resonance_x_span : 0.0;
   Vec value{}, error{};
   totals(value, error);
   // Each component's error is measured against the scale it is reported on:
@@ -247,6 +257,11 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
     Panel p = panels[i];
     double mid = 0.5 * (p.a + p.b);
     if (!(mid > p.a && mid < p.b) || (p.b - p.a) < 1e-12) continue;  // cannot split further
+    if (0.5 * p.x_span < x_floor) {
+      panels[i].floor = true;
+      for (int c = 0; c < kComponents; ++c) error[c] -= p.error[c];
+      continue;
+    }
     Panel left = integ.evaluate(p.a, mid), right = integ.evaluate(mid, p.b);
     for (int c = 0; c < kComponents; ++c) {
       value[c] += left.kronrod[c] + right.kronrod[c] - p.kronrod[c];
@@ -297,10 +312,13 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   fill(out.absorption, kAbs);
   out.extinction.asymptotic_error = value[kAsym] + error[kAsym];
   if (s.estimate_resonances) {
-    double res = unresolved_resonance_bound(d, wavelength, m, support.breakpoints_m.front(),
-                                            support.breakpoints_m.back(), s.asymptotic_x);
-    out.extinction.resonance_error = res;
-    out.scattering.resonance_error = res;
+    double missed = unresolved_resonance_bound(d, wavelength, m, support.breakpoints_m.front(),
+                                               support.breakpoints_m.back(), s.asymptotic_x);
+    out.extinction.resonance_error = floor_error[kExt] + missed;
+    out.scattering.resonance_error = floor_error[kSca] + missed;
+    out.absorption.resonance_error = floor_error[kAbs];
+    out.floor_panels = 0;
+    for (const auto& p : panels) out.floor_panels += p.floor ? 1 : 0;
   }
   if (out.scattering_computed && value[kExt] > 0) {
     out.albedo = value[kSca] / value[kExt];

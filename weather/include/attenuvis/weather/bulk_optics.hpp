@@ -44,7 +44,8 @@ struct QuadratureSettings {
   double tail_fraction = 0;        // fraction of the r^2 moment left outside; 0: 1e-3 * rel_tolerance
   std::size_t max_evaluations = 400000;
   double asymptotic_x = 0;         // > 0: use the large-x expansion of Q_ext beyond this x (extinction only)
-  bool estimate_resonances = true; // add the unresolved-resonance term for k*x < resonance_kx
+  bool estimate_resonances = true; // Im(m) < resonance_free_k(): stop splitting at resonance_x_span
+  double resonance_x_span = 1.0;   // narrowest panel (in x) for nearly non-absorbing spheres
 };
 
 struct IntegralEstimate {
@@ -58,6 +59,7 @@ struct BulkOptics {
   double albedo = 0, albedo_error = 0;
   double asymmetry = 0, asymmetry_error = 0;
   std::size_t evaluations = 0;
+  std::size_t floor_panels = 0;     // panels left at resonance_x_span
   double max_size_parameter = 0;
   bool scattering_computed = true;  // false when the asymptotic region (extinction only) was used
   std::string method;               // rule, tolerance, tail cut, in words
