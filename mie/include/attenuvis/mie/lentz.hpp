@@ -58,17 +58,16 @@ struct LentzResult {
   std::size_t iterations = 0;
 };
 
-// ψ_{n-1}(z)/ψₙ(z) for complex or real z (type T), n >= 1.
-template <class T, class Real>
-T riccati_psi_ratio(std::size_t n, const T& z, LentzResult* info = nullptr) {
+// ψ_{n-1}(z)/ψₙ(z) for complex or real z (type T), n >= 1.  z enters only
+// through k_over_z(k) = k/z for integer k (see ScaledInverse in
+// log_derivative.hpp: it keeps the phase of large z accurate).
+template <class T, class Real, class KOverZ>
+T riccati_psi_ratio(std::size_t n, const KOverZ& k_over_z, LentzResult* info = nullptr) {
   const Real eps = std::numeric_limits<Real>::epsilon();
   const Real eps2 = eps * eps;
   const Real tiny = (std::numeric_limits<Real>::min)() * Real(1e20);
-  const T two_over_z = T(Real(2)) / z;
-  const Real nu = Real(n) + Real(0.5);
-  // b_j = 2(ν+j)/z = (ν+j)·(2/z); computing 2/z once keeps the loop free of
-  // complex divisions by z.
-  T f = two_over_z * nu;
+  // b_j = 2(ν+j)/z = (2n+1+2j)/z.
+  T f = k_over_z(Real(2 * n + 1));
   if (f == T(Real(0))) f = T(tiny);
   T c = f;
   T d = T(Real(0));
@@ -76,7 +75,7 @@ T riccati_psi_ratio(std::size_t n, const T& z, LentzResult* info = nullptr) {
   // series.hpp); the bound only stops a runaway loop.
   const std::size_t max_iterations = 400000000;
   for (std::size_t j = 1; j <= max_iterations; ++j) {
-    const T b = two_over_z * (nu + Real(j));
+    const T b = k_over_z(Real(2 * n + 1 + 2 * j));
     d = b - d;
     if (d == T(Real(0))) d = T(tiny);
     c = b - inv<Real>(c);

@@ -3,21 +3,23 @@
 // Template implementation detail of the Mie core; included only by the
 // translation units that instantiate it (mie/src/sphere_*.cpp).
 //
-// Notation (B&H ch. 4): ψₙ(z) = z jₙ(z), Dₙ(z) = ψₙ'(z)/ψₙ(z), and the ratio
-// Pₙ(z) = ψ_{n-1}(z)/ψₙ(z) = Dₙ(z) + n/z.  From ψ_{n-1}+ψ_{n+1} = (2n+1)ψₙ/z:
-//     P_{n-1}(z) = (2n-1)/z − 1/Pₙ(z)                               (downward)
-//     D_{n-1}(z) = n/z − 1/(Dₙ(z) + n/z)                             (downward)
-//     Dₙ(z)     = 1/(n/z − D_{n-1}(z)) − n/z,  D₀(z) = cot z           (upward)
+// Notation (B&H ch. 4): ψₙ(z) = z jₙ(z), Dₙ(z) = ψₙ'(z)/ψₙ(z).  The core
+// carries yₙ(z) = ψ_{n+1}(z)/ψₙ(z), which is small (≈ z/(2n+3)) for small z:
+//     Dₙ(z) = (n+1)/z − yₙ(z)                                   (B&H 4.89)
+//     yₙ(z) = 1 / ((2n+3)/z − y_{n+1}(z))                        (downward)
+//     Dₙ(z) = 1/(n/z − D_{n-1}(z)) − n/z,   D₀(z) = cot z           (upward)
+// Writing Dₙ through yₙ removes the leading (n+1)/z exactly, so
+// m Dₙ(mx) − Dₙ(x) = −m yₙ(mx) + yₙ(x) is formed without the 1/x² cancellation
+// that ruins bₙ at x = 1e-8 (trap 3).
 //
-// Trap 4 (m → 1).  The numerators of aₙ, bₙ contain Dₙ(mx)/m − Dₙ(x), which
-// is O(m−1) and would be formed by cancellation.  We carry the difference
-// Δₙ = Dₙ(mx) − Dₙ(x) through its own downward recurrence, obtained by
-// subtracting the D recurrences for z = mx and z = x:
-//     Δ_{n-1} = −n c + uₙ / (Pₙ(mx) Pₙ(x)),   uₙ = Δₙ − n c,   c = (m−1)/(m x)
-// (since n/(mx) − n/x = −n c and Pₙ(mx) − Pₙ(x) = uₙ).  Every term is
-// proportional to (m−1) explicitly, so nothing cancels, and Pₙ(mx), Pₙ(x) come
-// from their own recurrences (not Pₙ(x)+uₙ, which would cancel near poles).
-// Errors in Δ are damped exactly as errors in Dₙ(mx) are.
+// Trap 4 (m → 1).  The numerators of aₙ, bₙ are O(m−1) and would be formed by
+// cancellation.  We carry the difference δₙ = yₙ(mx) − yₙ(x) through its own
+// downward recurrence, obtained by subtracting the two y recurrences:
+//     δₙ = ((2n+3) c + δ_{n+1}) · yₙ(mx) · yₙ(x),   c = (m−1)/(m x),
+// (since (2n+3)/x − (2n+3)/(mx) = (2n+3)c).  Every term is proportional to
+// (m−1) explicitly, so nothing cancels; yₙ(mx) and yₙ(x) come from their own
+// recurrences.  The start δ_N = y_N(mx) − y_N(x) has an error ε|y_N| that the
+// factor Π yₖ(x) (≪ 1 above n ≈ x) damps long before it matters.
 //
 // Trap 2 (start value).  Both recurrences start at the top index N from the
 // exact values given by Lentz's continued fraction (lentz.hpp), never from 0.
@@ -25,13 +27,65 @@
 #pragma once
 
 #include <cmath>
+#include <complex>
 #include <cstddef>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "attenuvis/mie/lentz.hpp"
 
 namespace attenuvis::mie::detail {
+
+// Phase accuracy.  For x ~ 1e6 the recurrences are run through ~x steps of
+// oscillation, and Qback (and, less, Qext) depend on the phase of ψₙ(mx) to
+// within ~100× the phase error (resonance ripple).  Rounding 1/x or 1/(mx)
+// once and reusing it shifts every coefficient (2n+1)/z the same way — a
+// systematic phase error of |z|ε ≈ 1e-10, i.e. 1e-8 in Qback at x = 1e6.
+// So the coefficients k/z are formed from 1/z carried in two parts (hi + lo,
+// from extended precision), which makes their rounding errors independent
+// from step to step; they then add up only like a random walk.
+template <class Real>
+struct ScaledInverse {  // k/x for real x
+  Real hi, lo;
+  explicit ScaledInverse(const Real& x) {
+    if constexpr (std::is_same_v<Real, double>) {
+      const long double inv = 1.0L / static_cast<long double>(x);
+      hi = static_cast<double>(inv);
+      lo = static_cast<double>(inv - hi);
+    } else {
+      hi = Real(1) / x;
+      lo = Real(0);
+    }
+  }
+  Real operator()(const Real& k) const {
+    if constexpr (std::is_same_v<Real, double>) return std::fma(k, hi, k * lo);
+    else return k * hi;
+  }
+};
+
+template <class Real, class C>
+struct ScaledInverseComplex {  // k/z for z = m x, formed without rounding m x first
+  C hi, lo;
+  ScaledInverseComplex(const Real& x, const C& m) {
+    if constexpr (std::is_same_v<Real, double>) {
+      using LC = std::complex<long double>;
+      const LC z = LC(m.real(), m.imag()) * static_cast<long double>(x);
+      const long double n2 = z.real() * z.real() + z.imag() * z.imag();
+      const LC inv(z.real() / n2, -z.imag() / n2);
+      hi = C(static_cast<double>(inv.real()), static_cast<double>(inv.imag()));
+      lo = C(static_cast<double>(inv.real() - hi.real()), static_cast<double>(inv.imag() - hi.imag()));
+    } else {
+      hi = recip(C(m * x));
+      lo = C(Real(0));
+    }
+  }
+  C operator()(const Real& k) const {
+    if constexpr (std::is_same_v<Real, double>)
+      return C(std::fma(k, hi.real(), k * lo.real()), std::fma(k, hi.imag(), k * lo.imag()));
+    else return hi * k;
+  }
+};
 
 // Replace an exact zero (a pole of the next step) by a tiny number.  Exact
 // zeros are possible only by accident of rounding, but must not become inf.
@@ -40,50 +94,66 @@ inline void avoid_zero(T& v) {
   if (v == T(Real(0))) v = T((std::numeric_limits<Real>::min)() * Real(1e20));
 }
 
-// Downward pass from index N: fills p[n] = Pₙ(x) and delta[n] = Δₙ for
-// n = 1..N (index 0 unused).  Returns the Lentz iteration count (diagnostic).
-template <class Real, class C>
-std::size_t downward_ratios(const Real& x, const C& m, std::size_t N, std::vector<Real>& p,
-                            std::vector<C>& delta) {
-  p.assign(N + 1, Real(0));
-  delta.assign(N + 1, C(Real(0)));
-  const C z = m * x;
-  const C inv_z = recip(z);
-  const Real inv_x = Real(1) / x;
-  const C c = (m - C(Real(1))) * recip(m) * inv_x;  // (m−1)/(m x)
+// What the complex slot of the downward pass holds.
+enum class Slot {
+  difference,  // δₙ = yₙ(mx) − yₙ(x)   (|m−1| small: trap 4)
+  value,       // yₙ(mx)              (m far from 1: δ would only add rounding)
+  none,        // nothing (Dₙ(mx) goes upward, or perfect conductor)
+};
 
+// Downward pass from index N: fills y[n] = yₙ(x) for n = 0..N and, according
+// to `slot`, w[n] = δₙ or yₙ(mx).  Returns the Lentz iteration count.
+// W is the stored complex type: it may be narrower than C (see SlotStore in
+// series.hpp), since each wₙ is used once and not fed into a product.
+template <class Real, class C, class W>
+std::size_t downward_ratios(const Real& x, const C& m, std::size_t N, Slot slot, std::vector<Real>& y,
+                            std::vector<W>& w) {
+  y.resize(N + 1);  // every entry is written below
+  w.resize(slot == Slot::none ? 0 : N + 1);
+  const ScaledInverse<Real> over_x(x);
   LentzResult info_x, info_z;
-  Real px = riccati_psi_ratio<Real, Real>(N, x, &info_x);
-  C pz = riccati_psi_ratio<C, Real>(N, z, &info_z);
-  // At the start Δ_N = P_N(mx) − P_N(x) − N c by direct subtraction: its error
-  // (ε·|P|) is damped by the downward recurrence before n ≈ x matters.
-  C d = (pz - C(px)) - c * Real(N);
-  for (std::size_t n = N; n >= 2; --n) {
-    avoid_zero<Real, Real>(px);
-    avoid_zero<C, Real>(pz);
-    p[n] = px;
-    delta[n] = d;
-    const Real rn = Real(n);
-    const C inv_pz = recip(pz);
-    const Real inv_px = Real(1) / px;
-    const C nc = c * rn;
-    d = (d - nc) * inv_pz * inv_px - nc;
-    pz = inv_z * Real(2 * n - 1) - inv_pz;
-    px = inv_x * Real(2 * n - 1) - inv_px;
+  // y_N = ψ_{N+1}/ψ_N = 1/(ψ_N/ψ_{N+1}).
+  Real yx = Real(1) / riccati_psi_ratio<Real, Real>(N + 1, over_x, &info_x);
+  if (slot == Slot::none) {
+    for (std::size_t n = N;; --n) {
+      y[n] = yx;
+      if (n == 0) break;
+      Real den = over_x(Real(2 * n + 1)) - yx;
+      avoid_zero<Real, Real>(den);
+      yx = Real(1) / den;
+    }
+    return info_x.iterations;
   }
-  avoid_zero<Real, Real>(px);
-  p[1] = px;
-  delta[1] = d;
+  const ScaledInverseComplex<Real, C> over_z(x, m);
+  const C c = (m - C(Real(1))) * over_z(Real(1));  // (m−1)/(m x)
+  C yz = recip(riccati_psi_ratio<C, Real>(N + 1, over_z, &info_z));
+  C d = yz - C(yx);
+  for (std::size_t n = N;; --n) {
+    y[n] = yx;
+    const C& v = slot == Slot::difference ? d : yz;
+    w[n] = W(v.real(), v.imag());
+    if (n == 0) break;
+    const Real k = Real(2 * n + 1);  // 2(n−1)+3
+    Real den_x = over_x(k) - yx;
+    C den_z = over_z(k) - yz;
+    avoid_zero<Real, Real>(den_x);
+    avoid_zero<C, Real>(den_z);
+    const C d_next = c * k + d;
+    yx = Real(1) / den_x;
+    yz = recip(den_z);
+    d = d_next * yz * yx;
+  }
   return info_x.iterations + info_z.iterations;
 }
 
 // cot z for Im z >= 0 without overflow: cot z = i(E+1)/(E−1), E = e^{2iz},
 // |E| = e^{−2 Im z} <= 1.
 template <class Real, class C>
-C cot_upper(const C& z) {
+C cot_upper_plain(const C& z) {
   using std::cos;
   using std::exp;
   using std::sin;
+  if (z.imag() == 0) return C(cos(z.real()) / sin(z.real()), Real(0));  // real: keep Im D exactly 0
   const Real r = exp(Real(-2) * z.imag());
   const C e(r * cos(Real(2) * z.real()), r * sin(Real(2) * z.real()));
   C den = e - C(Real(1));
@@ -92,15 +162,28 @@ C cot_upper(const C& z) {
   return C(-q.imag(), q.real());  // i·q
 }
 
+// cot(m x) without rounding m x first (phase accuracy, see ScaledInverse).
+template <class Real, class C>
+C cot_upper(const Real& x, const C& m) {
+  if constexpr (std::is_same_v<Real, double>) {
+    using LC = std::complex<long double>;
+    const LC z = LC(m.real(), m.imag()) * static_cast<long double>(x);
+    const LC v = cot_upper_plain<long double, LC>(z);
+    return C(static_cast<double>(v.real()), static_cast<double>(v.imag()));
+  } else {
+    return cot_upper_plain<Real, C>(C(m * x));
+  }
+}
+
 // Upward recurrence for Dₙ(z), one step at a time (used inside the series
 // loop, so no storage).  Stable only where choose_method (series.hpp) allows.
 template <class Real, class C>
 struct UpwardLogDerivative {
-  C inv_z;
+  ScaledInverseComplex<Real, C> over_z;
   C d;  // D_n(z) for the current n
-  explicit UpwardLogDerivative(const C& z) : inv_z(recip(z)), d(cot_upper<Real, C>(z)) {}
+  UpwardLogDerivative(const Real& x, const C& m) : over_z(x, m), d(cot_upper<Real, C>(x, m)) {}
   const C& next(std::size_t n) {
-    const C n_over_z = inv_z * Real(n);
+    const C n_over_z = over_z(Real(n));
     C den = n_over_z - d;
     avoid_zero<C, Real>(den);
     d = recip(den) - n_over_z;

@@ -79,6 +79,18 @@ inline std::size_t wiscombe_term_count(double x) {
   return static_cast<std::size_t>(x + 4.05 * std::cbrt(x) + 2.0);
 }
 
+// Storage of the per-term complex slot of the downward pass.  The double
+// product runs in long double (see sphere_double.cpp) but keeps this array in
+// double: 16 instead of 32 bytes per term, and each entry is used once.
+template <class Real>
+struct SlotStore {
+  using type = Complex<Real>;
+};
+template <>
+struct SlotStore<long double> {
+  using type = std::complex<double>;
+};
+
 enum class DMethod { downward, upward };
 
 // Dₙ(mx) for n <= N: the Lentz continued fraction at index N needs about
@@ -117,20 +129,24 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
   const bool converged_rule = options.terms == TermRule::converged;
   const std::size_t N = converged_rule ? max_terms<Real>(xd) : std::max<std::size_t>(1, wiscombe_term_count(xd));
 
-  // Real-argument ratios Pₙ(x) and the Δₙ of log_derivative.hpp.
-  std::vector<Real> p;
-  std::vector<C> delta;
-  DMethod method = pec ? DMethod::downward : choose_method<Real, C>(xd, md, N);
-  if (pec) {
-    // Only Pₙ(x) is needed; run the same pass with m = 1 (Δ ≡ 0).
-    downward_ratios<Real, C>(x, C(Real(1)), N, p, delta);
-  } else if (method == DMethod::downward) {
-    downward_ratios<Real, C>(x, m, N, p, delta);
-  } else {
-    std::vector<C> unused;
-    downward_ratios<Real, C>(x, C(Real(1)), N, p, unused);
-  }
-  UpwardLogDerivative<Real, C> upward(method == DMethod::upward ? C(m * x) : C(Real(1)));
+  // yₙ(x) and, in w, δₙ or yₙ(mx) (log_derivative.hpp).
+  const DMethod method = pec ? DMethod::downward : choose_method<Real, C>(xd, md, N);
+  Slot slot = Slot::none;
+  if (!pec && method == DMethod::downward) slot = std::abs(md - 1.0) < 0.5 ? Slot::difference : Slot::value;
+  // Per-thread buffers, reused between calls: a fresh 24·N-byte allocation
+  // per call costs more in page faults than the series itself for x ≳ 1e4.
+  // Buffers above ~4 MB are given back so a single x = 1e6 call does not pin
+  // 24 MB per thread.
+  thread_local std::vector<Real> y;
+  thread_local std::vector<typename SlotStore<Real>::type> w;
+  struct Release {
+    ~Release() {
+      if (y.capacity() > (std::size_t(1) << 17)) { std::vector<Real>().swap(y); }
+      if (w.capacity() > (std::size_t(1) << 17)) { std::vector<typename SlotStore<Real>::type>().swap(w); }
+    }
+  } release_large_buffers;
+  downward_ratios<Real, C>(x, m, N, slot, y, w);
+  UpwardLogDerivative<Real, C> upward(x, method == DMethod::upward ? m : C(Real(1)));
 
   Scattering<Real> out;
   out.angles_deg = extras.angles_deg;
@@ -142,55 +158,65 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
   out.s2.assign(na, C(Real(0)));
 
   const Real inv_x = Real(1) / x;
+  const ScaledInverse<Real> over_x(x);
+  const ScaledInverseComplex<Real, C> over_mx(x, m);
   const C m_minus_1 = m - C(Real(1));
+  const C m2_minus_1_over_m = m_minus_1 * (m + C(Real(1))) * recip(m);  // (m²−1)/m, trap 4
   const double tol = std::exp(-tail_log_tolerance<Real>());
   KahanSum<Real> ext, sca, abs_, back_re, back_im, g_re;
-  C rho(Real(0), Real(1));                       // ρ₀ = i
+  C rho(Real(0), Real(1));                       // ρ₀ = ξ₋₁/ξ₀ = i
   C R(sin(x) * sin(x), sin(x) * cos(x));         // R₀ = ψ₀/ξ₀
   Real s(1);                                     // 1/|ξ₀|²
   C a_prev(Real(0)), b_prev(Real(0));
   std::size_t n = 1;
   for (; n <= N; ++n) {
     const Real rn = Real(n);
-    const Real n_over_x = rn * inv_x;
-    rho = recip(C(inv_x * Real(2 * n - 1)) - rho);
-    R = R * rho * (Real(1) / p[n]);
+    const Real n_over_x = over_x(rn);
+    rho = recip(C(over_x(Real(2 * n - 1))) - rho);  // ρₙ = ξ_{n-1}/ξₙ
+    R = R * rho * y[n - 1];                          // Rₙ = R_{n-1} ρₙ ψₙ/ψ_{n-1}
     s *= norm2(rho);
-    const Real dx = p[n] - n_over_x;
-    const C G = rho - C(n_over_x);
+    const Real yx = y[n];
+    const Real dx = over_x(rn + 1) - yx;           // Dₙ(x)
+    const C G = rho - C(n_over_x);                   // Gₙ = ξₙ'/ξₙ
     C a, b;
     Real alpha(0), beta(0);
     if (pec) {
       a = R * C(dx) * recip(G);
       b = R;
     } else {
-      C dmx, num_a, num_b;
-      if (method == DMethod::downward) {
-        dmx = C(dx) + delta[n];
-        num_a = delta[n] - m_minus_1 * dx;
-        num_b = m * delta[n] + m_minus_1 * dx;
+      C ymx, dy;
+      if (slot == Slot::difference) {
+        dy = C(w[n].real(), w[n].imag());
+        ymx = C(yx) + dy;
       } else {
-        dmx = upward.next(n);
-        num_a = dmx - m * dx;
-        num_b = m * dmx - C(dx);
+        ymx = slot == Slot::value ? C(w[n].real(), w[n].imag()) : over_mx(rn + 1) - upward.next(n);
+        dy = ymx - C(yx);
       }
+      const C dmx = over_mx(rn + 1) - ymx;        // Dₙ(mx)
+      // Dₙ(mx) − m Dₙ(x) and m Dₙ(mx) − Dₙ(x), with (n+1)/x removed exactly:
+      const C num_a = m_minus_1 * yx - dy - m2_minus_1_over_m * over_x(rn + 1);
+      const C num_b = -(m * dy) - m_minus_1 * yx;
+      const C my = m * ymx;
       const C inv_da = recip(dmx - m * G);
-      const C mdmx = m * dmx;
-      const C inv_db = recip(mdmx - G);
+      const C inv_db = recip(C(over_x(Real(2 * n + 1))) - my - rho);  // m Dₙ(mx) − Gₙ
       a = R * num_a * inv_da;
       b = R * num_b * inv_db;
-      // −Im(Dₙ(mx)/m)·|m|² = −Im(Dₙ(mx) m̄);  −Im(m Dₙ(mx)).
+      // Re aₙ − |aₙ|² = −Im(Dₙ(mx) m̄) s |inv_da|²;  Re bₙ − |bₙ|² = Im(m yₙ(mx)) s |inv_db|².
       const Real im_t_a = dmx.imag() * m.real() - dmx.real() * m.imag();
       alpha = -im_t_a * s * norm2(inv_da);
-      beta = -mdmx.imag() * s * norm2(inv_db);
+      beta = my.imag() * s * norm2(inv_db);
     }
-    const Real w = Real(2 * n + 1);
-    ext.add(w * (a.real() + b.real()));
-    sca.add(w * (norm2(a) + norm2(b)));
-    abs_.add(w * (alpha + beta));
+    const Real wn = Real(2 * n + 1);
+    // Re(aₙ+bₙ) = |aₙ|²+|bₙ|² + (αₙ+βₙ): two positive parts, so Qext keeps its
+    // relative accuracy even when it is as small as Qsca ~ x⁴(m−1)².
+    const Real sca_n = wn * (norm2(a) + norm2(b));
+    const Real abs_n = wn * (alpha + beta);
+    ext.add(sca_n + abs_n);
+    sca.add(sca_n);
+    abs_.add(abs_n);
     const C ab = a - b;
-    if (n % 2 == 0) { back_re.add(w * ab.real()); back_im.add(w * ab.imag()); }
-    else { back_re.add(-w * ab.real()); back_im.add(-w * ab.imag()); }
+    if (n % 2 == 0) { back_re.add(wn * ab.real()); back_im.add(wn * ab.imag()); }
+    else { back_re.add(-wn * ab.real()); back_im.add(-wn * ab.imag()); }
     // g (B&H 4.74): Σ n(n+2)/(n+1) Re(aₙa*ₙ₊₁ + bₙb*ₙ₊₁) + Σ (2n+1)/(n(n+1)) Re(aₙb*ₙ)
     if (n >= 2) {
       const Real k = Real(n - 1);
@@ -198,7 +224,7 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
                          b_prev.real() * b.real() + b_prev.imag() * b.imag();
       g_re.add(k * (k + 2) / (k + 1) * cross);
     }
-    g_re.add(w / (rn * (rn + 1)) * (a.real() * b.real() + a.imag() * b.imag()));
+    g_re.add(wn / (rn * (rn + 1)) * (a.real() * b.real() + a.imag() * b.imag()));
     a_prev = a;
     b_prev = b;
     if (extras.coefficients) {
@@ -206,7 +232,7 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
       out.b.push_back(b);
     }
     if (na > 0) {
-      const Real f = w / (rn * (rn + 1));
+      const Real f = wn / (rn * (rn + 1));
       for (std::size_t j = 0; j < na; ++j) {
         Real pi_n = pi_cur[j];
         if (n >= 2) {
@@ -222,7 +248,7 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
     }
     if (converged_rule && static_cast<double>(n) > xd) {
       using std::abs;
-      const Real term = w * (abs(a.real()) + abs(a.imag()) + abs(b.real()) + abs(b.imag()));
+      const Real term = wn * (abs(a.real()) + abs(a.imag()) + abs(b.real()) + abs(b.imag()));
       const Real scale = (std::min)(abs(ext.sum), abs(back_re.sum) + abs(back_im.sum));
       if (term <= Real(tol) * scale) break;
     }
