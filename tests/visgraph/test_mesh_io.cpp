@@ -136,6 +136,20 @@ TEST_CASE("OBJ without groups names triangles by material, else 'default'", "[vi
   CHECK(names == std::vector<std::string>{"asphalt", "default", "paving"});
 }
 
+TEST_CASE("OBJ with CRLF endings, objects and v/vt/vn faces", "[visgraph][mesh_io]") {
+  // Fixture: `o curb` (1 triangle), `o kerb stone` + usemtl granite (1), then
+  // an unnamed `g ` (1), which falls back to the material still in force.
+  // (A bare `g` with no blank after it is ignored by tinyobjloader.)
+  const Mesh mesh = load_obj(data("crlf_objects.obj"));
+  REQUIRE(mesh.triangles.size() == 3);
+  CHECK(group_of(mesh, 0) == "curb");
+  CHECK(group_of(mesh, 1) == "kerb stone");
+  CHECK(group_of(mesh, 2) == "granite");
+  CHECK(mesh.vertices.size() == 4);
+  CHECK(mesh.vertices[3] == Eigen::Vector3d(0, 1, 0));
+  CHECK(mesh.triangles[2] == std::array<std::uint32_t, 3>{3, 2, 1});
+}
+
 TEST_CASE("Bad OBJ input gives an error naming the file and the line", "[visgraph][mesh_io]") {
   SECTION("missing file") {
     const std::string path = data("no_such_file.obj");

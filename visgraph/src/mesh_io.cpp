@@ -166,7 +166,7 @@ class MaterialNames final : public tinyobj::MaterialReader {
                   std::string* /*err*/) override {
     if (mat_id != kMaterialSentinel) return true;
     for (const std::string& name : names_) {
-      tinyobj::material_t m;
+      tinyobj::material_t m{};  // value-initialised: the struct has no constructor
       m.name = name;
       (*mat_map)[name] = static_cast<int>(materials->size());
       materials->push_back(m);
