@@ -8,12 +8,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <optional>
 #include <random>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace vg = attenuvis::visgraph;
 
@@ -327,4 +335,51 @@ TEST_CASE("City options that make no city are refused", "[visgraph][generators]"
   o = vg::CityOptions{};
   o.sidewalk_width = std::nan("");
   CHECK_THROWS_AS(vg::make_city(o), std::invalid_argument);
+}
+
+namespace {
+
+// Runs the attenuvis program with `args`; returns its exit status and
+// fills `output` with stdout + stderr.
+std::string unique_temp_path(const std::string& stem) {
+  std::random_device rd;
+  return (std::filesystem::temp_directory_path() /
+          (stem + "-" + std::to_string(::getpid()) + "-" + std::to_string(rd())))
+      .string();
+}
+
+int run_cli(const std::string& args, std::string& output) {
+  const std::string log = unique_temp_path("attenuvis-scene-cli") + ".log";
+  const int status = std::system((std::string(ATTENUVIS_CLI) + " " + args + " > " + log + " 2>&1").c_str());
+  std::ifstream in(log);
+  output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  std::remove(log.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
+TEST_CASE("attenuvis scene writes scenes and describes OBJ files", "[visgraph][generators][cli]") {
+  const std::string dir = unique_temp_path("attenuvis-scene");
+  std::filesystem::create_directories(dir);
+  std::string out;
+  const std::string layout = dir + "/layout2.obj";
+  REQUIRE(run_cli("scene layout:2 --out " + layout, out) == 0);
+  CHECK_THAT(out, Catch::Contains("triangles: 14") && Catch::Contains("obstacle"));
+  CHECK(vg::load_obj(layout).triangles.size() == 14);
+  CHECK(run_cli("scene info " + layout, out) == 0);
+  CHECK_THAT(out, Catch::Contains("triangles: 14") && Catch::Contains("floor"));
+
+  // Bad input: non-zero exit, a message naming what and where, no file.
+  const std::string bad = std::string(ATTENUVIS_TEST_DATA_DIR) + "/visgraph/bad_nan_vertex.obj";
+  CHECK(run_cli("scene info " + bad, out) != 0);
+  CHECK_THAT(out, Catch::Contains("bad_nan_vertex.obj:5:"));
+  CHECK(run_cli("scene layout:9 --out " + dir + "/nine.obj", out) != 0);
+  CHECK_THAT(out, Catch::Contains("layout:9"));
+  CHECK(run_cli("scene city --hex-size 5 --out " + dir + "/tiny.obj", out) != 0);
+  CHECK_THAT(out, Catch::Contains("hex_size"));
+  CHECK(run_cli("scene city", out) != 0);
+  CHECK_FALSE(std::filesystem::exists(dir + "/nine.obj"));
+  CHECK_FALSE(std::filesystem::exists(dir + "/tiny.obj"));
+  std::filesystem::remove_all(dir);
 }
