@@ -28,9 +28,11 @@ void print_stats(const vg::Mesh& mesh) {
   std::printf("triangles: %zu\nvertices: %zu\n", stats.triangles, stats.vertices);
   std::printf("bbox: [%.3f, %.3f] x [%.3f, %.3f] x [%.3f, %.3f] m\n", stats.lower.x(), stats.upper.x(),
               stats.lower.y(), stats.upper.y(), stats.lower.z(), stats.upper.z());
-  std::printf("groups: %zu\n", stats.groups.size());
+  // Projected area sums every triangle's xy footprint: a closed solid
+  // (roof + floor) counts twice, walls not at all.
+  std::printf("groups: %zu (name, triangles, xy-projected area of all its triangles)\n", stats.groups.size());
   for (const auto& g : stats.groups)
-    std::printf("  %-12s %9zu triangles %14.1f m^2 projected\n", g.name.c_str(), g.triangles, g.projected_area);
+    std::printf("  %-12s %9zu triangles %14.1f m^2\n", g.name.c_str(), g.triangles, g.projected_area);
 }
 
 struct SceneArgs {
