@@ -1,0 +1,45 @@
+// Batch evaluation and the small text grammar of the `attenuvis mie` command.
+//
+// Batch input: one problem per line, "x m_re m_im" separated by whitespace
+// and/or commas; '#' starts a comment; blank lines are skipped.  Output: CSV
+// with the header x,m_re,m_im,qext,qsca,qabs,qback,g and 17 significant
+// digits (round-trip for double).  A bad line (parse error, x <= 0, k < 0,
+// non-finite value, wrong number of fields) is reported with its line number
+// and skipped; every good line is still computed.
+#pragma once
+
+#include <complex>
+#include <cstddef>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "attenuvis/mie.hpp"
+
+namespace attenuvis::mie::batch {
+
+struct Problem {
+  double x = 0;
+  std::complex<double> m;
+};
+
+// One input line: nullopt for a blank or comment-only line; throws
+// std::invalid_argument (message without the line number) for a bad one.
+std::optional<Problem> parse_line(const std::string& line);
+
+const char* csv_header();  // "x,m_re,m_im,qext,qsca,qabs,qback,g"
+std::string csv_row(const Problem& p, const Efficiencies<double>& q);
+
+// Reads `in` to the end, writes the header and one row per good line to
+// `out`, one "line N: <why>" message per bad line to `err`.  Returns the
+// number of bad lines.
+std::size_t run(std::istream& in, std::ostream& out, std::ostream& err, const Options& options = {});
+
+// "1.33,1e-8" or "1.33" (k = 0) -> m; throws std::invalid_argument.
+std::complex<double> parse_refractive_index(const std::string& text);
+// "0:180:1" (start:stop:step, stop included when hit within 1e-9·step),
+// "30" or "0,45,90" -> angles in degrees; throws std::invalid_argument.
+std::vector<double> parse_angles(const std::string& text);
+
+}  // namespace attenuvis::mie::batch

@@ -1,0 +1,127 @@
+// Batch evaluation and the text grammar of `attenuvis mie` (see batch.hpp).
+#include "attenuvis/mie/batch.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <istream>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+namespace attenuvis::mie::batch {
+namespace {
+
+// Whole-token strict number parsing: "1.5x" or "" are errors, not 1.5 or 0.
+double parse_number(const std::string& token, const char* what) {
+  if (token.empty()) throw std::invalid_argument(std::string("missing ") + what);
+  errno = 0;
+  char* end = nullptr;
+  const double v = std::strtod(token.c_str(), &end);
+  if (end != token.c_str() + token.size())
+    throw std::invalid_argument(std::string("cannot parse ") + what + " '" + token + "'");
+  if (!std::isfinite(v)) throw std::invalid_argument(std::string(what) + " '" + token + "' is not finite");
+  if (errno == ERANGE && v != 0.0)  // overflow is caught above; underflow to a denormal is fine
+    throw std::invalid_argument(std::string(what) + " '" + token + "' is out of range");
+  return v;
+}
+
+std::vector<std::string> split_fields(const std::string& text) {
+  std::string s = text;
+  for (char& c : s)
+    if (c == ',' || c == '\t' || c == '\r') c = ' ';
+  std::istringstream is(s);
+  std::vector<std::string> fields;
+  for (std::string f; is >> f;) fields.push_back(f);
+  return fields;
+}
+
+void append_number(std::string& out, double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  out += buf;
+}
+
+}  // namespace
+
+std::optional<Problem> parse_line(const std::string& line) {
+  const std::string content = line.substr(0, line.find('#'));
+  const std::vector<std::string> f = split_fields(content);
+  if (f.empty()) return std::nullopt;
+  if (f.size() != 3)
+    throw std::invalid_argument("expected 3 fields 'x m_re m_im', got " + std::to_string(f.size()));
+  Problem p;
+  p.x = parse_number(f[0], "x");
+  const double n = parse_number(f[1], "m_re");
+  const double k = parse_number(f[2], "m_im");
+  if (p.x <= 0) throw std::invalid_argument("x must be > 0, got " + f[0]);
+  if (k < 0) throw std::invalid_argument("m_im must be >= 0 (k > 0 absorbs), got " + f[2]);
+  if (n < 0) throw std::invalid_argument("m_re must be >= 0, got " + f[1]);
+  p.m = {n, k};
+  return p;
+}
+
+const char* csv_header() { return "x,m_re,m_im,qext,qsca,qabs,qback,g"; }
+
+std::string csv_row(const Problem& p, const Efficiencies<double>& q) {
+  std::string row;
+  const double values[] = {p.x, p.m.real(), p.m.imag(), q.qext, q.qsca, q.qabs, q.qback, q.g};
+  for (std::size_t i = 0; i < sizeof values / sizeof values[0]; ++i) {
+    if (i) row += ',';
+    append_number(row, values[i]);
+  }
+  return row;
+}
+
+std::size_t run(std::istream& in, std::ostream& out, std::ostream& err, const Options& options) {
+  out << csv_header() << '\n';
+  std::size_t bad = 0, line_number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++line_number;
+    try {
+      const std::optional<Problem> p = parse_line(line);
+      if (!p) continue;
+      out << csv_row(*p, sphere(p->x, p->m, options)) << '\n';
+    } catch (const std::exception& e) {
+      ++bad;
+      err << "line " << line_number << ": " << e.what() << '\n';
+    }
+  }
+  return bad;
+}
+
+std::complex<double> parse_refractive_index(const std::string& text) {
+  const std::vector<std::string> f = split_fields(text);
+  if (f.empty() || f.size() > 2)
+    throw std::invalid_argument("refractive index must be 'n,k' or 'n', got '" + text + "'");
+  const double n = parse_number(f[0], "n");
+  const double k = f.size() == 2 ? parse_number(f[1], "k") : 0.0;
+  if (n < 0 || k < 0) throw std::invalid_argument("refractive index needs n >= 0 and k >= 0, got '" + text + "'");
+  return {n, k};
+}
+
+std::vector<double> parse_angles(const std::string& text) {
+  std::vector<double> angles;
+  if (text.find(':') != std::string::npos) {
+    std::string s = text;
+    for (char& c : s)
+      if (c == ':') c = ' ';
+    const std::vector<std::string> f = split_fields(s);
+    if (f.size() != 3) throw std::invalid_argument("angles must be 'start:stop:step', got '" + text + "'");
+    const double a = parse_number(f[0], "start angle"), b = parse_number(f[1], "stop angle"),
+                 step = parse_number(f[2], "angle step");
+    if (!(step > 0) || b < a) throw std::invalid_argument("angles need step > 0 and stop >= start, got '" + text + "'");
+    const double count = std::floor((b - a) / step + 1e-9);
+    if (count > 1e6) throw std::invalid_argument("more than 1e6 angles in '" + text + "'");
+    for (double i = 0; i <= count; ++i) angles.push_back(a + i * step);
+  } else {
+    for (const std::string& f : split_fields(text)) angles.push_back(parse_number(f, "angle"));
+    if (angles.empty()) throw std::invalid_argument("no angle in '" + text + "'");
+  }
+  for (double t : angles)
+    if (t < 0 || t > 180) throw std::invalid_argument("scattering angles must lie in [0, 180] degrees");
+  return angles;
+}
+
+}  // namespace attenuvis::mie::batch
