@@ -57,8 +57,12 @@ Mesh classic_layout(int index);
 // whose output sequence the C++ standard fixes; uniform numbers are made from
 // its raw 64-bit output (top 53 bits) rather than std::uniform_*_distribution,
 // whose output is implementation-defined.  The height field is a polynomial
-// (no exp/sin), so coordinates are identical across platforms given IEEE
-// double arithmetic without fused multiply-add contraction.
+// (no exp/sin) and the geometry uses only + - * / and sqrt, so coordinates are
+// bit-identical across platforms given IEEE double arithmetic without fused
+// multiply-add contraction: true of baseline x86-64 builds; a build for an
+// FMA-capable -march may differ in the last bits (GCC contracts by default
+// in C++), which the fingerprint test in tests/visgraph/test_generators.cpp
+// would report.
 struct CityOptions {
   std::uint64_t seed = 2021;       // the seed paper's year: the documented default
   int rings = 4;                   // 1 + 3 rings (rings + 1) blocks: 61 by default
