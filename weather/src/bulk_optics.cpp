@@ -312,10 +312,8 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   fill(out.absorption, kAbs);
   out.extinction.asymptotic_error = value[kAsym] + error[kAsym];
   if (s.estimate_resonances) {
-    double missed = unresolved_resonance_bound(d, wavelength, m, support.breakpoints_m.front(),
-                                               support.breakpoints_m.back(), s.asymptotic_x);
-    out.extinction.resonance_error = floor_error[kExt] + missed;
-    out.scattering.resonance_error = floor_error[kSca] + missed;
+    out.extinction.resonance_error = floor_error[kExt];
+    out.scattering.resonance_error = floor_error[kSca];
     out.absorption.resonance_error = floor_error[kAbs];
     out.floor_panels = 0;
     for (const auto& p : panels) out.floor_panels += p.floor ? 1 : 0;

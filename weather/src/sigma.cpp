@@ -2,6 +2,8 @@
 #include "attenuvis/weather/sigma.hpp"
 
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -103,6 +105,19 @@ Sigma sigma(const Condition& c, const Settings& s) {
     }
     case ConditionKind::rain_mie:
     case ConditionKind::fog_mie: {
+      // Mie integrals of near-lossless drops take seconds; a process asking for
+      // the same condition twice (an app, a table with repeated rows) reuses it.
+      // The key holds everything the result depends on (file contents aside).
+      static std::mutex cache_mutex;
+      static std::map<std::string, Sigma> cache;
+      std::ostringstream key;
+      key.precision(17);
+      key << c.text << "|" << s.wavelength_m << "|" << s.rel_tolerance << "|" << s.water_table << "|"
+          << s.rain_asymptotic_x;
+      if (c.model.rfind("file=", 0) != 0) {
+        std::lock_guard<std::mutex> lock(cache_mutex);
+        if (auto it = cache.find(key.str()); it != cache.end()) return it->second;
+      }
       std::string index_source;
       condition_refractive_index(c, s, &index_source);
       BulkOptics b = condition_bulk_optics(c, s);
@@ -116,6 +131,10 @@ Sigma sigma(const Condition& c, const Settings& s) {
       if (b.extinction.asymptotic_error > 0) note << " + large-x expansion " << b.extinction.asymptotic_error;
       note << " 1/m";
       out.note = note.str();
+      if (c.model.rfind("file=", 0) != 0) {
+        std::lock_guard<std::mutex> lock(cache_mutex);
+        cache[key.str()] = out;
+      }
       break;
     }
   }

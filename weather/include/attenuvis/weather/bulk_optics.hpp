@@ -16,8 +16,12 @@
 //               the range holds all but tail_fraction of that moment,
 //   asymptotic  where x > asymptotic_x, Q_ext is replaced by its large-sphere
 //               expansion and |Q_ext - expansion| <= its stated bound is integrated,
-//   resonance   for nearly non-absorbing particles, the part of the Q_ext
-//               resonance spectrum the rule cannot sample (see bulk_optics.cpp).
+//   aliasing    on panels wider than the rule resolves (0.6 x points in x),
+//               1.5 x (sampled range of Q) x (panel's geometric cross-section)
+//               is added, since K and G can alias alike there,
+//   resonance   for nearly non-absorbing particles, what panels at the
+//               resonance floor still disagree on (resonance.hpp); reported,
+//               not counted against the tolerance.
 // If the quadrature part cannot be brought below the tolerance within
 // max_evaluations, or a moment diverges, the function throws
 // std::runtime_error naming the integral and the reason.
@@ -45,7 +49,7 @@ struct QuadratureSettings {
   std::size_t max_evaluations = 400000;
   double asymptotic_x = 0;         // > 0: use the large-x expansion of Q_ext beyond this x (extinction only)
   bool estimate_resonances = true; // Im(m) < resonance_free_k(): stop splitting at resonance_x_span
-  double resonance_x_span = 1.0;   // narrowest panel (in x) for nearly non-absorbing spheres
+  double resonance_x_span = 0.1;   // narrowest panel (in x) for nearly non-absorbing spheres (see resonance.hpp)
 };
 
 struct IntegralEstimate {
@@ -76,9 +80,5 @@ BulkOptics integrate_bulk_optics(const SizeDistribution& d, double wavelength_m,
 BulkOptics bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
                        const QuadratureSettings& s = {});
 
-// Large-sphere expansion of the extinction efficiency and a bound on its error
-// (used beyond QuadratureSettings::asymptotic_x; see bulk_optics.cpp for provenance).
-double qext_asymptotic(double x);
-double qext_asymptotic_bound(double x, std::complex<double> m);
 
 }  // namespace attenuvis::weather

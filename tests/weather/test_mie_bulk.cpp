@@ -1,0 +1,95 @@
+// Bulk optics with Lorenz-Mie efficiencies: the seed paper's fog values,
+// strongly absorbing drops at 10.6 um, and rain.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "attenuvis/mie.hpp"
+#include "attenuvis/weather.hpp"
+
+using namespace attenuvis::weather;
+
+namespace {
+const double kPi = 3.14159265358979323846;
+
+// Independent reference: composite trapezoid in u = ln r with Mie at every
+// node (spectrally accurate for a smooth integrand vanishing at both ends).
+double trapezoid_ln_r(const SizeDistribution& d, double wavelength, std::complex<double> m, long steps) {
+  auto sup = d.support(2.0, 1e-15);
+  double a = std::log(sup.breakpoints_m.front()), b = std::log(sup.breakpoints_m.back()), h = (b - a) / steps;
+  double k = 2 * kPi / wavelength, sum = 0;
+  for (long i = 0; i <= steps; ++i) {
+    double r = std::exp(a + i * h);
+    double f = r * kPi * r * r * d.density(r) * attenuvis::mie::sphere(k * r, m).qext;
+    sum += (i == 0 || i == steps) ? 0.5 * f : f;
+  }
+  return sum * h;
+}
+}  // namespace
+
+TEST_CASE("seed paper fog sigma at 550 nm", "[weather][mie][seed]") {
+  // Seed paper Sec. Fog: "At 550(nm) sigma = 0.02874311 m^-1 for Heavy Advection Fog and
+  // sigma = 0.00863808 m^-1 for Moderate Radiation Fog".  The seed does not state its water
+  // index; we use Hale & Querry (1973), m(550 nm) = 1.333 + 1.96e-9 i.  Our values differ
+  // from the seed's by 1.3e-4 (advection) and 5.3e-4 (radiation) relative, more than our
+  // error estimate (~5e-5 relative) and more than changing the index within 1.330-1.335 or
+  // to Segelstein (1981) moves them; the seed's integration settings are not stated.  The
+  // check is therefore agreement to 1e-3 relative, with our error estimate below 2e-4.
+  Settings s;
+  s.rel_tolerance = 1e-6;
+  // (advection, ~10 s, is in the [slow] test below.)
+  for (auto [cond, seed] : {std::pair<const char*, double>{"fog:radiation", 0.00863808}}) {
+    INFO(cond);
+    auto r = sigma(parse_condition(cond), s);
+    INFO("sigma " << r.per_m << " +- " << r.error_per_m);
+    CHECK(std::abs(r.per_m - seed) <= 1e-3 * seed);
+    CHECK(r.error_per_m < 2e-4 * r.per_m);
+  }
+}
+
+TEST_CASE("seed fog at the default tolerance 1e-9", "[weather][mie][seed][slow]") {
+  Settings s;
+  auto r = sigma(parse_condition("fog:advection"), s);
+  CHECK(std::abs(r.per_m - 0.02874311) <= 1e-3 * 0.02874311);
+  CHECK(r.error_per_m < 1e-4 * r.per_m);
+}
+
+TEST_CASE("strongly absorbing drops at 10.6 um: error bounds the true error", "[weather][mie]") {
+  // Water at 10.6 um (Hale & Querry 1973): m ~ 1.178 + 0.0715i; no resonances, so the
+  // adaptive rule must meet 1e-9 and its error must bound the dense-trapezoid reference.
+  auto m = refractive_index_table("water").at(10.6e-6);
+  CHECK(m.imag() > 0.05);
+  for (const char* preset : {"advection", "radiation"}) {
+    INFO(preset);
+    auto d = preset_distribution(preset);
+    auto b = bulk_optics(d, 10.6e-6, m);
+    double ref = trapezoid_ln_r(d, 10.6e-6, m, 20000);
+    CHECK(b.extinction.resonance_error == 0);
+    CHECK(std::abs(b.extinction.value - ref) <= b.extinction.error() + 1e-13 * ref);
+    CHECK(b.extinction.error() < 2e-9 * ref);
+    CHECK(b.absorption.value > 0.3 * b.extinction.value);  // strongly absorbing
+    CHECK(b.albedo == Approx(b.scattering.value / b.extinction.value));
+  }
+}
+
+TEST_CASE("one-bin table with Mie", "[weather][mie][file]") {
+  auto d = read_distribution_csv(std::string(ATTENUVIS_TEST_DATA_DIR) + "/weather/one_bin.csv");
+  auto m = std::complex<double>(1.33, 0.01);  // absorbing enough to have no resonance floor
+  auto b = bulk_optics(d, 550e-9, m);
+  double ref = trapezoid_ln_r(d, 550e-9, m, 20000);
+  CHECK(std::abs(b.extinction.value - ref) <= b.extinction.error() + 1e-12 * ref);
+}
+
+TEST_CASE("rain by Mie over Marshall-Palmer", "[weather][mie][rain][slow]") {
+  // Geometric-optics limit: Q_ext -> 2, sigma -> 2 pi int r^2 n dr = pi N0 / Lambda^3 (D in mm),
+  // Marshall & Palmer (1948).  Mie adds the x^-2/3 edge term: a few per mille at 550 nm.
+  Settings s;
+  s.rel_tolerance = 1e-6;
+  auto r = sigma(parse_condition("rain:8:mie"), s);
+  double lambda = 4.1 * std::pow(8.0, -0.21);
+  double geometric = kPi * 8000 / std::pow(lambda, 3) * 1e-6;
+  CHECK(r.per_m > geometric);
+  CHECK(r.per_m < 1.01 * geometric);
+  CHECK(r.error_per_m > 0);
+  CHECK(r.error_per_m < 1e-2 * r.per_m);  // dominated by the calibrated large-x bound (resonance.hpp)
+}
