@@ -115,6 +115,22 @@ TEST_CASE("double vs 50-digit referee: x = 1e-8 ... 1e3, every m", "[mie][refere
   check_grid(xs, all_m(), "x <= 1e3");
 }
 
+TEST_CASE("double vs 50-digit referee: x at zeros of psi_n(x)", "[mie][referee]") {
+  // psi_n(x) = x j_n(x) has zeros for every n < x, so some psi_n (n <= N) is small
+  // for any x and exactly zero at these x.  A series written in ratios such as
+  // psi_{n-1}/psi_n must stay accurate through their poles.  The x below are the
+  // doubles nearest to zeros of J_{n+1/2}(x) (mpmath findroot, 40 digits):
+  //   n = 1: 4.4934094579090641753   n = 10: 15.033469303743438064
+  //   n = 35: 41.913091196344584765  n = 50: 57.638686770302609953
+  //   n = 200: 211.53805588885715699 n = 2000: 2041.6335055737876057
+  // (The n = 35 case was first hit by a random search over 8000 (x, m) points.)
+  const std::vector<double> xs = {4.493409457909064,  15.033469303743438, 41.91309119634459,
+                                  57.63868677030261,  211.53805588885714, 2041.6335055737877};
+  const std::vector<cd> ms = {{1.0 + 1e-6, 0.0}, {1.0001, 0.0}, {1.33, 0.0}, {1.33, 1e-8},
+                              {0.75, 0.0},       {1.5, 0.1},     {10.0, 10.0}};
+  check_grid(xs, ms, "zeros of psi_n");
+}
+
 TEST_CASE("double vs 50-digit referee: x = 1e4, every m", "[mie][referee][slow]") {
   check_grid({1e4}, all_m(), "x = 1e4");
 }
