@@ -13,6 +13,7 @@
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/referee.hpp"
@@ -212,8 +213,13 @@ std::string timing_machine_description() {
       if (colon != std::string::npos) cpu = l.substr(colon + 2);
       break;
     }
+  // Timings on a shared machine are only as good as its load; say what it was.
+  std::string load = "?";
+  std::ifstream loadavg("/proc/loadavg");
+  if (loadavg) loadavg >> load;
   std::ostringstream os;
-  os << cpu << ", single thread; compiler " <<
+  os << cpu << ", " << std::thread::hardware_concurrency() << " hardware threads, 1-minute load "
+     << load << " at the time of the call, single-threaded timings; compiler " <<
 #if defined(__clang__)
       "clang "
 #elif defined(__GNUC__)

@@ -87,7 +87,8 @@ void write_error_vs_time_csv(const std::string& path, const std::vector<ErrorTim
 /// the ratio of the default time to the conventional baseline's.
 std::string format_error_vs_time(const std::vector<ErrorTimeRow>& rows);
 
-/// Description of the machine the timings were taken on (CPU model, compiler).
+/// Description of the machine the timings were taken on (CPU model, hardware
+/// threads, current 1-minute load average, compiler).
 std::string timing_machine_description();
 
 }  // namespace attenuvis::validation
