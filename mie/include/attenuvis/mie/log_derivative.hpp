@@ -105,9 +105,16 @@ enum class Slot {
 // to `slot`, w[n] = δₙ or yₙ(mx).  Returns the Lentz iteration count.
 // W is the stored complex type: it may be narrower than C (see SlotStore in
 // series.hpp), since each wₙ is used once and not fed into a product.
+//
+// In Slot::difference mode, entry n holds δₙ only where yₙ(mx) = yₙ(x) + δₙ
+// does not cancel (|yₙ(mx)| >= |yₙ(x)|/8); near a pole of yₙ(x) (ψₙ(x) ≈ 0)
+// that m does not share, it holds yₙ(mx) itself and is_value[n] = 1.  Without
+// this, a single term near such a pole loses ε|yₙ(x)/yₙ(mx)| (1e-8 at
+// x = 116.78455902863854, m = 1.33+1e-5i, i.e. 9e-9 in Qback).
 template <class Real, class C, class W>
 std::size_t downward_ratios(const Real& x, const C& m, std::size_t N, Slot slot, std::vector<Real>& y,
-                            std::vector<W>& w) {
+                            std::vector<W>& w, std::vector<unsigned char>& is_value) {
+  is_value.assign(slot == Slot::difference ? N + 1 : 0, 0);
   y.resize(N + 1);  // every entry is written below
   w.resize(slot == Slot::none ? 0 : N + 1);
   const ScaledInverse<Real> over_x(x);
@@ -130,8 +137,14 @@ std::size_t downward_ratios(const Real& x, const C& m, std::size_t N, Slot slot,
   C d = yz - C(yx);
   for (std::size_t n = N;; --n) {
     y[n] = yx;
-    const C& v = slot == Slot::difference ? d : yz;
-    w[n] = W(v.real(), v.imag());
+    if (slot == Slot::difference) {
+      const bool value = 64 * norm2(yz) < yx * yx;
+      is_value[n] = value;
+      const C& v = value ? yz : d;
+      w[n] = W(v.real(), v.imag());
+    } else {
+      w[n] = W(yz.real(), yz.imag());
+    }
     if (n == 0) break;
     const Real k = Real(2 * n + 1);  // 2(n−1)+3
     Real den_x = over_x(k) - yx;

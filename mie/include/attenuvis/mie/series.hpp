@@ -139,13 +139,15 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
   // 24 MB per thread.
   thread_local std::vector<Real> y;
   thread_local std::vector<typename SlotStore<Real>::type> w;
+  thread_local std::vector<unsigned char> is_value;
   struct Release {
     ~Release() {
       if (y.capacity() > (std::size_t(1) << 17)) { std::vector<Real>().swap(y); }
+      if (is_value.capacity() > (std::size_t(1) << 17)) { std::vector<unsigned char>().swap(is_value); }
       if (w.capacity() > (std::size_t(1) << 17)) { std::vector<typename SlotStore<Real>::type>().swap(w); }
     }
   } release_large_buffers;
-  downward_ratios<Real, C>(x, m, N, slot, y, w);
+  downward_ratios<Real, C>(x, m, N, slot, y, w, is_value);
   UpwardLogDerivative<Real, C> upward(x, method == DMethod::upward ? m : C(Real(1)));
 
   Scattering<Real> out;
@@ -184,18 +186,21 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
       a = R * C(dx) * recip(G);
       b = R;
     } else {
-      C ymx, dy;
-      if (slot == Slot::difference) {
-        dy = C(w[n].real(), w[n].imag());
+      // Dₙ(mx) − m Dₙ(x) and m Dₙ(mx) − Dₙ(x), with (n+1)/x removed exactly;
+      // through δ = yₙ(mx) − yₙ(x) when it is stored (trap 4), else directly.
+      const C c_n = m2_minus_1_over_m * over_x(rn + 1);  // (m²−1)(n+1)/(m x)
+      C ymx, num_a, num_b;
+      if (slot == Slot::difference && !is_value[n]) {
+        const C dy(w[n].real(), w[n].imag());
         ymx = C(yx) + dy;
+        num_a = m_minus_1 * yx - dy - c_n;
+        num_b = -(m * dy) - m_minus_1 * yx;
       } else {
-        ymx = slot == Slot::value ? C(w[n].real(), w[n].imag()) : over_mx(rn + 1) - upward.next(n);
-        dy = ymx - C(yx);
+        ymx = slot != Slot::none ? C(w[n].real(), w[n].imag()) : over_mx(rn + 1) - upward.next(n);
+        num_a = m * yx - ymx - c_n;
+        num_b = C(yx) - m * ymx;
       }
       const C dmx = over_mx(rn + 1) - ymx;        // Dₙ(mx)
-      // Dₙ(mx) − m Dₙ(x) and m Dₙ(mx) − Dₙ(x), with (n+1)/x removed exactly:
-      const C num_a = m_minus_1 * yx - dy - m2_minus_1_over_m * over_x(rn + 1);
-      const C num_b = -(m * dy) - m_minus_1 * yx;
       const C my = m * ymx;
       const C inv_da = recip(dmx - m * G);
       const C inv_db = recip(C(over_x(Real(2 * n + 1))) - my - rho);  // m Dₙ(mx) − Gₙ
