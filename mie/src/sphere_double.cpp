@@ -30,31 +30,11 @@ void check_m(std::complex<double> m) {
   }
 }
 
-// Above Options::extended_above the product computes in long double (x87 extended, 64-bit significand) and
-// rounds the results to double.  Why: at x ~ 1e4…1e6 the recurrences run
-// through ~x oscillations and in double their rounding errors accumulate to
-// ~√N·ε ≈ 1e-13 in every aₙ; Qback, an alternating sum that cancels by a
-// factor ~x, would then be off by up to 1e-8.  Extended precision costs
-// little because the loop is bound by division latency, not throughput.
-Scattering<double> to_double(const Scattering<long double>& in) {
-  Scattering<double> out;
-  const auto& q = in.q;
-  out.q = Efficiencies<double>{static_cast<double>(q.qext), static_cast<double>(q.qsca),
-                               static_cast<double>(q.qabs), static_cast<double>(q.qback),
-                               static_cast<double>(q.qpr),  static_cast<double>(q.g), q.terms};
-  auto convert = [](const std::vector<std::complex<long double>>& v) {
-    std::vector<std::complex<double>> r(v.size());
-    for (std::size_t i = 0; i < v.size(); ++i) r[i] = std::complex<double>(v[i]);
-    return r;
-  };
-  out.a = convert(in.a);
-  out.b = convert(in.b);
-  out.s1 = convert(in.s1);
-  out.s2 = convert(in.s2);
-  out.angles_deg = in.angles_deg;
-  return out;
-}
-
+// Above Options::extended_above the recurrences run in long double (x87
+// extended, 64-bit significand) and each term is evaluated in double.  Why:
+// at x ~ 1e4…1e6 the recurrences run through ~x oscillations and in double
+// their rounding errors accumulate to ~√N·ε ≈ 1e-13 in every aₙ; Qback, an
+// alternating sum that cancels by a factor ~x, would be off by up to 1e-8.
 bool use_extended(double x, const Options& options) {
   switch (options.working) {
     case Working::double_only: return false;
@@ -83,14 +63,14 @@ Scattering<double> scatter(double x, std::complex<double> m, const Extras& extra
   check_x(x);
   check_m(m);
   if (use_extended(x, options))
-    return to_double(detail::mie_series<long double>(x, std::complex<long double>(m), false, extras, options));
+    return detail::mie_series<double, long double>(x, m, false, extras, options);
   return detail::mie_series<double>(x, m, false, extras, options);
 }
 
 Scattering<double> scatter(double x, PerfectConductor, const Extras& extras, const Options& options) {
   check_x(x);
   if (use_extended(x, options))
-    return to_double(detail::mie_series<long double>(x, std::complex<long double>(1.0L), true, extras, options));
+    return detail::mie_series<double, long double>(x, std::complex<double>(1.0), true, extras, options);
   return detail::mie_series<double>(x, std::complex<double>(1.0), true, extras, options);
 }
 

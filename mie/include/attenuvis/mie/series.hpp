@@ -118,10 +118,18 @@ DMethod choose_method(double x, std::complex<double> m, std::size_t N) {
 }
 
 // The series.  pec: perfectly conducting sphere (m ignored).
-template <class Real>
+// Work: the type of the recurrences that run over all n (yₙ(x), yₙ(mx), δₙ,
+// ρₙ, Rₙ, 1/|ξₙ|², upward Dₙ), whose rounding errors accumulate like √N·ε;
+// Real: the type of each term's own arithmetic (aₙ, bₙ, sums), whose errors do
+// not accumulate.  The double product uses Work = long double above
+// Options::extended_above (see Working in mie.hpp).
+template <class Real, class Work = Real>
 Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& extras,
                             const Options& options) {
   using C = Complex<Real>;
+  using CW = Complex<Work>;
+  const Work xw = static_cast<Work>(x);
+  const CW mw(static_cast<Work>(m.real()), static_cast<Work>(m.imag()));
   using std::cos;
   using std::sin;
   const double xd = static_cast<double>(x);
@@ -137,18 +145,18 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
   // per call costs more in page faults than the series itself for x ≳ 1e4.
   // Buffers above ~4 MB are given back so a single x = 1e6 call does not pin
   // 24 MB per thread.
-  thread_local std::vector<Real> y;
-  thread_local std::vector<typename SlotStore<Real>::type> w;
+  thread_local std::vector<Work> y;
+  thread_local std::vector<typename SlotStore<Work>::type> w;
   thread_local std::vector<unsigned char> is_value;
   struct Release {
     ~Release() {
-      if (y.capacity() > (std::size_t(1) << 17)) { std::vector<Real>().swap(y); }
+      if (y.capacity() > (std::size_t(1) << 17)) { std::vector<Work>().swap(y); }
       if (is_value.capacity() > (std::size_t(1) << 17)) { std::vector<unsigned char>().swap(is_value); }
-      if (w.capacity() > (std::size_t(1) << 17)) { std::vector<typename SlotStore<Real>::type>().swap(w); }
+      if (w.capacity() > (std::size_t(1) << 17)) { std::vector<typename SlotStore<Work>::type>().swap(w); }
     }
   } release_large_buffers;
-  downward_ratios<Real, C>(x, m, N, slot, y, w, is_value);
-  UpwardLogDerivative<Real, C> upward(x, method == DMethod::upward ? m : C(Real(1)));
+  downward_ratios<Work, CW>(xw, mw, N, slot, y, w, is_value);
+  UpwardLogDerivative<Work, CW> upward(xw, method == DMethod::upward ? mw : CW(Work(1)));
 
   Scattering<Real> out;
   out.angles_deg = extras.angles_deg;
@@ -166,18 +174,23 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
   const C m2_minus_1_over_m = m_minus_1 * (m + C(Real(1))) * recip(m);  // (m²−1)/m, trap 4
   const double tol = std::exp(-tail_log_tolerance<Real>());
   KahanSum<Real> ext, sca, abs_, back_re, back_im, g_re;
-  C rho(Real(0), Real(1));                       // ρ₀ = ξ₋₁/ξ₀ = i
-  C R(sin(x) * sin(x), sin(x) * cos(x));         // R₀ = ψ₀/ξ₀
-  Real s(1);                                     // 1/|ξ₀|²
+  const ScaledInverse<Work> over_xw(xw);
+  const ScaledInverseComplex<Work, CW> over_mxw(xw, mw);
+  CW rho_w(Work(0), Work(1));                      // ρ₀ = ξ₋₁/ξ₀ = i
+  CW R_w(sin(xw) * sin(xw), sin(xw) * cos(xw));    // R₀ = ψ₀/ξ₀
+  Work s_w(1);                                     // 1/|ξ₀|²
   C a_prev(Real(0)), b_prev(Real(0));
   std::size_t n = 1;
   for (; n <= N; ++n) {
     const Real rn = Real(n);
     const Real n_over_x = over_x(rn);
-    rho = recip(C(over_x(Real(2 * n - 1))) - rho);  // ρₙ = ξ_{n-1}/ξₙ
-    R = R * rho * y[n - 1];                          // Rₙ = R_{n-1} ρₙ ψₙ/ψ_{n-1}
-    s *= norm2(rho);
-    const Real yx = y[n];
+    rho_w = recip(CW(over_xw(Work(2 * n - 1))) - rho_w);  // ρₙ = ξ_{n-1}/ξₙ
+    R_w = R_w * rho_w * y[n - 1];                          // Rₙ = R_{n-1} ρₙ ψₙ/ψ_{n-1}
+    s_w *= norm2(rho_w);
+    const C rho(static_cast<Real>(rho_w.real()), static_cast<Real>(rho_w.imag()));
+    const C R(static_cast<Real>(R_w.real()), static_cast<Real>(R_w.imag()));
+    const Real s = static_cast<Real>(s_w);
+    const Real yx = static_cast<Real>(y[n]);
     const Real dx = over_x(rn + 1) - yx;           // Dₙ(x)
     const C G = rho - C(n_over_x);                   // Gₙ = ξₙ'/ξₙ
     C a, b;
@@ -196,7 +209,12 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
         num_a = m_minus_1 * yx - dy - c_n;
         num_b = -(m * dy) - m_minus_1 * yx;
       } else {
-        ymx = slot != Slot::none ? C(w[n].real(), w[n].imag()) : over_mx(rn + 1) - upward.next(n);
+        if (slot != Slot::none) {
+          ymx = C(w[n].real(), w[n].imag());
+        } else {
+          const CW v = over_mxw(Work(n + 1)) - upward.next(n);
+          ymx = C(static_cast<Real>(v.real()), static_cast<Real>(v.imag()));
+        }
         num_a = m * yx - ymx - c_n;
         num_b = C(yx) - m * ymx;
       }
