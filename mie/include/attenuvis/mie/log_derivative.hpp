@@ -111,11 +111,12 @@ enum class Slot {
 // that m does not share, it holds yₙ(mx) itself and is_value[n] = 1.  Without
 // this, a single term near such a pole loses ε|yₙ(x)/yₙ(mx)| (1e-8 at
 // x = 116.78455902863854, m = 1.33+1e-5i, i.e. 9e-9 in Qback).
-template <class Real, class C, class W>
-std::size_t downward_ratios(const Real& x, const C& m, std::size_t N, Slot slot, std::vector<Real>& y,
-                            std::vector<W>& w, std::vector<unsigned char>& is_value) {
-  is_value.assign(slot == Slot::difference ? N + 1 : 0, 0);
-  y.resize(N + 1);  // every entry is written below
+template <class Real, class C, class YArray, class WArray, class FlagArray>
+std::size_t downward_ratios(const Real& x, const C& m, std::size_t N, Slot slot, YArray& y, WArray& w,
+                            FlagArray& is_value) {
+  // Every entry 0..N is written below before it is read.
+  is_value.resize(slot == Slot::difference ? N + 1 : 0);
+  y.resize(N + 1);
   w.resize(slot == Slot::none ? 0 : N + 1);
   const ScaledInverse<Real> over_x(x);
   LentzResult info_x, info_z;
@@ -141,9 +142,9 @@ std::size_t downward_ratios(const Real& x, const C& m, std::size_t N, Slot slot,
       const bool value = 64 * norm2(yz) < yx * yx;
       is_value[n] = value;
       const C& v = value ? yz : d;
-      w[n] = W(v.real(), v.imag());
+      w[n] = {v.real(), v.imag()};
     } else {
-      w[n] = W(yz.real(), yz.imag());
+      w[n] = {yz.real(), yz.imag()};
     }
     if (n == 0) break;
     const Real k = Real(2 * n + 1);  // 2(n−1)+3

@@ -40,6 +40,7 @@
 
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/log_derivative.hpp"
+#include "attenuvis/mie/scratch.hpp"
 
 namespace attenuvis::mie::detail {
 
@@ -88,7 +89,11 @@ struct SlotStore {
 };
 template <>
 struct SlotStore<long double> {
-  using type = std::complex<double>;
+  using type = StoredComplex<double>;
+};
+template <>
+struct SlotStore<double> {
+  using type = StoredComplex<double>;
 };
 
 enum class DMethod { downward, upward };
@@ -145,14 +150,14 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
   // per call costs more in page faults than the series itself for x ≳ 1e4.
   // Buffers above ~4 MB are given back so a single x = 1e6 call does not pin
   // 24 MB per thread.
-  thread_local std::vector<Work> y;
-  thread_local std::vector<typename SlotStore<Work>::type> w;
-  thread_local std::vector<unsigned char> is_value;
+  thread_local Scratch<Work> y;
+  thread_local Scratch<typename SlotStore<Work>::type> w;
+  thread_local Scratch<unsigned char> is_value;
   struct Release {
     ~Release() {
-      if (y.capacity() > (std::size_t(1) << 17)) { std::vector<Work>().swap(y); }
-      if (is_value.capacity() > (std::size_t(1) << 17)) { std::vector<unsigned char>().swap(is_value); }
-      if (w.capacity() > (std::size_t(1) << 17)) { std::vector<typename SlotStore<Work>::type>().swap(w); }
+      if (y.capacity() > (std::size_t(1) << 17)) y.release();
+      if (is_value.capacity() > (std::size_t(1) << 17)) is_value.release();
+      if (w.capacity() > (std::size_t(1) << 17)) w.release();
     }
   } release_large_buffers;
   downward_ratios<Work, CW>(xw, mw, N, slot, y, w, is_value);
