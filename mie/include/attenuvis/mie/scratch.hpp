@@ -5,7 +5,8 @@
 // before it is read) and faulted in 4 KiB at a time, which on a virtual
 // machine costs as much as the series itself (~8000 faults, ~80 ms measured).
 // For trivial element types we allocate 2 MiB-aligned blocks and ask for
-// transparent huge pages, and never initialise.
+// transparent huge pages, and never initialise.  The buffers are per thread
+// and reused; series.hpp gives back those above 8 MB after each call.
 #pragma once
 
 #include <cstddef>
@@ -45,12 +46,16 @@ class HugeBuffer {
       std::free(data_);
       data_ = nullptr;
       capacity_ = 0;
+      // Small arrays: ordinary pages (a huge page would have to be zeroed by
+      // the kernel on every first touch); large ones: whole huge pages.
       constexpr std::size_t kHuge = std::size_t(2) << 20;
-      const std::size_t bytes = (n * sizeof(T) + kHuge - 1) / kHuge * kHuge;
-      void* p = std::aligned_alloc(kHuge, bytes);
+      const bool huge = n * sizeof(T) >= 4 * kHuge;
+      const std::size_t align = huge ? kHuge : 64;
+      const std::size_t bytes = (n * sizeof(T) + align - 1) / align * align;
+      void* p = std::aligned_alloc(align, bytes);
       if (!p) throw std::bad_alloc();
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-      ::madvise(p, bytes, MADV_HUGEPAGE);  // a hint; ignored where unsupported
+      if (huge) ::madvise(p, bytes, MADV_HUGEPAGE);  // a hint; ignored where unsupported
 #endif
       data_ = static_cast<T*>(p);
       capacity_ = bytes / sizeof(T);
@@ -62,7 +67,7 @@ class HugeBuffer {
     data_ = nullptr;
     size_ = capacity_ = 0;
   }
-  std::size_t capacity() const { return capacity_; }
+  std::size_t capacity_bytes() const { return capacity_ * sizeof(T); }
   std::size_t size() const { return size_; }
   T& operator[](std::size_t i) { return data_[i]; }
   const T& operator[](std::size_t i) const { return data_[i]; }
@@ -77,6 +82,7 @@ template <class T>
 class VectorBuffer : public std::vector<T> {
  public:
   void release() { std::vector<T>().swap(*this); }
+  std::size_t capacity_bytes() const { return this->capacity() * sizeof(T); }
 };
 
 template <class T>

@@ -146,18 +146,19 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
   const DMethod method = pec ? DMethod::downward : choose_method<Real, C>(xd, md, N);
   Slot slot = Slot::none;
   if (!pec && method == DMethod::downward) slot = std::abs(md - 1.0) < 0.5 ? Slot::difference : Slot::value;
-  // Per-thread buffers, reused between calls: a fresh 24·N-byte allocation
+  // Per-thread buffers, reused between calls: a fresh ~33·N-byte allocation
   // per call costs more in page faults than the series itself for x ≳ 1e4.
-  // Buffers above ~4 MB are given back so a single x = 1e6 call does not pin
-  // 24 MB per thread.
+  // Buffers above 8 MB (x ≳ 2.5e5) are given back so a single x = 1e6 call
+  // does not pin 33 MB per thread (see scratch.hpp).
   thread_local Scratch<Work> y;
   thread_local Scratch<typename SlotStore<Work>::type> w;
   thread_local Scratch<unsigned char> is_value;
   struct Release {
     ~Release() {
-      if (y.capacity() > (std::size_t(1) << 17)) y.release();
-      if (is_value.capacity() > (std::size_t(1) << 17)) is_value.release();
-      if (w.capacity() > (std::size_t(1) << 17)) w.release();
+      constexpr std::size_t kKeep = std::size_t(8) << 20;
+      if (y.capacity_bytes() > kKeep) y.release();
+      if (is_value.capacity_bytes() > kKeep) is_value.release();
+      if (w.capacity_bytes() > kKeep) w.release();
     }
   } release_large_buffers;
   downward_ratios<Work, CW>(xw, mw, N, slot, y, w, is_value);
