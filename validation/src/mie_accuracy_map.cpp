@@ -161,7 +161,12 @@ void write_error_vs_time_csv(const std::string& path, const std::vector<ErrorTim
       throw std::runtime_error("error while writing " + tmp.string());
     }
   }
-  fs::rename(tmp, target);
+  std::error_code ec;
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    fs::remove(tmp);
+    throw std::runtime_error("cannot replace " + target.string() + ": " + ec.message());
+  }
 }
 
 std::string format_error_vs_time(const std::vector<ErrorTimeRow>& rows) {
