@@ -106,6 +106,12 @@ TEST_CASE("trap 4: m -> 1 keeps full relative accuracy (difference recurrence)",
   // scales like (m−1)² or (m−1), so an absolute floor would hide the trap.
   for (double x : {1e-6, 0.1, 3.0, 40.0, 1000.0})
     for (cd m : {cd(1 + 1e-6, 0), cd(1.0001, 0), cd(1 + 1e-6, 1e-8), cd(1 - 1e-6, 0)}) check_against_referee(x, m);
+  // At a zero of ψₙ(x) (doubles nearest the zeros of J_{3/2}, J_{5/2}: 4.4934…,
+  // 6.9879…, mpmath 40 digits) yₙ(x) = ψₙ₊₁/ψₙ comes from a cancelling
+  // difference; in all-double arithmetic m = 1 + 1e-7 then misses by 3× the
+  // requirement in Qext (found by a scan), hence extended-precision recurrences.
+  for (double x : {4.493409457909064, 6.9879320005005194})
+    for (cd m : {cd(1 + 1e-7, 0), cd(1 + 1e-6, 0), cd(1 - 1e-6, 0)}) check_against_referee(x, m);
 }
 
 TEST_CASE("trap 5: large k x neither overflows nor loses accuracy", "[mie][trap]") {

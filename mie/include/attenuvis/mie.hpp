@@ -62,24 +62,25 @@ enum class TermRule {
   wiscombe,
 };
 
-// Working precision of the recurrences.
+// Working precision.
 enum class Working {
-  // Default: double for x <= extended_above (100), x87 extended (long double,
-  // 64-bit significand) above.  Over ~x oscillations the rounding errors of
-  // the recurrences add up to ~√x·ε in every aₙ, and Qback (an alternating sum
-  // cancelling by a factor ~x) amplifies them: in double, Qback is off by
-  // up to 5e-11 near x = 200 (scan of 2100 x in [100, 300] against the referee),
-  // ~1e-10 at x = 1e4 and ~1e-8 at x = 1e6; at x <= 100 the worst seen is 4e-12.
-  // Extended precision costs ~2× per term.
+  // Default: the recurrences that run over all n (ψ, ξ and Dₙ ratios) in x87
+  // extended precision (long double, 64-bit significand), each term's own
+  // arithmetic in double ("mixed"), for x > extended_above (default: all x).
+  // Why: in double the rounding errors of the recurrences add up to ~√N·ε in
+  // every aₙ, and Qback (an alternating sum cancelling by a factor ~x)
+  // amplifies them: ~1e-10 at x = 1e4, ~1e-8 at x = 1e6; and at a zero of
+  // ψₙ(x) (e.g. x = 4.493409457909064) with m = 1 + 1e-7 the ratio ψₙ₊₁/ψₙ
+  // is formed by cancellation, giving 3e-10 in Qext.  Mixed costs ~1.5× double.
   automatic,
-  double_only,  // fast mode: always double (error grows with x, see the benchmark)
-  extended,     // always long double
+  double_only,  // fast mode: everything in double (error grows with x, see the benchmark)
+  extended,     // mixed precision at every x (what automatic does by default)
 };
 
 struct Options {
   TermRule terms = TermRule::converged;
   Working working = Working::automatic;
-  double extended_above = 100.0;  // threshold of Working::automatic
+  double extended_above = 0.0;  // automatic: double-only at x <= this
 };
 
 // Extra outputs of scatter(): the Mie coefficients and/or the amplitude
