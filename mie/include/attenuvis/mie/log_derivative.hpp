@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "attenuvis/mie/lentz.hpp"
+#include "attenuvis/mie/scratch.hpp"
 
 namespace attenuvis::mie::detail {
 
@@ -142,9 +143,9 @@ std::size_t downward_ratios(const Real& x, const C& m, std::size_t N, Slot slot,
       const bool value = 64 * norm2(yz) < yx * yx;
       is_value[n] = value;
       const C& v = value ? yz : d;
-      w[n] = {v.real(), v.imag()};
+      store(w[n], v);
     } else {
-      w[n] = {yz.real(), yz.imag()};
+      store(w[n], yz);
     }
     if (n == 0) break;
     const Real k = Real(2 * n + 1);  // 2(n−1)+3

@@ -30,6 +30,17 @@ struct StoredComplex {
   const T& imag() const { return im; }
 };
 
+// w = v for a stored slot (rounding to the stored precision is intended).
+template <class T, class V>
+inline void store(StoredComplex<T>& w, const V& v) {
+  w.re = static_cast<T>(v.real());
+  w.im = static_cast<T>(v.imag());
+}
+template <class W, class V>
+inline void store(W& w, const V& v) {
+  w = W(v.real(), v.imag());
+}
+
 template <class T>
 class HugeBuffer {
   static_assert(std::is_trivial_v<T>, "HugeBuffer holds trivial types only");
