@@ -104,7 +104,7 @@ enum class DMethod { downward, upward };
 // K steps beyond N damp by exp(−(K² + 2NK) Im z/|z|²).  The upward
 // recurrence amplifies errors by exp(E), E = N² Im z/|z|² (Kattawar & Plass
 // 1967; Wiscombe 1979 §3.b), and is unstable for n > |z|.  We go upward only
-// when the continued fraction would cost more than 2N + 1000 steps, N < |z|
+// when the continued fraction would cost more than N/2 + 1000 steps, N < |z|
 // by that margin, and E <= 3 (error growth < 20 ε).  Otherwise the fraction
 // costs at most N(√(1+L/3) − 1) < 3N steps (double) — bounded either way.
 template <class Real, class C>
@@ -118,7 +118,7 @@ DMethod choose_method(double x, std::complex<double> m, std::size_t N) {
   const double L = tail_log_tolerance<Real>();
   double k = az - n;
   if (E > 0) k = std::min(k, n * (std::sqrt(1.0 + L / E) - 1.0));
-  if (k <= 2.0 * n + 1000.0) return DMethod::downward;
+  if (k <= 0.5 * n + 1000.0) return DMethod::downward;
   return E <= 3.0 ? DMethod::upward : DMethod::downward;
 }
 
