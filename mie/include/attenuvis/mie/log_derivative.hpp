@@ -196,7 +196,9 @@ template <class Real, class C>
 struct UpwardLogDerivative {
   ScaledInverseComplex<Real, C> over_z;
   C d;  // D_n(z) for the current n
-  UpwardLogDerivative(const Real& x, const C& m) : over_z(x, m), d(cot_upper<Real, C>(x, m)) {}
+  // active = false: an unused placeholder (skips the cot evaluation).
+  UpwardLogDerivative(const Real& x, const C& m, bool active)
+      : over_z(x, m), d(active ? cot_upper<Real, C>(x, m) : C(Real(0))) {}
   const C& next(std::size_t n) {
     const C n_over_z = over_z(Real(n));
     C den = n_over_z - d;

@@ -162,7 +162,7 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
     }
   } release_large_buffers;
   downward_ratios<Work, CW>(xw, mw, N, slot, y, w, is_value);
-  UpwardLogDerivative<Work, CW> upward(xw, method == DMethod::upward ? mw : CW(Work(1)));
+  UpwardLogDerivative<Work, CW> upward(xw, mw, method == DMethod::upward);
 
   Scattering<Real> out;
   out.angles_deg = extras.angles_deg;
