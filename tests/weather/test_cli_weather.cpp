@@ -1,0 +1,95 @@
+// End-to-end tests of `attenuvis sigma | table | distribution`.
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+using Catch::Matchers::Contains;
+
+namespace {
+struct Result { int status; std::string out; };
+
+Result run(const std::string& args) {
+  std::string cmd = std::string(ATTENUVIS_CLI) + " " + args + " 2>&1";
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
+  std::string out;
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe.get())) out += buf.data();
+  int raw = pclose(pipe.release());
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
+}
+std::string data(const std::string& name) { return std::string(ATTENUVIS_TEST_DATA_DIR) + "/weather/" + name; }
+bool exists(const std::string& path) { return std::ifstream(path).good(); }
+}  // namespace
+
+TEST_CASE("sigma prints values, units and convention", "[weather][cli]") {
+  auto r = run("sigma rain:8 snow:dry:4 clear --convention seed --json");
+  REQUIRE(r.status == 0);
+  auto j = nlohmann::json::parse(r.out);
+  REQUIRE(j.size() == 3);
+  // Seed paper, Sec. Results: 0.0045 (rain 8 mm/h), 0.0374 (dry snow 4 mm/h), 0.00015 (clear), 1/m.
+  CHECK(j[0]["sigma"].get<double>() == Approx(0.0045).margin(5e-5));
+  CHECK(j[1]["sigma"].get<double>() == Approx(0.0374).margin(5e-5));
+  CHECK(j[2]["sigma"].get<double>() == 0.00015);
+  CHECK(j[0]["convention"] == "seed");
+  CHECK(j[0]["units"] == "1/m");
+  auto db = run("sigma rain:8:carbonneau --units dB/km");
+  CHECK(db.status == 0);
+  CHECK_THAT(db.out, Contains("dB/km") && Contains("convention itu"));
+}
+
+TEST_CASE("bad condition: error with the grammar, non-zero exit", "[weather][cli]") {
+  auto r = run("sigma rain:8 hail:2");
+  CHECK(r.status != 0);
+  CHECK_THAT(r.out, Contains("attenuvis: error: bad condition 'hail:2'") && Contains("snow:wet:RATE"));
+}
+
+TEST_CASE("table writes CSV and JSON atomically", "[weather][cli]") {
+  std::string csv = "weather_cli_table_test.csv", json = "weather_cli_table_test.json";
+  std::remove(csv.c_str());
+  std::remove(json.c_str());
+  auto r = run("table --conditions clear,rain:1..3,snow:wet:2 --wavelengths 400:800:100nm --out " + csv);
+  REQUIRE(r.status == 0);
+  std::ifstream in(csv);
+  std::string line;
+  int rows = 0;
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] != '#') ++rows;
+  CHECK(rows == 1 + 5 * 5);  // header + 5 wavelengths x (clear, rain 1, 2, 3, snow)
+  auto rj = run("table --conditions rain:8 --wavelengths 550nm --format json --convention seed --out " + json);
+  REQUIRE(rj.status == 0);
+  std::ifstream jin(json);
+  auto j = nlohmann::json::parse(jin);
+  CHECK(j["convention"] == "seed");
+  CHECK(j["rows"][0]["sigma"].get<double>() == Approx(0.0045).margin(5e-5));
+  // A failing table leaves no file behind.
+  std::string bad = "weather_cli_table_bad.csv";
+  std::remove(bad.c_str());
+  auto rb = run("table --conditions rain:8,fog:file=does-not-exist.csv --wavelengths 550nm --out " + bad);
+  CHECK(rb.status != 0);
+  CHECK_THAT(rb.out, Contains("does-not-exist.csv"));
+  CHECK(!exists(bad));
+  std::remove(csv.c_str());
+  std::remove(json.c_str());
+}
+
+TEST_CASE("distribution reports moments and validates files", "[weather][cli]") {
+  auto r = run("distribution advection --json");
+  REQUIRE(r.status == 0);
+  auto j = nlohmann::json::parse(r.out);
+  CHECK(j["number_per_cm3"].get<double>() == Approx(20.0));           // seed Table tab:itu-fog
+  CHECK(j["water_content_g_per_m3"].get<double>() == Approx(0.37).margin(0.005));
+  CHECK(j["mode_radius_um"].get<double>() == Approx(10.0));
+  auto bin = run("distribution " + data("one_bin.csv"));
+  CHECK(bin.status == 0);
+  auto bad = run("distribution " + data("bad_negative.csv"));
+  CHECK(bad.status != 0);
+  CHECK_THAT(bad.out, Contains("bad_negative.csv:3:"));
+}
