@@ -10,7 +10,7 @@ SPEC.json = {"figures": [FIG, ...]}; every FIG has "id" (written as DIR/<id>.png
 kinds
   lines      series=[{label, x[], y[], style?}], xlabel, ylabel, xlog?, ylog?, title?,
              hlines=[{y, label}]?, points=[{x, y, label}]? (published values, drawn as markers)
-  node_maps  panels=[{title, csv, value, markers=[{x, y, label}]?}], ncols?, common_scale?,
+  node_maps  panels=[{title, csv, value, markers=[{x, y, label}]?, xlim?, ylim?}], ncols?, common_scale?,
              vmin?, vmax?, cmap?, colorbar?, log?  -- top-view heatmaps of node scores
   matrix     x[], ylabels[], z[[...]] (null = missing), xlabel, ylabel, colorbar, zlog?, xlog?
 
@@ -125,6 +125,10 @@ def draw_node_maps(fig_spec, base, path):
             ax.plot([m["x"]], [m["y"]], "o", markersize=7, markerfacecolor="none", markeredgecolor="red", markeredgewidth=1.5)
             ax.annotate(m.get("label", ""), (m["x"], m["y"]), textcoords="offset points", xytext=(6, 6),
                         color="red", fontsize=9, fontweight="bold")
+        if "xlim" in p:
+            ax.set_xlim(*p["xlim"])
+        if "ylim" in p:
+            ax.set_ylim(*p["ylim"])
         ax.set_aspect("equal")
         ax.set_title(p.get("title", ""), fontsize=9)
         ax.tick_params(labelsize=7)

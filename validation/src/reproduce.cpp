@@ -192,6 +192,7 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
   ctx.closing = &report.closing;
 
   detail::SeedConditions seed;
+  detail::CityPerformance city_perf;
   struct Step {
     const char* id;
     const char* title;
@@ -202,8 +203,8 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
       {"weather", "2. Size distributions and weather", [&](Section& s) { detail::section_weather(ctx, s, seed); }},
       {"layouts", "3. Visibility graphs: the seed's five layouts",
        [&](Section& s) { detail::section_layouts(ctx, s, seed); }},
-      {"city", "4. The city", [&](Section& s) { detail::section_city(ctx, s, seed); }},
-      {"performance", "5. Visibility-graph performance", [&](Section& s) { detail::section_performance(ctx, s); }},
+      {"city", "4. The city", [&](Section& s) { detail::section_city(ctx, s, seed, city_perf); }},
+      {"performance", "5. Visibility-graph performance", [&](Section& s) { detail::section_performance(ctx, s, city_perf); }},
   };
   for (const auto& step : steps) {
     Section s;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 #include <map>
 #include <ostream>
 #include <string>
@@ -90,11 +91,31 @@ struct VgCondition {
 // seed's printed σ (labelled so) when the weather module is not in the build.
 std::vector<VgCondition> vg_conditions(const SeedConditions& seed, const std::string& condition);
 
+// Numbers the city section measures for the performance section (the city
+// scene is built once).
+struct CityPerformance {
+  std::size_t city_nodes = 0;
+  std::uint64_t city_pairs = 0;
+  double city_exact_seconds = 0;   // all-to-all, degree + all conditions, exact
+  struct PruneRow {
+    double tolerance = 0, radius_m = 0, seconds = 0;
+    std::uint64_t pairs_cast = 0;
+    double max_abs_error = 0;      // max over nodes |S_S(eps) - S_S(exact)|
+    double max_bound = 0;          // max over nodes of the certified bound
+    std::size_t bound_violations = 0;
+    bool skipped = false;          // radius beyond the city: identical to exact, not run
+  };
+  double city_diameter_m = 0;
+  std::vector<PruneRow> prune;
+  std::string prune_condition;
+  double prune_sigma = 0;
+};
+
 void section_mie(Context& ctx, Section& s);
 void section_weather(Context& ctx, Section& s, SeedConditions& seed);
 void section_layouts(Context& ctx, Section& s, const SeedConditions& seed);
-void section_city(Context& ctx, Section& s, const SeedConditions& seed);
-void section_performance(Context& ctx, Section& s);
+void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerformance& perf);
+void section_performance(Context& ctx, Section& s, const CityPerformance& city);
 
 // Shared helpers (reproduce.cpp).
 // Writes a table's CSV into the staging directory and adds it to the section.
