@@ -57,7 +57,7 @@ std::vector<std::string> split(const std::string& text, char separator) {
 
 #ifdef ATTENUVIS_VG_HAS_WEATHER
 std::string as_text(const std::string& s) { return s; }
-std::string as_text(weather::Convention c) { return weather::to_string(c); }
+[[maybe_unused]] std::string as_text(weather::Convention c) { return weather::to_string(c); }
 #endif
 
 // One ConditionInfo per comma-separated condition, in the user's spelling.

@@ -218,7 +218,9 @@ VisibilityResult run_pass(const Scene& scene, const Points& sources, const Point
 
   std::unique_ptr<KdTree> tree;
   if (std::isfinite(radius)) tree = std::make_unique<KdTree>(3, partners, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  const double radius_sq = radius * radius;
+  // nanoflann keeps points with squared distance < radius^2 (strict); widen a
+  // little and let process_row apply "d <= max_distance" exactly.
+  const double radius_sq = radius * radius * (1 + 1e-9) + 1e-12;
 
   tbb::enumerable_thread_specific<ThreadState> states([&] {
     ThreadState ts;
