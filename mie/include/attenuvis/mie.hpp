@@ -3,7 +3,10 @@
 // Conventions (Bohren & Huffman 1983, "Absorption and Scattering of Light by
 // Small Particles", ch. 4; referred to as B&H below):
 //  * Time dependence e^{-iωt}.  The relative refractive index is m = n + ik with
-//    k >= 0 for an absorbing sphere (same sign as B&H and Wiscombe's MIEV0).
+//    k >= 0 for an absorbing sphere (B&H's sign).  Wiscombe's MIEV0 and his
+//    1979 report publish m = n − ik (time dependence e^{+iωt}); efficiencies
+//    and g do not depend on the sign, but S1, S2, aₙ, bₙ are complex
+//    conjugates of MIEV0's — conjugate them before comparing.
 //  * Size parameter x = 2πr/λ with λ the wavelength in the surrounding medium;
 //    m is the sphere's index divided by the medium's.
 //  * Efficiencies are cross sections divided by the geometric cross section πr²:
