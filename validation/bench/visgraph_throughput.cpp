@@ -1,0 +1,293 @@
+// Benchmark of the visibility-graph engine (issue 4, "Performance"):
+//  1. pairs/s of all_to_all with degree + 4 conditions against a raw Embree
+//     occlusion loop over the same unordered pairs, in the same run
+//     (visgraph::raw_visible_pairs: 16-wide packets and single rays), on the
+//     five classic layouts at 1 m and 0.5 m and on the synthetic city, for
+//     each thread count; the ratio engine / raw is the figure of merit;
+//  2. the city all-to-all time, exact and with range pruning;
+//  3. the extra memory of an all-to-all at ~10,000 nodes without edge output
+//     (peak RSS from /proc/self/status, and operator-new bytes counted here);
+//  4. S_S error against run time for eps in {0, 1e-12, 1e-9, 1e-6, 1e-3}.
+//
+// Usage: visgraph_throughput [--quick] [--threads 1,2] [--repeats N]
+//                            [--city-rings N] [--no-city] [--no-single]
+// --quick: 1 m layouts only, one repeat, a one-ring city, no single-ray loop
+// on the city (about a minute on two cores).
+#include <attenuvis/validation/visgraph_benchmark.hpp>
+#include <attenuvis/visgraph/generators.hpp>
+#include <attenuvis/visgraph/nodes.hpp>
+#include <attenuvis/visgraph/scene.hpp>
+#include <attenuvis/visgraph/visibility.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <malloc.h>
+#include <new>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+// ---------------------------------------------------------------------------
+// Counting operator new/delete (this program only): live and peak bytes of
+// every C++ heap allocation in the process, the visgraph library's included.
+// Sizes come from malloc_usable_size, so an allocation is counted at what the
+// allocator really handed out.  Embree's own aligned allocations (BVH) and
+// TBB's scalable allocator bypass operator new; the scene is built before the
+// measured pass, so neither belongs to it.
+namespace {
+std::atomic<std::int64_t> g_live{0}, g_peak{0};
+
+void note_alloc(void* p) {
+  if (!p) return;
+  const std::int64_t now = g_live.fetch_add(static_cast<std::int64_t>(malloc_usable_size(p))) +
+                           static_cast<std::int64_t>(malloc_usable_size(p));
+  std::int64_t peak = g_peak.load(std::memory_order_relaxed);
+  while (now > peak && !g_peak.compare_exchange_weak(peak, now)) {
+  }
+}
+void note_free(void* p) {
+  if (p) g_live.fetch_sub(static_cast<std::int64_t>(malloc_usable_size(p)));
+}
+void* counted_alloc(std::size_t size, std::size_t align) {
+  void* p = nullptr;
+  if (align <= alignof(std::max_align_t)) p = std::malloc(size ? size : 1);
+  else if (posix_memalign(&p, align, size ? size : 1) != 0) p = nullptr;
+  if (!p) throw std::bad_alloc();
+  note_alloc(p);
+  return p;
+}
+void counted_free(void* p) {
+  note_free(p);
+  std::free(p);
+}
+}  // namespace
+
+void* operator new(std::size_t n) { return counted_alloc(n, 0); }
+void* operator new[](std::size_t n) { return counted_alloc(n, 0); }
+void* operator new(std::size_t n, std::align_val_t a) { return counted_alloc(n, static_cast<std::size_t>(a)); }
+void* operator new[](std::size_t n, std::align_val_t a) { return counted_alloc(n, static_cast<std::size_t>(a)); }
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
+  try {
+    return counted_alloc(n, 0);
+  } catch (...) {
+    return nullptr;
+  }
+}
+void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
+  try {
+    return counted_alloc(n, 0);
+  } catch (...) {
+    return nullptr;
+  }
+}
+void operator delete(void* p) noexcept { counted_free(p); }
+void operator delete[](void* p) noexcept { counted_free(p); }
+void operator delete(void* p, std::size_t) noexcept { counted_free(p); }
+void operator delete[](void* p, std::size_t) noexcept { counted_free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { counted_free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { counted_free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { counted_free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { counted_free(p); }
+
+namespace {
+namespace vg = attenuvis::visgraph;
+namespace val = attenuvis::validation;
+
+struct Args {
+  bool quick = false;
+  std::vector<int> threads = {1, 2};
+  int repeats = 3;
+  int city_rings = 4;  // CityOptions default: ~50,000 nodes
+  bool city = true;
+  bool single = true;
+};
+
+std::vector<int> parse_int_list(const std::string& text) {
+  std::vector<int> out;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ',')) {
+    std::size_t used = 0;
+    const int v = std::stoi(part, &used);
+    if (used != part.size() || v < 1) throw std::invalid_argument("expected positive integers, got '" + text + "'");
+    out.push_back(v);
+  }
+  return out;
+}
+
+Args parse(int argc, char** argv) {
+  Args a;
+  bool rings_given = false, repeats_given = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string s = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(s + " needs a value");
+      return argv[++i];
+    };
+    if (s == "--quick") a.quick = true;
+    else if (s == "--threads") a.threads = parse_int_list(value());
+    else if (s == "--repeats") a.repeats = parse_int_list(value()).at(0), repeats_given = true;
+    else if (s == "--city-rings") a.city_rings = parse_int_list(value()).at(0), rings_given = true;
+    else if (s == "--no-city") a.city = false;
+    else if (s == "--no-single") a.single = false;
+    else if (s == "--help" || s == "-h") {
+      std::cout << "usage: visgraph_throughput [--quick] [--threads 1,2] [--repeats N] [--city-rings N] [--no-city] "
+                   "[--no-single]\n";
+      std::exit(0);
+    } else throw std::invalid_argument("unknown argument '" + s + "'");
+  }
+  if (a.quick) {
+    if (!repeats_given) a.repeats = 1;
+    if (!rings_given) a.city_rings = 1;
+  }
+  return a;
+}
+
+std::vector<Eigen::Vector3d> grid_nodes(const vg::Scene& scene, double spacing, std::vector<std::string> walkable) {
+  vg::NodeGridOptions o;
+  o.spacing = spacing;
+  o.walkable = std::move(walkable);
+  return vg::generate_nodes(scene, o).eyes;
+}
+
+void print_throughput_header() {
+  std::printf("%-17s %7s %6s %11s %3s %9s %9s %9s %8s %8s %s\n", "scene", "spacing", "nodes", "pairs", "thr",
+              "engine", "raw16", "raw1", "eng/16", "eng/1", "visible agree");
+  std::printf("%-17s %7s %6s %11s %3s %9s %9s %9s %8s %8s\n", "", "[m]", "", "", "", "[Mp/s]", "[Mp/s]", "[Mp/s]", "",
+              "");
+}
+
+void print_throughput(const std::string& name, double spacing, int threads, const val::Throughput& t) {
+  char raw1[32] = "-", ratio1[32] = "-";
+  if (t.single.best_s > 0) {
+    std::snprintf(raw1, sizeof raw1, "%9.1f", t.single_mpairs_s());
+    std::snprintf(ratio1, sizeof ratio1, "%8.2f", t.ratio_to_single());
+  }
+  std::printf("%-17s %7.2f %6zu %11llu %3d %9.1f %9.1f %9s %8.2f %8s %s\n", name.c_str(), spacing, t.nodes,
+              static_cast<unsigned long long>(t.pairs), threads, t.engine_mpairs_s(), t.packets16_mpairs_s(), raw1,
+              t.ratio_to_packets16(), ratio1,
+              t.visible_agree() ? "yes" : ("NO: engine " + std::to_string(t.visible_engine) + ", raw16 " +
+                                           std::to_string(t.visible_packets16) + ", raw1 " +
+                                           std::to_string(t.visible_single))
+                                              .c_str());
+  std::fflush(stdout);
+}
+
+int run(const Args& a) {
+  const auto start = std::chrono::steady_clock::now();
+  std::printf("visgraph_throughput: %s; repeats %d (best of), threads", val::machine_line().c_str(), a.repeats);
+  for (int t : a.threads) std::printf(" %d", t);
+  std::printf("\nworkload: degree + S_S for 4 sigmas (seed paper's printed values 0.00015, 0.0045, 0.02874311, "
+              "0.0374 1/m) in one pass\n");
+  std::printf("raw16 = rtcOccluded16 loop over the same pairs (coherent rows), raw1 = rtcOccluded1 per pair; "
+              "eng/16 = engine speed / raw16 speed\n\n");
+
+  // 3. Memory first, while the process is small (the peak is reset anyway).
+  {
+    const vg::Scene scene(vg::classic_layout(2));
+    const auto eyes = grid_nodes(scene, 0.5, {"floor"});
+    val::AllocationCounter counter;
+    counter.live_bytes = [] { return g_live.load(); };
+    counter.reset_peak = [] { g_peak.store(g_live.load()); };
+    counter.peak_bytes = [] { return g_peak.load(); };
+    const int th = *std::max_element(a.threads.begin(), a.threads.end());
+    const val::MemoryUse m = val::measure_memory(scene, eyes, val::seed_benchmark_sigmas(), th, counter);
+    std::printf("memory: all-to-all on layout 2 at 0.5 m (%zu nodes), degree + 4 sigmas + distance statistics, no "
+                "edge output, %d thread(s), %.2f s\n",
+                m.nodes, th, m.seconds);
+    std::printf("  peak RSS during the pass - RSS before: %.2f MB (VmHWM %.2f MB - VmRSS %.2f MB; peak %s)\n",
+                m.rss_extra_mb, m.rss_peak_mb, m.rss_before_mb,
+                m.rss_peak_reset ? "reset via /proc/self/clear_refs before the pass"
+                                 : "NOT resettable here: upper bound including earlier peaks");
+    std::printf("  peak live operator-new bytes above the level before the pass: %.2f MB\n\n", m.heap_peak_extra_mb);
+  }
+
+  // 1. Classic layouts.
+  const std::vector<double> spacings = a.quick ? std::vector<double>{1.0} : std::vector<double>{1.0, 0.5};
+  print_throughput_header();
+  for (int k = 0; k < vg::kClassicLayoutCount; ++k) {
+    const vg::Scene scene(vg::classic_layout(k));
+    for (double h : spacings) {
+      const auto eyes = grid_nodes(scene, h, {"floor"});
+      for (int th : a.threads) {
+        val::ThroughputOptions o;
+        o.threads = th;
+        o.repeats = a.repeats;
+        o.single_rays = a.single;
+        print_throughput(std::to_string(k) + " " + vg::classic_layout_name(k), h, th,
+                         val::measure_throughput(scene, eyes, o));
+      }
+    }
+  }
+
+  if (!a.city) {
+    std::printf("\n(city skipped: --no-city)\n");
+    return 0;
+  }
+
+  // 1-2. The city.
+  vg::CityOptions copt;
+  copt.rings = a.city_rings;
+  const vg::Scene city(vg::synthetic_city(copt));
+  const auto eyes = grid_nodes(city, 1.0, {"sidewalk", "crosswalk"});
+  std::printf("\ncity: make_city seed %llu, %d rings, %zu triangles, %zu nodes at 1 m on sidewalk+crosswalk\n",
+              static_cast<unsigned long long>(copt.seed), copt.rings, city.triangle_count(), eyes.size());
+  const int th_max = *std::max_element(a.threads.begin(), a.threads.end());
+  for (int th : a.threads) {
+    val::ThroughputOptions o;
+    o.threads = th;
+    o.repeats = 1;  // the city is long enough to time once
+    o.single_rays = a.single && !a.quick;
+    const val::Throughput t = val::measure_throughput(city, eyes, o);
+    print_throughput("city", 1.0, th, t);
+    if (th == th_max)
+      std::printf("city all-to-all exact, degree + 4 sigmas, %d thread(s): %.2f s (target <= 10 s on 2 threads)\n", th,
+                  t.engine.best_s);
+  }
+
+  // 4. Error against time: S_S for dry snow 4 mm/h (the seed's sigma 0.0374
+  // 1/m: the largest, so the only one whose pruning radius is inside the
+  // city), reference = the exact run with that sigma alone.
+  const double sigma = 0.0374;
+  vg::VisibilityOptions exact;
+  exact.sigmas = {sigma};
+  exact.threads = th_max;
+  const vg::VisibilityResult reference = vg::all_to_all(city, eyes, exact);
+  std::printf("\nerror vs time on the city, S_S for sigma = %.4g 1/m only, %d thread(s); reference = exact run "
+              "(eps 0); bound = certified |S_S error| per node (pruned partners x eps)\n",
+              sigma, th_max);
+  std::printf("%8s %12s %14s %9s %9s %9s %12s %12s %s\n", "eps", "radius [m]", "pairs cast", "fraction", "time [s]",
+              "speed-up", "max|dS_S|", "max bound", "nodes over bound");
+  double exact_seconds = 0;
+  for (double eps : {0.0, 1e-12, 1e-9, 1e-6, 1e-3}) {
+    const val::PruningPoint p =
+        val::measure_pruning(city, eyes, sigma, eps, reference.sum[0], th_max, a.quick ? 1 : 2);
+    if (eps == 0) exact_seconds = p.seconds;
+    std::printf("%8.0e %12.4g %14llu %9.4f %9.3f %9.2f %12.3e %12.3e %zu\n", eps, p.radius_m,
+                static_cast<unsigned long long>(p.pairs_cast),
+                static_cast<double>(p.pairs_cast) / static_cast<double>(reference.pairs_total), p.seconds,
+                exact_seconds / p.seconds, p.max_abs_error, p.max_bound, p.bound_violations);
+    if (eps == 1e-6)
+      std::printf("         (city with eps = 1e-6: %.2f s; target <= 2 s on 2 threads)\n", p.seconds);
+  }
+  std::printf("\ntotal %.1f s; %s\n",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+              val::machine_line().c_str());
+  return 0;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(parse(argc, argv));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "visgraph_throughput: error: %s\n", e.what());
+    return 1;
+  }
+}

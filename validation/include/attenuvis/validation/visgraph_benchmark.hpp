@@ -1,0 +1,109 @@
+// Measurements of the visibility-graph engine that the reproduction report
+// (section_performance.cpp) and the benchmark program
+// (validation/bench/visgraph_throughput.cpp) share: speed as a ratio to a raw
+// Embree occlusion loop over the same pairs in the same run, the extra memory
+// of a pass, and S_S error against run time for range pruning.  Nothing here
+// decides pass/fail: callers print or tabulate the figures.
+#pragma once
+
+#include <attenuvis/visgraph/scene.hpp>
+#include <attenuvis/visgraph/visibility.hpp>
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace attenuvis::validation {
+
+// The seed paper's printed sigmas (1/m: clear 0.00015, rain 8 mm/h 0.0045,
+// advection fog 0.02874311, dry snow 4 mm/h 0.0374; Sec. Results), used as
+// the "degree + 4 conditions" workload of the throughput measurements.
+std::vector<double> seed_benchmark_sigmas();
+
+// Best (minimum) wall time of `repeats` calls of one measurement, seconds.
+struct Timing {
+  double best_s = 0;
+  double median_s = 0;
+};
+
+// Engine (all_to_all, degree + `sigmas`) against raw Embree occlusion of the
+// same unordered pairs (visgraph::raw_visible_pairs), all on `threads`.
+struct ThroughputOptions {
+  std::vector<double> sigmas = seed_benchmark_sigmas();
+  int threads = 1;
+  int repeats = 3;
+  bool single_rays = true;  // also time the rtcOccluded1 loop (the slowest part)
+};
+
+struct Throughput {
+  std::size_t nodes = 0;
+  std::uint64_t pairs = 0;  // unordered pairs, N (N-1) / 2
+  Timing engine, packets16, single;  // single is zero when not measured
+  std::uint64_t visible_engine = 0, visible_packets16 = 0, visible_single = 0;
+  double engine_mpairs_s() const { return pairs / engine.best_s / 1e6; }
+  double packets16_mpairs_s() const { return pairs / packets16.best_s / 1e6; }
+  double single_mpairs_s() const { return single.best_s > 0 ? pairs / single.best_s / 1e6 : 0.0; }
+  // Speed of the engine as a fraction of the raw loop's speed (1 = as fast as Embree alone).
+  double ratio_to_packets16() const { return packets16.best_s / engine.best_s; }
+  double ratio_to_single() const { return single.best_s > 0 ? single.best_s / engine.best_s : 0.0; }
+  bool visible_agree() const;  // every method found the same number of visible pairs
+};
+
+Throughput measure_throughput(const visgraph::Scene& scene, const std::vector<Eigen::Vector3d>& eyes,
+                              const ThroughputOptions& options);
+
+// Extra memory of one all-to-all pass without edge output (degree + `sigmas`,
+// distance statistics on), measured two ways:
+//  - resident set: the kernel's peak RSS (VmHWM of /proc/self/status) during
+//    the pass minus VmRSS just before it, after resetting the peak by writing
+//    "5" to /proc/self/clear_refs (Linux >= 4.0); `rss_peak_reset` says
+//    whether that reset worked (if not, the figure is an upper bound that
+//    includes any earlier peak of the process);
+//  - heap: bytes obtained through operator new, if the program counts them
+//    (see AllocationCounter below); -1 otherwise.
+struct MemoryUse {
+  std::size_t nodes = 0;
+  double rss_before_mb = 0, rss_peak_mb = 0, rss_extra_mb = 0;
+  bool rss_peak_reset = false;
+  double heap_peak_extra_mb = -1;  // peak live operator-new bytes above the level before the pass
+  double seconds = 0;
+};
+
+// Optional hook: a program that replaces the global operator new/delete can
+// report live bytes through these two functions (the benchmark does; the
+// library itself never replaces allocation functions).
+struct AllocationCounter {
+  std::int64_t (*live_bytes)() = nullptr;
+  void (*reset_peak)() = nullptr;  // peak := current live bytes
+  std::int64_t (*peak_bytes)() = nullptr;
+};
+
+MemoryUse measure_memory(const visgraph::Scene& scene, const std::vector<Eigen::Vector3d>& eyes,
+                         const std::vector<double>& sigmas, int threads, const AllocationCounter& counter = {});
+
+// One row of the error-against-time study: all_to_all with S_S for `sigma`
+// only, at tolerance eps, compared with the exact sums `reference` (the same
+// sigma, eps = 0).
+struct PruningPoint {
+  double tolerance = 0;
+  double radius_m = 0;          // ln(1/eps)/sigma; infinite for eps = 0
+  std::uint64_t pairs_cast = 0;
+  double seconds = 0;           // best of the repeats
+  double max_abs_error = 0;     // max over nodes of |S_S - S_S(exact)|
+  double max_bound = 0;         // max over nodes of the certified bound
+  std::size_t bound_violations = 0;
+};
+
+PruningPoint measure_pruning(const visgraph::Scene& scene, const std::vector<Eigen::Vector3d>& eyes, double sigma,
+                             double tolerance, const std::vector<double>& reference, int threads, int repeats);
+
+// Resident-set figures of this process from /proc/self/status, MB (-1 if unreadable).
+double proc_status_mb(const std::string& field);  // "VmRSS", "VmHWM", ...
+
+// Machine context for a printed figure: "N hardware threads, load average a b c".
+std::string machine_line();
+
+}  // namespace attenuvis::validation

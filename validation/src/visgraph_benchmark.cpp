@@ -1,0 +1,154 @@
+// Shared measurements of the visibility-graph engine (see
+// attenuvis/validation/visgraph_benchmark.hpp).
+#include <attenuvis/validation/visgraph_benchmark.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+namespace attenuvis::validation {
+
+namespace vg = attenuvis::visgraph;
+
+namespace {
+template <class F>
+Timing time_repeats(int repeats, F&& f) {
+  std::vector<double> t;
+  for (int r = 0; r < std::max(1, repeats); ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::sort(t.begin(), t.end());
+  return {t.front(), t[t.size() / 2]};
+}
+}  // namespace
+
+std::vector<double> seed_benchmark_sigmas() { return {0.00015, 0.0045, 0.02874311, 0.0374}; }
+
+bool Throughput::visible_agree() const {
+  return visible_engine == visible_packets16 && (single.best_s == 0 || visible_single == visible_engine);
+}
+
+Throughput measure_throughput(const vg::Scene& scene, const std::vector<Eigen::Vector3d>& eyes,
+                              const ThroughputOptions& options) {
+  Throughput out;
+  out.nodes = eyes.size();
+  vg::VisibilityOptions o;
+  o.sigmas = options.sigmas;
+  o.threads = options.threads;
+  vg::VisibilityResult result;
+  // Interleave engine and raw loop repeat by repeat so that a change of load
+  // on a shared machine hits both alike.
+  std::vector<double> te, tp;
+  for (int r = 0; r < std::max(1, options.repeats); ++r) {
+    te.push_back(time_repeats(1, [&] { result = vg::all_to_all(scene, eyes, o); }).best_s);
+    tp.push_back(time_repeats(1, [&] {
+                   out.visible_packets16 = vg::raw_visible_pairs(scene, eyes, options.threads, vg::RawMethod::packets16);
+                 }).best_s);
+  }
+  std::sort(te.begin(), te.end());
+  std::sort(tp.begin(), tp.end());
+  out.engine = {te.front(), te[te.size() / 2]};
+  out.packets16 = {tp.front(), tp[tp.size() / 2]};
+  out.pairs = result.pairs_total;
+  out.visible_engine = result.pairs_visible;
+  if (options.single_rays)
+    out.single = time_repeats(1, [&] {
+      out.visible_single = vg::raw_visible_pairs(scene, eyes, options.threads, vg::RawMethod::single_rays);
+    });
+  return out;
+}
+
+double proc_status_mb(const std::string& field) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.compare(0, field.size() + 1, field + ":") != 0) continue;
+    std::istringstream value(line.substr(field.size() + 1));
+    double kb = -1;
+    value >> kb;
+    return kb < 0 ? -1 : kb / 1024.0;
+  }
+  return -1;
+}
+
+MemoryUse measure_memory(const vg::Scene& scene, const std::vector<Eigen::Vector3d>& eyes,
+                         const std::vector<double>& sigmas, int threads, const AllocationCounter& counter) {
+  MemoryUse m;
+  m.nodes = eyes.size();
+  vg::VisibilityOptions o;
+  o.sigmas = sigmas;
+  o.threads = threads;
+  o.distance_stats = true;
+  // Warm-up on a few nodes: starts the TBB workers (their stacks are not the
+  // pass's memory) and Embree's per-thread state.
+  {
+    const std::vector<Eigen::Vector3d> few(eyes.begin(), eyes.begin() + std::min<std::size_t>(eyes.size(), 64));
+    vg::all_to_all(scene, few, o);
+  }
+  {
+    std::ofstream reset("/proc/self/clear_refs");
+    reset << "5" << std::flush;  // resets VmHWM to the current RSS
+    m.rss_peak_reset = static_cast<bool>(reset);
+  }
+  m.rss_before_mb = proc_status_mb("VmRSS");
+  const double hwm_before = proc_status_mb("VmHWM");
+  if (m.rss_peak_reset && hwm_before > m.rss_before_mb + 0.5) m.rss_peak_reset = false;  // the reset did not take
+  std::int64_t live_before = 0;
+  if (counter.live_bytes && counter.reset_peak && counter.peak_bytes) {
+    live_before = counter.live_bytes();
+    counter.reset_peak();
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  {
+    const vg::VisibilityResult result = vg::all_to_all(scene, eyes, o);
+    m.rss_peak_mb = proc_status_mb("VmHWM");
+    (void)result;
+  }
+  m.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  m.rss_extra_mb = m.rss_peak_mb - m.rss_before_mb;
+  if (counter.peak_bytes && counter.reset_peak && counter.live_bytes)
+    m.heap_peak_extra_mb = static_cast<double>(counter.peak_bytes() - live_before) / (1024.0 * 1024.0);
+  return m;
+}
+
+PruningPoint measure_pruning(const vg::Scene& scene, const std::vector<Eigen::Vector3d>& eyes, double sigma,
+                             double tolerance, const std::vector<double>& reference, int threads, int repeats) {
+  if (reference.size() != eyes.size()) throw std::invalid_argument("measure_pruning: reference has the wrong size");
+  vg::VisibilityOptions o;
+  o.sigmas = {sigma};
+  o.tolerance = tolerance;
+  o.threads = threads;
+  vg::VisibilityResult r;
+  PruningPoint p;
+  p.tolerance = tolerance;
+  p.seconds = time_repeats(repeats, [&] { r = vg::all_to_all(scene, eyes, o); }).best_s;
+  p.radius_m = r.pruning_radius;
+  p.pairs_cast = r.pairs_cast;
+  for (std::size_t i = 0; i < eyes.size(); ++i) {
+    const double err = std::abs(r.sum[0][i] - reference[i]);
+    const double bound = r.sum_error_bound(i);
+    p.max_abs_error = std::max(p.max_abs_error, err);
+    p.max_bound = std::max(p.max_bound, bound);
+    if (err > bound) ++p.bound_violations;
+  }
+  return p;
+}
+
+std::string machine_line() {
+  std::ostringstream s;
+  s << std::thread::hardware_concurrency() << " hardware threads";
+  std::ifstream load("/proc/loadavg");
+  double a = 0, b = 0, c = 0;
+  if (load >> a >> b >> c) s << ", load average " << a << " " << b << " " << c;
+  return s.str();
+}
+
+}  // namespace attenuvis::validation
