@@ -1,15 +1,28 @@
 // All-pairs and source-to-target visibility with contrast-ratio scores.
 //
-// One row per source node: its partners (all j > i, or a kd-tree radius
-// search when pruning) are cast 16 at a time with rtcOccluded16, all rays of a
-// packet sharing the row's origin (coherent traversal).  The packet's
-// distances go through the vectorised contrast kernel and the fixed-point
-// results are added to the row (and, all-to-all, to the partners) in
-// per-thread integer accumulators reduced at the end: exact, so independent
-// of thread count and schedule.
+// One row per source node: its partners are cast 16 at a time with
+// rtcOccluded16, all rays of a packet sharing the row's origin (coherent
+// traversal).  Packets are built, scored (vectorised exp across sigmas and
+// lanes) and accumulated by branch-free lane loops (pair_packet.cpp,
+// contrast_kernel.cpp).  Results go to per-thread integer accumulators in
+// fixed point, laid out slot by slot (degree of every node, then distance
+// sums, then one array per sigma) so that crediting 16 consecutive partners
+// is one vector add per slot; the accumulators are reduced at the end:
+// exact, so independent of thread count and schedule.
+//
+// Partners of a row:
+//  - exact runs: all j > i (all-to-all) or every target, as contiguous
+//    ranges (no index lists);
+//  - all-to-all with a finite radius (pruning or --max-distance) and no edge
+//    output: nodes are sorted by x once; the partners of row r within the
+//    radius lie in the slab x_r <= x <= x_r + R after it, filtered by exact
+//    distance (no tree search, no per-row sort);
+//  - otherwise (to_targets, or edge output in (i, j) order): a kd-tree
+//    radius search (nanoflann), sorted.
 #include <attenuvis/visgraph/visibility.hpp>
 
 #include "contrast_kernel.hpp"
+#include "pair_packet.hpp"
 #include "progress.hpp"
 
 #include <embree3/rtcore.h>
@@ -23,18 +36,18 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
 namespace attenuvis::visgraph {
 
 namespace {
+using detail::kCoincident;
 using detail::kContrastScale;
 using detail::kDistanceScale;
 using detail::kLanes;
-
-constexpr double kCoincident = 1e-6;  // m
-inline double end_gap(double d) { return 1e-4 + 1e-6 * d; }
+using detail::PairPacket;
 
 struct Points {
   std::vector<double> x, y, z;  // local (recentred) frame, double
@@ -64,6 +77,26 @@ Points to_local(const Scene& scene, const std::vector<Eigen::Vector3d>& world, c
   return p;
 }
 
+// The points in increasing x (ties by y, z, index: deterministic);
+// order[s] = original index of sorted point s.
+Points sorted_by_x(const Points& p, std::vector<std::uint32_t>& order) {
+  order.resize(p.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    if (p.x[a] != p.x[b]) return p.x[a] < p.x[b];
+    if (p.y[a] != p.y[b]) return p.y[a] < p.y[b];
+    if (p.z[a] != p.z[b]) return p.z[a] < p.z[b];
+    return a < b;
+  });
+  Points s;
+  for (std::uint32_t i : order) {
+    s.x.push_back(p.x[i]);
+    s.y.push_back(p.y[i]);
+    s.z.push_back(p.z[i]);
+  }
+  return s;
+}
+
 void validate(const VisibilityOptions& o) {
   for (double s : o.sigmas)
     if (!std::isfinite(s) || s < 0) throw std::invalid_argument("visibility: sigma must be finite and >= 0 (1/m)");
@@ -72,124 +105,114 @@ void validate(const VisibilityOptions& o) {
   if (o.threads < 0) throw std::invalid_argument("visibility: thread count must be >= 0");
 }
 
-// Accumulator slots per node: degree, distance sum, then one per sigma.
+// Per-thread state.  Accumulators are slot-major: acc[s * N + i] with slots
+// degree, distance sum, one per sigma, and (slab pruning) partners within
+// the radius.  Each thread's arrays are separate heap blocks, so threads
+// never write to a shared cache line.
 struct ThreadState {
   std::vector<std::int64_t> acc;
   std::vector<double> max_distance;
   std::vector<std::uint32_t> candidates;
   std::vector<std::pair<std::uint32_t, double>> matches;
-  std::vector<std::int64_t> c_fixed;
+  std::vector<std::int64_t> c_fixed, row;  // row: per-lane totals of the current row
   std::uint64_t cast = 0, visible = 0, coincident = 0;
 };
 
 struct Pass {
-  const Scene* scene = nullptr;
   RTCScene rtc = nullptr;
   const Points* sources = nullptr;
   const Points* partners = nullptr;
   bool symmetric = false;  // all-to-all: credit partners too
-  std::size_t stride = 0;
+  std::size_t N = 0;       // accumulator length (sources)
   int K = 0;
   std::vector<double> neg_sigma;
   double max_distance = 0;
   bool keep_max = false;
 };
 
-// Casts row i against `count` partners and accumulates.
-void process_row(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t count, ThreadState& ts,
-                 std::vector<Edge>* edges) {
+// Casts row i against `count` partners and accumulates: partners j0 .. j0 +
+// count - 1 when `cand` is null, else cand[0 .. count).
+void process_row(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t j0, std::size_t count,
+                 ThreadState& ts, std::vector<Edge>* edges) {
   const Points& S = *pass.sources;
   const Points& P = *pass.partners;
   const double ox = S.x[i], oy = S.y[i], oz = S.z[i];
   const int K = pass.K;
-  std::int64_t* row = ts.acc.data() + i * pass.stride;
+  const std::size_t N = pass.N;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  RTCRay16 ray;
-  alignas(64) int valid[kLanes];
-  alignas(64) double dist[kLanes], vis[kLanes];
+  PairPacket packet;
+  alignas(64) double gx[kLanes], gy[kLanes], gz[kLanes];
   alignas(64) std::int64_t d_fixed[kLanes];
   std::uint32_t partner[kLanes];
+  std::int64_t* row = ts.row.data();
+  std::fill(ts.row.begin(), ts.row.end(), 0);
+  std::int64_t* c = ts.c_fixed.data();
+  std::int64_t* credit = pass.symmetric && !cand ? ts.acc.data() : nullptr;
+  const bool scatter = pass.symmetric && cand;
   for (std::size_t start = 0; start < count; start += kLanes) {
     const int n = static_cast<int>(std::min<std::size_t>(kLanes, count - start));
-    bool any = false;
-    for (int l = 0; l < kLanes; ++l) {
-      valid[l] = 0;
-      vis[l] = 0;
-      dist[l] = 0;
-      if (l >= n) continue;
-      const std::uint32_t j = cand[start + l];
-      partner[l] = j;
-      const double dx = P.x[j] - ox, dy = P.y[j] - oy, dz = P.z[j] - oz;
-      const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
-      if (d < kCoincident) {
-        ++ts.coincident;
-        continue;
+    const double *px, *py, *pz;
+    if (cand) {
+      for (int l = 0; l < n; ++l) {
+        const std::uint32_t j = cand[start + l];
+        partner[l] = j;
+        gx[l] = P.x[j];
+        gy[l] = P.y[j];
+        gz[l] = P.z[j];
       }
-      if (d > pass.max_distance) continue;
-      dist[l] = d;
-      const double gap = end_gap(d);
-      if (d <= 2 * gap) {  // no room for geometry: visible without a ray
-        vis[l] = 1;
-        continue;
-      }
-      valid[l] = -1;
-      any = true;
-      ray.org_x[l] = static_cast<float>(ox);
-      ray.org_y[l] = static_cast<float>(oy);
-      ray.org_z[l] = static_cast<float>(oz);
-      ray.dir_x[l] = static_cast<float>(dx);
-      ray.dir_y[l] = static_cast<float>(dy);
-      ray.dir_z[l] = static_cast<float>(dz);
-      ray.tnear[l] = static_cast<float>(gap / d);
-      ray.tfar[l] = static_cast<float>(1.0 - gap / d);
-      ray.time[l] = 0;
-      ray.mask[l] = 0xFFFFFFFFu;
-      ray.id[l] = 0;
-      ray.flags[l] = 0;
+      px = gx, py = gy, pz = gz;
+    } else {
+      for (int l = 0; l < n; ++l) partner[l] = static_cast<std::uint32_t>(j0 + start + l);
+      px = P.x.data() + j0 + start, py = P.y.data() + j0 + start, pz = P.z.data() + j0 + start;
     }
-    if (any) {
-      rtcOccluded16(valid, pass.rtc, &context, &ray);
-      for (int l = 0; l < n; ++l)
-        if (valid[l]) {
-          ++ts.cast;
-          vis[l] = ray.tfar[l] >= 0 ? 1.0 : 0.0;  // Embree sets tfar = -inf when occluded
+    detail::build_packet(ox, oy, oz, px, py, pz, n, pass.max_distance, packet);
+    ts.coincident += static_cast<std::uint64_t>(packet.coincident);
+    if (packet.cast) {
+      ts.cast += static_cast<std::uint64_t>(packet.cast);
+      rtcOccluded16(packet.valid, pass.rtc, &context, &packet.ray);
+      detail::resolve_packet(packet);
+    }
+    detail::contrast_lanes(packet.distance, packet.visible, pass.neg_sigma.data(), K, c, d_fixed);
+    detail::accumulate_packet(packet, c, d_fixed, K, n, row, credit, N, j0 + start);
+    if (scatter || pass.keep_max || edges) {
+      for (int l = 0; l < n; ++l) {
+        if (packet.visible[l] == 0) continue;
+        const std::uint32_t j = partner[l];
+        const double d = packet.distance[l];
+        if (scatter) {
+          ts.acc[j] += 1;
+          ts.acc[N + j] += d_fixed[l];
+          for (int k = 0; k < K; ++k) ts.acc[static_cast<std::size_t>(2 + k) * N + j] += c[k * kLanes + l];
         }
-    }
-    std::int64_t* c = ts.c_fixed.data();
-    detail::contrast_lanes(dist, vis, pass.neg_sigma.data(), K, c, d_fixed);
-    for (int l = 0; l < n; ++l) {
-      if (vis[l] == 0) continue;
-      ++ts.visible;
-      const std::uint32_t j = partner[l];
-      row[0] += 1;
-      row[1] += d_fixed[l];
-      for (int k = 0; k < K; ++k) row[2 + k] += c[k * kLanes + l];
-      if (pass.keep_max) ts.max_distance[i] = std::max(ts.max_distance[i], dist[l]);
-      if (pass.symmetric) {
-        std::int64_t* other = ts.acc.data() + j * pass.stride;
-        other[0] += 1;
-        other[1] += d_fixed[l];
-        for (int k = 0; k < K; ++k) other[2 + k] += c[k * kLanes + l];
-        if (pass.keep_max) ts.max_distance[j] = std::max(ts.max_distance[j], dist[l]);
+        if (pass.keep_max) {
+          ts.max_distance[i] = std::max(ts.max_distance[i], d);
+          if (pass.symmetric) ts.max_distance[j] = std::max(ts.max_distance[j], d);
+        }
+        if (edges) edges->push_back(Edge{static_cast<std::uint32_t>(i), j, d});
       }
-      if (edges) edges->push_back(Edge{static_cast<std::uint32_t>(i), j, dist[l]});
     }
+  }
+  for (int s = 0; s < 2 + K; ++s) {
+    std::int64_t total = 0;
+    for (int l = 0; l < kLanes; ++l) total += row[s * kLanes + l];
+    ts.acc[static_cast<std::size_t>(s) * N + i] += total;
+    if (s == 0) ts.visible += static_cast<std::uint64_t>(total);
   }
 }
 
-VisibilityResult run_pass(const Scene& scene, const Points& sources, const Points& partners, bool symmetric,
+VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const Points& partners, bool symmetric,
                           const VisibilityOptions& options) {
   validate(options);
-  if (sources.size() == 0) throw std::invalid_argument("visibility: no nodes");
+  if (given_sources.size() == 0) throw std::invalid_argument("visibility: no nodes");
   if (!symmetric && partners.size() == 0) throw std::invalid_argument("visibility: no targets");
-  if (sources.size() > 0xFFFFFFFFu || partners.size() > 0xFFFFFFFFu)
+  if (given_sources.size() > 0xFFFFFFFFu || partners.size() > 0xFFFFFFFFu)
     throw std::invalid_argument("visibility: more than 2^32 nodes");
   const auto start_time = std::chrono::steady_clock::now();
 
   VisibilityResult result;
-  const std::size_t N = sources.size(), M = partners.size();
+  const std::size_t N = given_sources.size(), M = symmetric ? N : partners.size();
   result.nodes = N;
   result.tolerance = options.tolerance;
   const int K = static_cast<int>(options.sigmas.size());
@@ -203,30 +226,42 @@ VisibilityResult run_pass(const Scene& scene, const Points& sources, const Point
   const bool pruning = prune_radius < options.max_distance;
   result.pruning_radius = prune_radius;
   result.degree_exact = !pruning;
+  // Candidates within a radius are found with a little slack (relative 5e-10
+  // plus 1e-6 m) so that no pair within it is missed by rounding;
+  // build_packet then applies "d <= max_distance" exactly.
+  const double radius_sq = radius * radius * (1 + 1e-9) + 1e-12;
+  const bool slab = symmetric && std::isfinite(radius) && !options.edge_sink;
+  const bool use_tree = std::isfinite(radius) && !slab;
+
+  // Slab mode works on the nodes sorted by x; results are mapped back below.
+  std::vector<std::uint32_t> order;
+  Points sorted;
+  if (slab) sorted = sorted_by_x(given_sources, order);
+  const Points& sources = slab ? sorted : given_sources;
 
   Pass pass;
-  pass.scene = &scene;
   pass.rtc = static_cast<RTCScene>(scene.embree_scene());
   pass.sources = &sources;
-  pass.partners = &partners;
+  pass.partners = symmetric ? &sources : &partners;
   pass.symmetric = symmetric;
+  pass.N = N;
   pass.K = K;
-  pass.stride = 2 + static_cast<std::size_t>(K);
   for (double s : options.sigmas) pass.neg_sigma.push_back(-s);
   pass.max_distance = options.max_distance;
   pass.keep_max = options.distance_stats;
+  const std::size_t slots = 2 + static_cast<std::size_t>(K) + (slab ? 1 : 0);
+  const std::size_t within_slot = 2 + static_cast<std::size_t>(K);
 
   std::unique_ptr<KdTree> tree;
-  if (std::isfinite(radius)) tree = std::make_unique<KdTree>(3, partners, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  // nanoflann keeps points with squared distance < radius^2 (strict); widen a
-  // little and let process_row apply "d <= max_distance" exactly.
-  const double radius_sq = radius * radius * (1 + 1e-9) + 1e-12;
+  if (use_tree) tree = std::make_unique<KdTree>(3, *pass.partners, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  const double slab_width = std::sqrt(radius_sq);
 
   tbb::enumerable_thread_specific<ThreadState> states([&] {
     ThreadState ts;
-    ts.acc.assign(N * pass.stride, 0);
+    ts.acc.assign(N * slots, 0);
     if (pass.keep_max) ts.max_distance.assign(N, 0.0);
     ts.c_fixed.assign(static_cast<std::size_t>(std::max(K, 1)) * kLanes, 0);
+    ts.row.assign((2 + static_cast<std::size_t>(K)) * kLanes, 0);
     return ts;
   });
   std::vector<std::uint32_t> pruned(N, 0);
@@ -248,27 +283,44 @@ VisibilityResult run_pass(const Scene& scene, const Points& sources, const Point
         ThreadState& ts = states.local();
         std::uint64_t done = 0;
         for (std::size_t i = range.begin(); i != range.end(); ++i) {
-          ts.candidates.clear();
+          std::vector<Edge>* edges = options.edge_sink ? &row_edges[i - block] : nullptr;
+          if (edges) edges->clear();
           const std::size_t first = symmetric ? i + 1 : 0;
-          if (tree) {
+          done += symmetric ? N - 1 - i : M;
+          if (slab) {
+            // Partners after i in x order within the radius: the slab
+            // x_i <= x <= x_i + R, filtered by distance.
+            const Points& P = sources;
+            const double xi = P.x[i], yi = P.y[i], zi = P.z[i];
+            const std::size_t end =
+                static_cast<std::size_t>(std::upper_bound(P.x.begin() + first, P.x.end(), xi + slab_width) - P.x.begin());
+            ts.candidates.clear();
+            std::int64_t* within = ts.acc.data() + within_slot * N;
+            for (std::size_t j = first; j < end; ++j) {
+              const double dx = P.x[j] - xi, dy = P.y[j] - yi, dz = P.z[j] - zi;
+              if (dx * dx + dy * dy + dz * dz > radius_sq) continue;
+              ts.candidates.push_back(static_cast<std::uint32_t>(j));
+              ++within[j];
+            }
+            within[i] += static_cast<std::int64_t>(ts.candidates.size());
+            process_row(pass, i, ts.candidates.data(), 0, ts.candidates.size(), ts, nullptr);
+          } else if (tree) {
             const double q[3] = {sources.x[i], sources.y[i], sources.z[i]};
             ts.matches.clear();
             tree->radiusSearch(q, radius_sq, ts.matches, nanoflann::SearchParams(32, 0, false));
+            ts.candidates.clear();
             std::size_t within = 0;
             for (const auto& m : ts.matches) {
               if (symmetric && m.first == i) continue;
               ++within;
               if (m.first >= first) ts.candidates.push_back(m.first);
             }
-            std::sort(ts.candidates.begin(), ts.candidates.end());
+            std::sort(ts.candidates.begin(), ts.candidates.end());  // edges in (i, j) order
             if (pruning) pruned[i] = static_cast<std::uint32_t>((symmetric ? N - 1 : M) - within);
+            process_row(pass, i, ts.candidates.data(), 0, ts.candidates.size(), ts, edges);
           } else {
-            for (std::size_t j = first; j < M; ++j) ts.candidates.push_back(static_cast<std::uint32_t>(j));
+            process_row(pass, i, nullptr, first, M - first, ts, edges);
           }
-          std::vector<Edge>* edges = options.edge_sink ? &row_edges[i - block] : nullptr;
-          if (edges) edges->clear();
-          process_row(pass, i, ts.candidates.data(), ts.candidates.size(), ts, edges);
-          done += symmetric ? N - 1 - i : M;
         }
         progress.add(done);
       });
@@ -281,8 +333,9 @@ VisibilityResult run_pass(const Scene& scene, const Points& sources, const Point
   });
   progress.finish();
 
-  // Exact reduction of the per-thread integer accumulators.
-  std::vector<std::int64_t> total(N * pass.stride, 0);
+  // Exact reduction of the per-thread integer accumulators, back to the
+  // caller's node order.
+  std::vector<std::int64_t> total(N * slots, 0);
   std::vector<double> max_distance(pass.keep_max ? N : 0, 0.0);
   for (const ThreadState& ts : states) {
     for (std::size_t s = 0; s < total.size(); ++s) total[s] += ts.acc[s];
@@ -291,21 +344,27 @@ VisibilityResult run_pass(const Scene& scene, const Points& sources, const Point
     result.pairs_visible += ts.visible;
     result.coincident_pairs += ts.coincident;
   }
+  const auto caller_index = [&](std::size_t i) { return slab ? order[i] : i; };
+  if (slab && pruning)
+    for (std::size_t i = 0; i < N; ++i)
+      pruned[caller_index(i)] = static_cast<std::uint32_t>(static_cast<std::int64_t>(N - 1) - total[within_slot * N + i]);
   result.sum.assign(static_cast<std::size_t>(K), std::vector<double>(N));
-  for (std::size_t i = 0; i < N; ++i)
-    for (int k = 0; k < K; ++k)
-      result.sum[static_cast<std::size_t>(k)][i] = static_cast<double>(total[i * pass.stride + 2 + k]) / kContrastScale;
+  for (int k = 0; k < K; ++k) {
+    const std::int64_t* t = total.data() + static_cast<std::size_t>(2 + k) * N;
+    for (std::size_t i = 0; i < N; ++i)
+      result.sum[static_cast<std::size_t>(k)][caller_index(i)] = static_cast<double>(t[i]) / kContrastScale;
+  }
   const double nan = std::numeric_limits<double>::quiet_NaN();
   if (result.degree_exact) {
     result.degree.resize(N);
-    for (std::size_t i = 0; i < N; ++i) result.degree[i] = static_cast<std::uint32_t>(total[i * pass.stride]);
+    for (std::size_t i = 0; i < N; ++i) result.degree[caller_index(i)] = static_cast<std::uint32_t>(total[i]);
     if (options.distance_stats) {
       result.mean_distance.resize(N);
       result.max_distance.resize(N);
       for (std::size_t i = 0; i < N; ++i) {
-        const std::int64_t deg = total[i * pass.stride];
-        result.mean_distance[i] = deg ? static_cast<double>(total[i * pass.stride + 1]) / kDistanceScale / deg : nan;
-        result.max_distance[i] = deg ? max_distance[i] : nan;
+        const std::int64_t deg = total[i];
+        result.mean_distance[caller_index(i)] = deg ? static_cast<double>(total[N + i]) / kDistanceScale / deg : nan;
+        result.max_distance[caller_index(i)] = deg ? max_distance[i] : nan;
       }
     }
   }
@@ -346,56 +405,34 @@ std::uint64_t raw_visible_pairs(const Scene& scene, const std::vector<Eigen::Vec
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
       if (method == RawMethod::packets16) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      PairPacket packet;
       for (std::size_t i = range.begin(); i != range.end(); ++i) {
-        const double ox = P.x[i], oy = P.y[i], oz = P.z[i];
-        if (method == RawMethod::single_rays) {
-          for (std::size_t j = i + 1; j < N; ++j) {
-            const double dx = P.x[j] - ox, dy = P.y[j] - oy, dz = P.z[j] - oz;
-            const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
-            if (d < kCoincident) continue;
-            const double gap = end_gap(d);
-            RTCRay ray{};
-            ray.org_x = static_cast<float>(ox);
-            ray.org_y = static_cast<float>(oy);
-            ray.org_z = static_cast<float>(oz);
-            ray.dir_x = static_cast<float>(dx);
-            ray.dir_y = static_cast<float>(dy);
-            ray.dir_z = static_cast<float>(dz);
-            ray.tnear = static_cast<float>(gap / d);
-            ray.tfar = static_cast<float>(1.0 - gap / d);
-            ray.mask = 0xFFFFFFFFu;
-            rtcOccluded1(rtc, &context, &ray);
-            seen += ray.tfar >= 0;
-          }
-          continue;
-        }
-        RTCRay16 ray;
-        alignas(64) int valid[kLanes];
+        // The same packets as the engine (same policy, same setup code);
+        // single rays cast each lane with rtcOccluded1.
         for (std::size_t start = i + 1; start < N; start += kLanes) {
-          for (int l = 0; l < kLanes; ++l) {
-            const std::size_t j = start + static_cast<std::size_t>(l);
-            valid[l] = 0;
-            if (j >= N) continue;
-            const double dx = P.x[j] - ox, dy = P.y[j] - oy, dz = P.z[j] - oz;
-            const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
-            if (d < kCoincident) continue;
-            const double gap = end_gap(d);
-            valid[l] = -1;
-            ray.org_x[l] = static_cast<float>(ox);
-            ray.org_y[l] = static_cast<float>(oy);
-            ray.org_z[l] = static_cast<float>(oz);
-            ray.dir_x[l] = static_cast<float>(dx);
-            ray.dir_y[l] = static_cast<float>(dy);
-            ray.dir_z[l] = static_cast<float>(dz);
-            ray.tnear[l] = static_cast<float>(gap / d);
-            ray.tfar[l] = static_cast<float>(1.0 - gap / d);
-            ray.time[l] = 0;
-            ray.mask[l] = 0xFFFFFFFFu;
-            ray.id[l] = 0;
-            ray.flags[l] = 0;
+          const int n = static_cast<int>(std::min<std::size_t>(kLanes, N - start));
+          detail::build_packet(P.x[i], P.y[i], P.z[i], P.x.data() + start, P.y.data() + start, P.z.data() + start, n,
+                               std::numeric_limits<double>::infinity(), packet);
+          if (method == RawMethod::packets16) {
+            if (packet.cast) rtcOccluded16(packet.valid, rtc, &context, &packet.ray);
+          } else {
+            for (int l = 0; l < kLanes; ++l) {
+              if (!packet.valid[l]) continue;
+              RTCRay ray{};
+              ray.org_x = packet.ray.org_x[l];
+              ray.org_y = packet.ray.org_y[l];
+              ray.org_z = packet.ray.org_z[l];
+              ray.dir_x = packet.ray.dir_x[l];
+              ray.dir_y = packet.ray.dir_y[l];
+              ray.dir_z = packet.ray.dir_z[l];
+              ray.tnear = packet.ray.tnear[l];
+              ray.tfar = packet.ray.tfar[l];
+              ray.mask = 0xFFFFFFFFu;
+              rtcOccluded1(rtc, &context, &ray);
+              packet.ray.tfar[l] = ray.tfar;
+            }
           }
-          rtcOccluded16(valid, rtc, &context, &ray);
-          for (int l = 0; l < kLanes; ++l) seen += valid[l] && ray.tfar[l] >= 0;
+          for (int l = 0; l < kLanes; ++l) seen += packet.valid[l] ? packet.ray.tfar[l] >= 0 : packet.visible[l] != 0;
         }
       }
       visible += seen;

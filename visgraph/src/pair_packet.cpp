@@ -1,0 +1,144 @@
+// Branch-free lane loops that GCC turns into SIMD code (clones for AVX-512,
+// AVX2 and baseline x86-64, picked at run time).  Floating-point contraction
+// is switched off for this file so that d = sqrt(dx^2 + dy^2 + dz^2) rounds
+// the same way in every clone: the FMA-capable clones would otherwise fuse
+// the products, and distances (hence C and the ray bounds) would depend on
+// the CPU.
+#pragma GCC optimize("fp-contract=off")
+
+#include "pair_packet.hpp"
+
+#include <cmath>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace attenuvis::visgraph::detail {
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+#define ATTENUVIS_LANE_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define ATTENUVIS_LANE_CLONES
+#endif
+
+ATTENUVIS_LANE_CLONES
+void build_packet(double ox, double oy, double oz, const double* px, const double* py, const double* pz, int n,
+                  double max_distance, PairPacket& p) {
+  // Idle lanes read the origin itself (d = 0), never past the caller's data.
+  alignas(64) double lx[kLanes], ly[kLanes], lz[kLanes];
+  if (n == kLanes) {
+    for (int l = 0; l < kLanes; ++l) lx[l] = px[l], ly[l] = py[l], lz[l] = pz[l];
+  } else {
+    for (int l = 0; l < kLanes; ++l) lx[l] = ox, ly[l] = oy, lz[l] = oz;
+    for (int l = 0; l < n; ++l) lx[l] = px[l], ly[l] = py[l], lz[l] = pz[l];
+  }
+  // Masks as 0/1 doubles and selects of values computed on every lane: no
+  // control flow, so each loop becomes straight SIMD code.
+  alignas(64) double dx[kLanes], dy[kLanes], dz[kLanes], t_near[kLanes], active[kLanes];
+  alignas(64) double cast[kLanes], coincident[kLanes];
+  for (int l = 0; l < kLanes; ++l) active[l] = l < n ? 1.0 : 0.0;
+  alignas(64) double d[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    dx[l] = lx[l] - ox;
+    dy[l] = ly[l] - oy;
+    dz[l] = lz[l] - oz;
+    d[l] = dx[l] * dx[l] + dy[l] * dy[l] + dz[l] * dz[l];
+  }
+  // GCC keeps std::sqrt scalar (errno) unless the whole build says
+  // -fno-math-errno; SSE2's sqrtpd is baseline x86-64 and, like std::sqrt,
+  // correctly rounded.
+#if defined(__SSE2__)
+  for (int l = 0; l < kLanes; l += 2) _mm_store_pd(d + l, _mm_sqrt_pd(_mm_load_pd(d + l)));
+#else
+  for (int l = 0; l < kLanes; ++l) d[l] = std::sqrt(d[l]);
+#endif
+  alignas(64) double gap[kLanes], ratio[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    gap[l] = 1e-4 + 1e-6 * d[l];  // end_gap(d)
+    ratio[l] = gap[l] / d[l];     // inf for d = 0: never selected
+  }
+  for (int l = 0; l < kLanes; ++l) {
+    const bool act = active[l] != 0.0;
+    const bool apart = d[l] >= kCoincident;
+    const bool candidate = act & apart & (d[l] <= max_distance);
+    const bool close = d[l] <= 2 * gap[l];  // no room for geometry: visible without a ray
+    const bool is_cast = candidate & !close;
+    coincident[l] = (act & !apart) ? 1.0 : 0.0;
+    cast[l] = is_cast ? 1.0 : 0.0;
+    p.distance[l] = candidate ? d[l] : 0.0;
+    p.visible[l] = (candidate & close) ? 1.0 : 0.0;
+    t_near[l] = is_cast ? ratio[l] : 0.0;
+  }
+  double n_cast = 0, n_coincident = 0;
+  for (int l = 0; l < kLanes; ++l) {
+    n_cast += cast[l];
+    n_coincident += coincident[l];
+  }
+  p.cast = static_cast<int>(n_cast);
+  p.coincident = static_cast<int>(n_coincident);
+  const float fx = static_cast<float>(ox), fy = static_cast<float>(oy), fz = static_cast<float>(oz);
+  // Idle lanes get a valid unit ray so that Embree's ray checks never see a
+  // zero direction, whatever it does with masked lanes.
+  for (int l = 0; l < kLanes; ++l) {
+    const double c = cast[l];
+    p.ray.dir_x[l] = static_cast<float>(c * dx[l] + (1.0 - c));
+    p.ray.dir_y[l] = static_cast<float>(c * dy[l]);
+    p.ray.dir_z[l] = static_cast<float>(c * dz[l]);
+    p.ray.tnear[l] = static_cast<float>(t_near[l]);
+    p.ray.tfar[l] = static_cast<float>(1.0 - t_near[l]);  // 1 on idle lanes (t_near = 0)
+  }
+  for (int l = 0; l < kLanes; ++l) {
+    p.valid[l] = -static_cast<int>(cast[l]);
+    p.ray.org_x[l] = fx;
+    p.ray.org_y[l] = fy;
+    p.ray.org_z[l] = fz;
+    p.ray.time[l] = 0.0f;
+    p.ray.mask[l] = 0xFFFFFFFFu;
+    p.ray.id[l] = 0;
+    p.ray.flags[l] = 0;
+  }
+}
+
+ATTENUVIS_LANE_CLONES
+void resolve_packet(PairPacket& p) {
+  for (int l = 0; l < kLanes; ++l)
+    p.visible[l] = p.valid[l] ? (p.ray.tfar[l] >= 0.0f ? 1.0 : 0.0) : p.visible[l];
+}
+
+ATTENUVIS_LANE_CLONES
+void accumulate_packet(const PairPacket& p, const std::int64_t* c_fixed, const std::int64_t* d_fixed, int K, int n,
+                       std::int64_t* row_lanes, std::int64_t* acc, std::size_t N, std::size_t j0) {
+  alignas(64) std::int64_t visible[kLanes];
+  for (int l = 0; l < kLanes; ++l) visible[l] = static_cast<std::int64_t>(p.visible[l]);
+  // Lane-wise (vertical) adds; the row reduces its lanes once at its end.
+  // Idle and invisible lanes hold zeros in every array.
+  for (int l = 0; l < kLanes; ++l) row_lanes[l] += visible[l];
+  for (int l = 0; l < kLanes; ++l) row_lanes[kLanes + l] += d_fixed[l];
+  for (int k = 0; k < K; ++k)
+    for (int l = 0; l < kLanes; ++l) row_lanes[(2 + k) * kLanes + l] += c_fixed[k * kLanes + l];
+  if (!acc) return;
+  if (n == kLanes) {  // the common case: fixed trip count, no epilogue
+    std::int64_t* a = acc + j0;
+    for (int l = 0; l < kLanes; ++l) a[l] += visible[l];
+    a = acc + N + j0;
+    for (int l = 0; l < kLanes; ++l) a[l] += d_fixed[l];
+    for (int k = 0; k < K; ++k) {
+      a = acc + static_cast<std::size_t>(2 + k) * N + j0;
+      const std::int64_t* c = c_fixed + k * kLanes;
+      for (int l = 0; l < kLanes; ++l) a[l] += c[l];
+    }
+    return;
+  }
+  std::int64_t* a = acc + j0;
+  for (int l = 0; l < n; ++l) a[l] += visible[l];
+  a = acc + N + j0;
+  for (int l = 0; l < n; ++l) a[l] += d_fixed[l];
+  for (int k = 0; k < K; ++k) {
+    a = acc + static_cast<std::size_t>(2 + k) * N + j0;
+    const std::int64_t* c = c_fixed + k * kLanes;
+    for (int l = 0; l < n; ++l) a[l] += c[l];
+  }
+}
+
+}  // namespace attenuvis::visgraph::detail
