@@ -55,11 +55,6 @@ std::vector<std::string> split(const std::string& text, char separator) {
   return parts;
 }
 
-#ifdef ATTENUVIS_VG_HAS_WEATHER
-std::string as_text(const std::string& s) { return s; }
-[[maybe_unused]] std::string as_text(weather::Convention c) { return weather::to_string(c); }
-#endif
-
 // One ConditionInfo per comma-separated condition, in the user's spelling.
 std::vector<vg::ConditionInfo> conditions_to_sigma(const VgArguments& a, double& wavelength_m) {
   std::vector<vg::ConditionInfo> out;
@@ -86,9 +81,9 @@ std::vector<vg::ConditionInfo> conditions_to_sigma(const VgArguments& a, double&
     const weather::Sigma s = weather::sigma(weather::parse_condition(label), settings);
     info.sigma = s.per_m;
     info.sigma_error = s.error_per_m;
-    info.model = as_text(s.model);
-    info.convention = as_text(s.convention);
-    info.note = as_text(s.note);
+    info.model = s.model;
+    info.convention = s.convention;
+    info.note = s.note;
 #else
     const std::string prefix = "sigma:";
     if (label.compare(0, prefix.size(), prefix) != 0)

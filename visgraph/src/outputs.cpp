@@ -72,9 +72,12 @@ std::vector<std::string> score_columns(const ScoreTable& table) {
   const VisibilityResult& r = *table.result;
   std::vector<std::string> columns = {"x", "y", "z"};
   if (r.degree_exact) columns.push_back("degree");
-  for (const std::string& label : table.labels) columns.push_back("sum:" + label);
-  if (r.degree_exact)
-    for (const std::string& label : table.labels) columns.push_back("avg:" + label);
+  // Per condition its sum and (when the degree is exact) its average, side by
+  // side: x,y,z,degree,sum:A,avg:A,sum:B,avg:B,... (issue 4, README).
+  for (const std::string& label : table.labels) {
+    columns.push_back("sum:" + label);
+    if (r.degree_exact) columns.push_back("avg:" + label);
+  }
   if (!r.mean_distance.empty()) {
     columns.push_back("mean_distance");
     columns.push_back("max_distance");

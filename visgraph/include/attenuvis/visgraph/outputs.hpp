@@ -23,9 +23,9 @@ struct ScoreTable {
   std::vector<std::string> labels;                     // one per sigma, as the user wrote it
 };
 
-// Column names in CSV order: x,y,z, then degree (when exact), sum:L for each
-// label, avg:L (when degree is exact), mean_distance,max_distance (when
-// computed), sum_error_bound (when pruning).
+// Column names in CSV order: x,y,z, then degree (when exact), for each label
+// sum:L followed by avg:L (avg only when degree is exact),
+// mean_distance,max_distance (when computed), sum_error_bound (when pruning).
 std::vector<std::string> score_columns(const ScoreTable& table);
 // Values of one score column ("degree", "sum:L", "avg:L", "mean_distance",
 // "max_distance", "sum_error_bound"); throws std::invalid_argument naming
