@@ -102,11 +102,16 @@ void contrast_lanes(const double* distance, const double* visible, const double*
       p = p * r + 0.5;
       p = p * r + 1.0;
       p = p * r + 1.0;
-      // 2^n with n = floor(N / 32) in [-1010, 0]: a normal double.
-      const std::int64_t exponent_bits = ((N >> 5) + 1023) << 52;
-      double scale;
-      std::memcpy(&scale, &exponent_bits, sizeof scale);
-      result[e] = kExp2TableScaled.v[N & 31] * p * scale * vis[e];
+      // 2^(j/32) 2^40 2^n, n = floor(N / 32) in [-1010, 0], by adding n to
+      // the table entry's exponent field: exact, the result (>= 2^-970)
+      // being a normal double.
+      const double entry = kExp2TableScaled.v[N & 31];
+      std::int64_t entry_bits;
+      std::memcpy(&entry_bits, &entry, sizeof entry_bits);
+      entry_bits += (N >> 5) * (std::int64_t{1} << 52);
+      double scaled_entry;
+      std::memcpy(&scaled_entry, &entry_bits, sizeof scaled_entry);
+      result[e] = scaled_entry * p * vis[e];
     }
     round_to_int64(result, c_fixed + k0 * kLanes, m);
   }

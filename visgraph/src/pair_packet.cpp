@@ -1,5 +1,5 @@
-// Branch-free lane loops that GCC turns into SIMD code (clones for AVX-512,
-// AVX2 and baseline x86-64, picked at run time).  Floating-point contraction
+// Branch-free lane loops that GCC turns into SIMD code (versions for
+// AVX-512, AVX2 and baseline x86-64, picked at run time).  Floating-point contraction
 // is switched off for this file so that d = sqrt(dx^2 + dy^2 + dz^2) rounds
 // the same way in every clone: the FMA-capable clones would otherwise fuse
 // the products, and distances (hence C and the ray bounds) would depend on
@@ -10,21 +10,50 @@
 
 #include <cmath>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+#define ATTENUVIS_X86_DISPATCH 1
+#include <immintrin.h>
 #endif
 
 namespace attenuvis::visgraph::detail {
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+#ifdef ATTENUVIS_X86_DISPATCH
 #define ATTENUVIS_LANE_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define ATTENUVIS_LANE_CLONES
 #endif
 
-ATTENUVIS_LANE_CLONES
-void build_packet(double ox, double oy, double oz, const double* px, const double* py, const double* pz, int n,
-                  double max_distance, PairPacket& p) {
+namespace {
+// In place sqrt of 16 lanes.  GCC keeps std::sqrt scalar (errno) unless the
+// whole build says -fno-math-errno, so the vector instructions are named
+// here, one width per instruction set; all are IEEE sqrt, correctly rounded
+// like std::sqrt, so every width gives the same bits.
+enum class Isa { baseline, avx2, avx512 };
+#ifdef ATTENUVIS_X86_DISPATCH
+__attribute__((target("avx512f"))) inline void sqrt16_avx512(double* d) {
+  // The maskz form: GCC 12 warns that the plain form's undefined
+  // pass-through operand is uninitialised.
+  for (int l = 0; l < kLanes; l += 8)
+    _mm512_store_pd(d + l, _mm512_maskz_sqrt_pd(0xFF, _mm512_load_pd(d + l)));
+}
+__attribute__((target("avx2"))) inline void sqrt16_avx2(double* d) {
+  for (int l = 0; l < kLanes; l += 4) _mm256_store_pd(d + l, _mm256_sqrt_pd(_mm256_load_pd(d + l)));
+}
+#endif
+inline void sqrt16_baseline(double* d) {
+#if defined(__SSE2__)
+  for (int l = 0; l < kLanes; l += 2) _mm_store_pd(d + l, _mm_sqrt_pd(_mm_load_pd(d + l)));
+#else
+  for (int l = 0; l < kLanes; ++l) d[l] = std::sqrt(d[l]);
+#endif
+}
+
+// The body of build_packet, compiled once per instruction set: each
+// target-specific wrapper below inlines it whole (flatten), so its loops are
+// vectorised for that wrapper's target.
+template <Isa isa>
+inline void build_packet_lanes(double ox, double oy, double oz, const double* px, const double* py, const double* pz,
+                               int n, double max_distance, PairPacket& p) {
   // Idle lanes read the origin itself (d = 0), never past the caller's data.
   alignas(64) double lx[kLanes], ly[kLanes], lz[kLanes];
   if (n == kLanes) {
@@ -45,13 +74,12 @@ void build_packet(double ox, double oy, double oz, const double* px, const doubl
     dz[l] = lz[l] - oz;
     d[l] = dx[l] * dx[l] + dy[l] * dy[l] + dz[l] * dz[l];
   }
-  // GCC keeps std::sqrt scalar (errno) unless the whole build says
-  // -fno-math-errno; SSE2's sqrtpd is baseline x86-64 and, like std::sqrt,
-  // correctly rounded.
-#if defined(__SSE2__)
-  for (int l = 0; l < kLanes; l += 2) _mm_store_pd(d + l, _mm_sqrt_pd(_mm_load_pd(d + l)));
+#ifdef ATTENUVIS_X86_DISPATCH
+  if constexpr (isa == Isa::avx512) sqrt16_avx512(d);
+  else if constexpr (isa == Isa::avx2) sqrt16_avx2(d);
+  else sqrt16_baseline(d);
 #else
-  for (int l = 0; l < kLanes; ++l) d[l] = std::sqrt(d[l]);
+  sqrt16_baseline(d);
 #endif
   alignas(64) double gap[kLanes], ratio[kLanes];
   for (int l = 0; l < kLanes; ++l) {
@@ -70,13 +98,15 @@ void build_packet(double ox, double oy, double oz, const double* px, const doubl
     p.visible[l] = (candidate & close) ? 1.0 : 0.0;
     t_near[l] = is_cast ? ratio[l] : 0.0;
   }
-  double n_cast = 0, n_coincident = 0;
+  double n_cast = 0, n_coincident = 0, n_visible = 0;
   for (int l = 0; l < kLanes; ++l) {
     n_cast += cast[l];
     n_coincident += coincident[l];
+    n_visible += p.visible[l];
   }
   p.cast = static_cast<int>(n_cast);
   p.coincident = static_cast<int>(n_coincident);
+  p.visible_count = static_cast<int>(n_visible);
   const float fx = static_cast<float>(ox), fy = static_cast<float>(oy), fz = static_cast<float>(oz);
   // Idle lanes get a valid unit ray so that Embree's ray checks never see a
   // zero direction, whatever it does with masked lanes.
@@ -100,10 +130,49 @@ void build_packet(double ox, double oy, double oz, const double* px, const doubl
   }
 }
 
+using BuildFunction = void (*)(double, double, double, const double*, const double*, const double*, int, double,
+                              PairPacket&);
+#ifdef ATTENUVIS_X86_DISPATCH
+__attribute__((target("avx512f"), flatten)) void build_packet_avx512(double ox, double oy, double oz, const double* px,
+                                                                    const double* py, const double* pz, int n,
+                                                                    double max_distance, PairPacket& p) {
+  build_packet_lanes<Isa::avx512>(ox, oy, oz, px, py, pz, n, max_distance, p);
+}
+__attribute__((target("avx2"), flatten)) void build_packet_avx2(double ox, double oy, double oz, const double* px,
+                                                                const double* py, const double* pz, int n,
+                                                                double max_distance, PairPacket& p) {
+  build_packet_lanes<Isa::avx2>(ox, oy, oz, px, py, pz, n, max_distance, p);
+}
+#endif
+__attribute__((flatten)) void build_packet_baseline(double ox, double oy, double oz, const double* px, const double* py,
+                                                    const double* pz, int n, double max_distance, PairPacket& p) {
+  build_packet_lanes<Isa::baseline>(ox, oy, oz, px, py, pz, n, max_distance, p);
+}
+
+BuildFunction pick_build_function() {
+#ifdef ATTENUVIS_X86_DISPATCH
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f")) return build_packet_avx512;
+  if (__builtin_cpu_supports("avx2")) return build_packet_avx2;
+#endif
+  return build_packet_baseline;
+}
+}  // namespace
+
+void build_packet(double ox, double oy, double oz, const double* px, const double* py, const double* pz, int n,
+                  double max_distance, PairPacket& p) {
+  static const BuildFunction chosen = pick_build_function();
+  chosen(ox, oy, oz, px, py, pz, n, max_distance, p);
+}
+
 ATTENUVIS_LANE_CLONES
 void resolve_packet(PairPacket& p) {
-  for (int l = 0; l < kLanes; ++l)
+  double n_visible = 0;
+  for (int l = 0; l < kLanes; ++l) {
     p.visible[l] = p.valid[l] ? (p.ray.tfar[l] >= 0.0f ? 1.0 : 0.0) : p.visible[l];
+    n_visible += p.visible[l];
+  }
+  p.visible_count = static_cast<int>(n_visible);
 }
 
 ATTENUVIS_LANE_CLONES

@@ -25,6 +25,7 @@ struct PairPacket {
   alignas(64) double visible[kLanes];     // 1.0 or 0.0 (final after resolve_packet)
   int cast = 0;                           // lanes cast
   int coincident = 0;                     // lanes with d < kCoincident
+  int visible_count = 0;                  // lanes with visible = 1 (final after resolve_packet)
 };
 
 // Lanes l < n take partners (px[l], py[l], pz[l]) against the origin
@@ -35,7 +36,8 @@ void build_packet(double ox, double oy, double oz, const double* px, const doubl
                   double max_distance, PairPacket& packet);
 
 // After rtcOccluded16 on packet.valid/packet.ray: visible = 1 for cast lanes
-// whose ray was not occluded (Embree sets tfar = -inf when occluded).
+// whose ray was not occluded (Embree sets tfar = -inf when occluded); also
+// updates visible_count.
 void resolve_packet(PairPacket& packet);
 
 // Adds one scored packet (c_fixed, d_fixed from contrast_lanes on its

@@ -174,6 +174,9 @@ void process_row(const Pass& pass, std::size_t i, const std::uint32_t* cand, std
       rtcOccluded16(packet.valid, pass.rtc, &context, &packet.ray);
       detail::resolve_packet(packet);
     }
+    // A packet with nothing visible adds nothing: skip its scoring (most
+    // packets of an occluded scene such as the city).
+    if (packet.visible_count == 0) continue;
     detail::contrast_lanes(packet.distance, packet.visible, pass.neg_sigma.data(), K, c, d_fixed);
     detail::accumulate_packet(packet, c, d_fixed, K, n, row, credit, N, j0 + start);
     if (scatter || pass.keep_max || edges) {

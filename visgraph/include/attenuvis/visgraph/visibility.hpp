@@ -24,8 +24,9 @@
 // partners x 2^-41 in addition to the double evaluation of exp (~2 ulp).
 //
 // Pruning.  With tolerance eps > 0 and sigma_min > 0, pairs farther than
-// R = ln(1/eps)/sigma_min are never cast (candidates from a kd-tree radius
-// search).  Each skipped partner would have contributed at most
+// R = ln(1/eps)/sigma_min are never cast (all-to-all: candidates from the
+// slab x_i <= x <= x_i + R of the nodes sorted by x; with edge output or
+// targets: a kd-tree radius search).  Each skipped partner would have contributed at most
 // exp(-sigma_k R) <= eps to S_S[k], so |S_S error| <= pruned x eps, reported
 // per node (`pruned`).  Degree and distance statistics need every pair, so
 // they are reported only when no pair within max_distance is pruned.
