@@ -15,6 +15,7 @@
 #include <attenuvis/visgraph/nodes.hpp>
 #include <attenuvis/visgraph/scene.hpp>
 #include <attenuvis/visgraph/visibility.hpp>
+#include <attenuvis/validation/visgraph_benchmark.hpp>
 #endif
 
 namespace attenuvis::validation::detail {
@@ -29,18 +30,6 @@ void section_performance(Context& ctx, Section& s, const CityPerformance&) {
 
 namespace {
 namespace vg = attenuvis::visgraph;
-
-// Best of `repeats` wall times of f().
-template <class F>
-double best_seconds(int repeats, F&& f) {
-  double best = 1e300;
-  for (int r = 0; r < repeats; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    f();
-    best = std::min(best, seconds_since(t0));
-  }
-  return best;
-}
 }  // namespace
 
 void section_performance(Context& ctx, Section& s, const CityPerformance& city) {
@@ -70,19 +59,20 @@ void section_performance(Context& ctx, Section& s, const CityPerformance& city) 
       for (int th : thread_counts) {
         ctx.step("performance", "layout " + std::to_string(k) + ", " + format_number(h, 2) + " m, " +
                                     std::to_string(th) + " thread(s)");
-        vg::VisibilityOptions o;
-        o.sigmas = {0.00015, 0.0045, 0.02874311, 0.0374};  // the seed's printed sigmas: timing only
+        // Shared with the visgraph_throughput benchmark
+        // (validation/visgraph_benchmark.hpp): the seed's printed sigmas,
+        // engine and raw packets interleaved repeat by repeat.
+        ThroughputOptions o;
         o.threads = th;
-        vg::VisibilityResult res;
-        const double te = best_seconds(repeats, [&] { res = vg::all_to_all(scene, eyes, o); });
-        std::uint64_t vis_packets = 0, vis_single = 0;
-        const double tp = best_seconds(repeats, [&] { vis_packets = vg::raw_visible_pairs(scene, eyes, th, vg::RawMethod::packets16); });
-        const double ts = best_seconds(1, [&] { vis_single = vg::raw_visible_pairs(scene, eyes, th, vg::RawMethod::single_rays); });
-        const double pairs = double(res.pairs_total);
-        const bool agree = vis_packets == res.pairs_visible && vis_single == res.pairs_visible;
-        t.add_row({std::to_string(k) + " " + vg::classic_layout_name(k), h, eyes.size(), res.pairs_total, th,
+        o.repeats = repeats;
+        const Throughput m = measure_throughput(scene, eyes, o);
+        const double te = m.engine.best_s, tp = m.packets16.best_s, ts = m.single.best_s;
+        const double pairs = double(m.pairs);
+        t.add_row({std::to_string(k) + " " + vg::classic_layout_name(k), h, eyes.size(), m.pairs, th,
                    Cell(pairs / te / 1e6, 4), Cell(pairs / tp / 1e6, 4), Cell(pairs / ts / 1e6, 4), Cell(tp / te, 3),
-                   agree ? "yes" : "NO (" + std::to_string(res.pairs_visible) + " vs " + std::to_string(vis_packets) + ")"});
+                   m.visible_agree() ? "yes"
+                                     : "NO (" + std::to_string(m.visible_engine) + " vs " +
+                                           std::to_string(m.visible_packets16) + ")"});
         worst_ratio = std::min(worst_ratio, tp / te);
         best_rate = std::max(best_rate, pairs / te);
       }
