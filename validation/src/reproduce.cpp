@@ -223,6 +223,25 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
     report.sections.push_back(std::move(s));
   }
 
+  // The closing note opens with the count of what reproduces and what does
+  // not; the lines themselves (with the reasons) come from the sections.
+  {
+    std::size_t agree = 0, disagree = 0, missing = 0;
+    for (const auto& p : report.closing) {
+      if (p.kind == "agree") ++agree;
+      else if (p.kind == "disagree") ++disagree;
+      else if (p.kind == "missing") ++missing;
+    }
+    report.closing.insert(report.closing.begin(),
+                          Paragraph{"text", "Of the " + std::to_string(agree + disagree + missing) +
+                                                " checks below, " + std::to_string(agree) + " agree, " +
+                                                std::to_string(disagree) + " differ (each with its reason) and " +
+                                                std::to_string(missing) + " could not be made in this build."});
+    report.key["closing.agree"] = static_cast<double>(agree);
+    report.key["closing.differ"] = static_cast<double>(disagree);
+    report.key["closing.missing"] = static_cast<double>(missing);
+  }
+
   if (options.figures) draw_figures(report, staging.string(), &progress);
 
   ReproduceResult result;
@@ -247,6 +266,7 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
                              format_number(s.seconds, 3) + " s)");
     for (const auto& line : s.summary) result.summary.push_back("  " + line);
   }
+  result.summary.push_back("closing note: " + report.closing.front().text);
 
   write_key_json(report, (staging / "key.json").string());
   if (options.figures) write_report_html(report, (staging / "report.html").string());
