@@ -10,7 +10,7 @@
 //   * issue 2's accuracy requirement (1e-10) and the published Mie tables.
 // No number computed by attenuvis is pasted in as an expected value.
 //
-// The quick run takes tens of seconds on 2 cores: tagged [slow] (Release CI only).
+// The quick run takes over 30 s on 2 cores: tagged [slow] (Release CI only).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -101,178 +101,182 @@ std::vector<std::map<std::string, std::string>> read_csv(const fs::path& p) {
 
 }  // namespace
 
-TEST_CASE("reproduce --quick: finishes and writes report.html, its figures and tables", "[validation][slow]") {
-  const QuickRun& r = quick_run();
-  INFO("attenuvis reproduce --quick output:\n" << r.log);
-  REQUIRE(r.status == 0);
-  REQUIRE(fs::exists(r.dir / "report.html"));
-  REQUIRE(fs::exists(r.dir / "key.json"));
-  // Nothing left of the staging directory.
-  for (const auto& e : fs::directory_iterator(r.dir))
-    CHECK(e.path().filename().string().rfind(".reproduce-staging", 0) != 0);
-  // Every PNG and CSV the page links to exists and is not empty, and every
-  // section is there and available (no "not available in this build").
-  const std::string html = slurp(r.dir / "report.html");
-  std::set<std::string> linked;
-  const std::regex ref(R"re((?:src|href)="([^"#]+\.(?:png|csv))")re");
-  for (auto it = std::sregex_iterator(html.begin(), html.end(), ref); it != std::sregex_iterator(); ++it)
-    linked.insert((*it)[1]);
-  std::size_t pngs = 0, csvs = 0;
-  for (const auto& f : linked) {
-    INFO(f);
-    CHECK(fs::exists(r.dir / f));
-    if (fs::exists(r.dir / f)) CHECK(fs::file_size(r.dir / f) > 0);
-    (f.size() > 4 && f.substr(f.size() - 4) == ".png" ? pngs : csvs)++;
-  }
-  CHECK(pngs >= 10);
-  CHECK(csvs >= 10);
-  for (const char* id : {"id=\"mie\"", "id=\"weather\"", "id=\"layouts\"", "id=\"city\"", "id=\"performance\"",
-                         "id=\"closing\""})
-    CHECK(html.find(id) != std::string::npos);
-  CHECK(html.find("not available in this build") == std::string::npos);
-  CHECK(r.log.find("MISSING") == std::string::npos);
-}
-
-TEST_CASE("reproduce --quick: the seed's sigma table at 550 nm", "[validation][slow]") {
-  REQUIRE(quick_run().status == 0);
-  // Seed paper, Sec. Results / Visibility Graph Case: clear weather sigma = 0.00015 1/m,
-  // the same in both conventions (no power law involved).
-  CHECK(key("weather.sigma.clear.itu") == Approx(0.00015).epsilon(1e-12));
-  CHECK(key("weather.sigma.clear.seed") == Approx(0.00015).epsilon(1e-12));
-
-  // Seed paper, Sec. Results, text of Fig. vg_weather: rain sigma = 0.0045 and snow
-  // sigma = 0.0374, printed to 2 and 3 significant digits; the seed reads P.1817-1's
-  // power laws as 1/km ("seed" convention), so these must match to half a unit of
-  // the last printed digit there, and the "itu" reading (dB/km) must be exactly
-  // ln(10)/10 of it (1 dB/km = ln(10)/10 1/km).
-  const double half_unit_rain = 0.00005, half_unit_snow = 0.00005;
-  CHECK(std::abs(key("weather.sigma.rain_8.seed") - 0.0045) <= half_unit_rain);
-  CHECK(std::abs(key("weather.sigma.snow_dry_4.seed") - 0.0374) <= half_unit_snow);
-  const double db = std::log(10.0) / 10.0;
-  CHECK(key("weather.sigma.rain_8.itu") == Approx(key("weather.sigma.rain_8.seed") * db).epsilon(1e-9));
-  CHECK(key("weather.sigma.snow_dry_4.itu") == Approx(key("weather.sigma.snow_dry_4.seed") * db).epsilon(1e-9));
-
-  // Seed paper, Sec. Methodology / Fog: heavy advection fog 0.02874311 and moderate
-  // radiation fog 0.00863808 1/m at 550 nm (Mie over the P.1817-1 presets).  The
-  // seed does not say which refractive index of water it used; our value must
-  // agree within the run's own error estimate plus the spread between the water
-  // indices the report tries (table weather_fog_refractive_index: Hale & Querry,
-  // Segelstein, n' = 1.333, n' = 1.33, all computed in this run).
-  const auto variants = read_csv(quick_run().dir / "weather_fog_refractive_index.csv");
-  REQUIRE(!variants.empty());
-  struct Fog {
-    const char* tag;
-    const char* name;
-    double seed;
-  };
-  for (const Fog f : {Fog{"fog_advection", "heavy advection fog", 0.02874311},
-                      Fog{"fog_radiation", "moderate radiation fog", 0.00863808}}) {
-    const double ours = key(std::string("weather.sigma.") + f.tag + ".itu");
-    CHECK(ours == key(std::string("weather.sigma.") + f.tag + ".seed"));  // Mie: no convention
-    const double err = key(std::string("weather.sigma.") + f.tag + ".error");
-    double spread = 0;
-    int found = 0;
-    for (const auto& v : variants) {
-      if (v.at("fog") != f.name) continue;
-      spread = std::max(spread, std::abs(std::stod(v.at("sigma [1/m]")) - ours));
-      ++found;
+// One test case, so that ctest (one process per test case) runs the quick
+// reproduction once; each SECTION checks one part of its output.
+TEST_CASE("reproduce --quick: report files and key numbers", "[validation][slow]") {
+  SECTION("finishes and writes report.html, its figures and tables") {
+    const QuickRun& r = quick_run();
+    INFO("attenuvis reproduce --quick output:\n" << r.log);
+    REQUIRE(r.status == 0);
+    REQUIRE(fs::exists(r.dir / "report.html"));
+    REQUIRE(fs::exists(r.dir / "key.json"));
+    // Nothing left of the staging directory.
+    for (const auto& e : fs::directory_iterator(r.dir))
+      CHECK(e.path().filename().string().rfind(".reproduce-staging", 0) != 0);
+    // Every PNG and CSV the page links to exists and is not empty, and every
+    // section is there and available (no "not available in this build").
+    const std::string html = slurp(r.dir / "report.html");
+    std::set<std::string> linked;
+    const std::regex ref(R"re((?:src|href)="([^"#]+\.(?:png|csv))")re");
+    for (auto it = std::sregex_iterator(html.begin(), html.end(), ref); it != std::sregex_iterator(); ++it)
+      linked.insert((*it)[1]);
+    std::size_t pngs = 0, csvs = 0;
+    for (const auto& f : linked) {
+      INFO(f);
+      CHECK(fs::exists(r.dir / f));
+      if (fs::exists(r.dir / f)) CHECK(fs::file_size(r.dir / f) > 0);
+      (f.size() > 4 && f.substr(f.size() - 4) == ".png" ? pngs : csvs)++;
     }
-    INFO(f.name << ": ours " << ours << ", seed " << f.seed << ", error estimate " << err << ", index spread "
-                << spread);
-    CHECK(found >= 3);
-    CHECK(err < 1e-3 * ours);                 // the estimate itself must be small
-    CHECK(spread < 1e-2 * ours);              // and so must the index question
-    CHECK(std::abs(ours - f.seed) <= err + spread);
+    CHECK(pngs >= 10);
+    CHECK(csvs >= 10);
+    for (const char* id : {"id=\"mie\"", "id=\"weather\"", "id=\"layouts\"", "id=\"city\"", "id=\"performance\"",
+                           "id=\"closing\""})
+      CHECK(html.find(id) != std::string::npos);
+    CHECK(html.find("not available in this build") == std::string::npos);
+    CHECK(r.log.find("MISSING") == std::string::npos);
   }
-}
 
-TEST_CASE("reproduce --quick: the five layouts' node counts and degree statistics", "[validation][slow]") {
-  REQUIRE(quick_run().status == 0);
-  // Issue 4: 2500 cells of 1 m^2 minus each layout's obstacle footprint.
-  const double nodes[5] = {2424, 2000, 2400, 2000, 2460};
-  // Longest sight line in a 50 m x 50 m square: 50 sqrt(2) m (plus nothing in z:
-  // all eyes at 1.7 m), so every visible pair has C >= exp(-sigma * 50 sqrt 2).
-  const double longest = 50 * std::sqrt(2.0);
-  const double sigma_clear = key("weather.sigma.clear.itu");
-  for (int i = 0; i < 5; ++i) {
-    const std::string p = "layouts." + std::to_string(i) + ".";
-    INFO("layout " << i);
-    CHECK(key(p + "nodes") == nodes[i]);
-    const double dmin = key(p + "degree_min"), dmax = key(p + "degree_max"), dmean = key(p + "degree_mean");
-    CHECK(dmin >= 1);
-    CHECK(dmax <= nodes[i] - 1);
-    CHECK(dmin <= dmean);
-    CHECK(dmean <= dmax);
-    // Handshake lemma: edges = sum of degrees / 2 = mean * nodes / 2, an integer.
-    const double edges = key(p + "edges");
-    CHECK(edges == Approx(dmean * nodes[i] / 2).epsilon(1e-12));
-    CHECK(edges == std::floor(edges));
-    // S_S <= degree at every node, in every condition (C <= 1).
-    CHECK(key(p + "ss_above_degree") == 0);
-    // Clear weather: degree * exp(-sigma d_max) <= S_S <= degree, node by node,
-    // hence for the extremes too.
-    const double smin = key(p + "ss_clear_min"), smax = key(p + "ss_clear_max");
-    CHECK(smax <= dmax);
-    CHECK(smin <= dmin);
-    CHECK(smax >= dmax * std::exp(-sigma_clear * longest));
-    CHECK(smin >= dmin * std::exp(-sigma_clear * longest));
-    // S_S decreases with sigma at every node, so its max and min do too.
-    double last_max = smax, last_min = smin;
-    for (const char* tag : {"rain8_itu", "rain8_seed", "snowdry4_seed"}) {
-      if (!quick_run().key.contains(p + "ss_" + tag + "_max")) continue;
-      INFO(tag);
-      const double mx = key(p + "ss_" + std::string(tag) + "_max"), mn = key(p + "ss_" + std::string(tag) + "_min");
-      CHECK(mx <= last_max);
-      CHECK(mn <= last_min);
-      last_max = mx, last_min = mn;
+  SECTION("the seed's sigma table at 550 nm") {
+    REQUIRE(quick_run().status == 0);
+    // Seed paper, Sec. Results / Visibility Graph Case: clear weather sigma = 0.00015 1/m,
+    // the same in both conventions (no power law involved).
+    CHECK(key("weather.sigma.clear.itu") == Approx(0.00015).epsilon(1e-12));
+    CHECK(key("weather.sigma.clear.seed") == Approx(0.00015).epsilon(1e-12));
+
+    // Seed paper, Sec. Results, text of Fig. vg_weather: rain sigma = 0.0045 and snow
+    // sigma = 0.0374, printed to 2 and 3 significant digits; the seed reads P.1817-1's
+    // power laws as 1/km ("seed" convention), so these must match to half a unit of
+    // the last printed digit there, and the "itu" reading (dB/km) must be exactly
+    // ln(10)/10 of it (1 dB/km = ln(10)/10 1/km).
+    const double half_unit_rain = 0.00005, half_unit_snow = 0.00005;
+    CHECK(std::abs(key("weather.sigma.rain_8.seed") - 0.0045) <= half_unit_rain);
+    CHECK(std::abs(key("weather.sigma.snow_dry_4.seed") - 0.0374) <= half_unit_snow);
+    const double db = std::log(10.0) / 10.0;
+    CHECK(key("weather.sigma.rain_8.itu") == Approx(key("weather.sigma.rain_8.seed") * db).epsilon(1e-9));
+    CHECK(key("weather.sigma.snow_dry_4.itu") == Approx(key("weather.sigma.snow_dry_4.seed") * db).epsilon(1e-9));
+
+    // Seed paper, Sec. Methodology / Fog: heavy advection fog 0.02874311 and moderate
+    // radiation fog 0.00863808 1/m at 550 nm (Mie over the P.1817-1 presets).  The
+    // seed does not say which refractive index of water it used; our value must
+    // agree within the run's own error estimate plus the spread between the water
+    // indices the report tries (table weather_fog_refractive_index: Hale & Querry,
+    // Segelstein, n' = 1.333, n' = 1.33, all computed in this run).
+    const auto variants = read_csv(quick_run().dir / "weather_fog_refractive_index.csv");
+    REQUIRE(!variants.empty());
+    struct Fog {
+      const char* tag;
+      const char* name;
+      double seed;
+    };
+    for (const Fog f : {Fog{"fog_advection", "heavy advection fog", 0.02874311},
+                        Fog{"fog_radiation", "moderate radiation fog", 0.00863808}}) {
+      const double ours = key(std::string("weather.sigma.") + f.tag + ".itu");
+      CHECK(ours == key(std::string("weather.sigma.") + f.tag + ".seed"));  // Mie: no convention
+      const double err = key(std::string("weather.sigma.") + f.tag + ".error");
+      double spread = 0;
+      int found = 0;
+      for (const auto& v : variants) {
+        if (v.at("fog") != f.name) continue;
+        spread = std::max(spread, std::abs(std::stod(v.at("sigma [1/m]")) - ours));
+        ++found;
+      }
+      INFO(f.name << ": ours " << ours << ", seed " << f.seed << ", error estimate " << err << ", index spread "
+                  << spread);
+      CHECK(found >= 3);
+      CHECK(err < 1e-3 * ours);                 // the estimate itself must be small
+      CHECK(spread < 1e-2 * ours);              // and so must the index question
+      CHECK(std::abs(ours - f.seed) <= err + spread);
     }
   }
-  // Seed paper, caption of Fig. count: the third layout (single block) has the most connections.
-  CHECK(key("layouts.most_edges_index") == 2);
-}
 
-TEST_CASE("reproduce --quick: city points and the two S_A definitions", "[validation][slow]") {
-  REQUIRE(quick_run().status == 0);
-  const double n = key("city.nodes");
-  CHECK(n > 1000);
-  // The report's rule: P1 is the corner at the central junction with the lowest
-  // clear S_S, P2 the one with the highest, so S_S(P1) <= S_S(P2) in clear weather.
-  CHECK(key("city.P1.clear.ss") <= key("city.P2.clear.ss"));
-  for (const char* p : {"P1", "P2", "P3"}) {
-    INFO(p);
-    const std::string k = std::string("city.") + p;
-    const double deg = key(k + ".degree");
-    for (const char* c : {"clear", "snowdry4_itu", "snowdry4_seed"}) {
-      INFO(c);
-      const double ss = key(k + "." + c + ".ss");
-      CHECK(ss <= deg);
-      CHECK(key(k + "." + c + ".sa_degree") == Approx(ss / deg).epsilon(1e-12));
-      CHECK(key(k + "." + c + ".sa_all") == Approx(ss / n).epsilon(1e-12));
+  SECTION("the five layouts' node counts and degree statistics") {
+    REQUIRE(quick_run().status == 0);
+    // Issue 4: 2500 cells of 1 m^2 minus each layout's obstacle footprint.
+    const double nodes[5] = {2424, 2000, 2400, 2000, 2460};
+    // Longest sight line in a 50 m x 50 m square: 50 sqrt(2) m (plus nothing in z:
+    // all eyes at 1.7 m), so every visible pair has C >= exp(-sigma * 50 sqrt 2).
+    const double longest = 50 * std::sqrt(2.0);
+    const double sigma_clear = key("weather.sigma.clear.itu");
+    for (int i = 0; i < 5; ++i) {
+      const std::string p = "layouts." + std::to_string(i) + ".";
+      INFO("layout " << i);
+      CHECK(key(p + "nodes") == nodes[i]);
+      const double dmin = key(p + "degree_min"), dmax = key(p + "degree_max"), dmean = key(p + "degree_mean");
+      CHECK(dmin >= 1);
+      CHECK(dmax <= nodes[i] - 1);
+      CHECK(dmin <= dmean);
+      CHECK(dmean <= dmax);
+      // Handshake lemma: edges = sum of degrees / 2 = mean * nodes / 2, an integer.
+      const double edges = key(p + "edges");
+      CHECK(edges == Approx(dmean * nodes[i] / 2).epsilon(1e-12));
+      CHECK(edges == std::floor(edges));
+      // S_S <= degree at every node, in every condition (C <= 1).
+      CHECK(key(p + "ss_above_degree") == 0);
+      // Clear weather: degree * exp(-sigma d_max) <= S_S <= degree, node by node,
+      // hence for the extremes too.
+      const double smin = key(p + "ss_clear_min"), smax = key(p + "ss_clear_max");
+      CHECK(smax <= dmax);
+      CHECK(smin <= dmin);
+      CHECK(smax >= dmax * std::exp(-sigma_clear * longest));
+      CHECK(smin >= dmin * std::exp(-sigma_clear * longest));
+      // S_S decreases with sigma at every node, so its max and min do too.
+      double last_max = smax, last_min = smin;
+      // sigma: clear 0.00015 < rain 8 (itu) < rain 8 (seed) < dry snow 4 (seed).
+      for (const char* tag : {"rain8_itu", "rain8_seed", "snowdry4_seed"}) {
+        INFO(tag);
+        const double mx = key(p + "ss_" + std::string(tag) + "_max"), mn = key(p + "ss_" + std::string(tag) + "_min");
+        CHECK(mx <= last_max);
+        CHECK(mn <= last_min);
+        last_max = mx, last_min = mn;
+      }
     }
-    CHECK(key(k + ".snowdry4_seed.ss") < key(k + ".snowdry4_itu.ss"));  // seed's sigma is 4.34x larger
-    CHECK(key(k + ".snowdry4_itu.ss") < key(k + ".clear.ss"));
+    // Seed paper, caption of Fig. count: the third layout (single block) has the most connections.
+    CHECK(key("layouts.most_edges_index") == 2);
   }
-  // The seed's conclusion (P3 best in clear, P1 beats P3 in snow), as the report
-  // evaluates it, is consistent with the S_S values it reports, in both conventions.
-  for (const char* conv : {"itu", "seed"}) {
-    INFO(conv);
-    const bool clear_p3 = key("city.P3.clear.ss") > key("city.P1.clear.ss");
-    const bool snow_p1 = key(std::string("city.P1.snowdry4_") + conv + ".ss") >
-                         key(std::string("city.P3.snowdry4_") + conv + ".ss");
-    CHECK(key(std::string("city.conclusion_survives.") + conv) == ((clear_p3 && snow_p1) ? 1 : 0));
-  }
-}
 
-TEST_CASE("reproduce --quick: Mie validation numbers", "[validation][slow]") {
-  REQUIRE(quick_run().status == 0);
-  // Published tables (tests/data/mie/*.csv): MIEV0 19 cases x (5 + 7 angles x 2),
-  // Wiscombe 1979 8 x 4 + 2 x 37 x 2, Bohren & Huffman 3 + 21 x 4, Du 2004 13 x 2 twice.
-  CHECK(key("mie.published.entries") == 19 * 5 + 19 * 7 * 2 + 8 * 4 + 2 * 37 * 2 + 3 + 21 * 4 + 13 * 2 + 13 * 2);
-  CHECK(key("mie.published.unexplained") == 0);
-  CHECK(key("mie.published.within_digits") + key("mie.published.documented") == key("mie.published.entries"));
-  // Issue 2: double within 1e-10 of the 50-digit referee everywhere on the map.
-  CHECK(key("mie.map.cells") >= 20);
-  CHECK(key("mie.map.cells_above_1e-10") == 0);
-  CHECK(key("mie.map.max_error") <= 1e-10);
-  CHECK(key("mie.time.max_error.default") <= 1e-10);
+  SECTION("city points and the two S_A definitions") {
+    REQUIRE(quick_run().status == 0);
+    const double n = key("city.nodes");
+    CHECK(n > 1000);
+    // The report's rule: P1 is the corner at the central junction with the lowest
+    // clear S_S, P2 the one with the highest, so S_S(P1) <= S_S(P2) in clear weather.
+    CHECK(key("city.P1.clear.ss") <= key("city.P2.clear.ss"));
+    for (const char* p : {"P1", "P2", "P3"}) {
+      INFO(p);
+      const std::string k = std::string("city.") + p;
+      const double deg = key(k + ".degree");
+      for (const char* c : {"clear", "snowdry4_itu", "snowdry4_seed"}) {
+        INFO(c);
+        const double ss = key(k + "." + c + ".ss");
+        CHECK(ss <= deg);
+        CHECK(key(k + "." + c + ".sa_degree") == Approx(ss / deg).epsilon(1e-12));
+        CHECK(key(k + "." + c + ".sa_all") == Approx(ss / n).epsilon(1e-12));
+      }
+      CHECK(key(k + ".snowdry4_seed.ss") < key(k + ".snowdry4_itu.ss"));  // seed's sigma is 4.34x larger
+      CHECK(key(k + ".snowdry4_itu.ss") < key(k + ".clear.ss"));
+    }
+    // The seed's conclusion (P3 best in clear, P1 beats P3 in snow), as the report
+    // evaluates it, is consistent with the S_S values it reports, in both conventions.
+    for (const char* conv : {"itu", "seed"}) {
+      INFO(conv);
+      const bool clear_p3 = key("city.P3.clear.ss") > key("city.P1.clear.ss");
+      const bool snow_p1 = key(std::string("city.P1.snowdry4_") + conv + ".ss") >
+                           key(std::string("city.P3.snowdry4_") + conv + ".ss");
+      CHECK(key(std::string("city.conclusion_survives.") + conv) == ((clear_p3 && snow_p1) ? 1 : 0));
+    }
+  }
+
+  SECTION("Mie validation numbers") {
+    REQUIRE(quick_run().status == 0);
+    // Published tables (tests/data/mie/*.csv): MIEV0 19 cases x (5 + 7 angles x 2),
+    // Wiscombe 1979 8 x 4 + 2 x 37 x 2, Bohren & Huffman 3 + 21 x 4, Du 2004 13 x 2 twice.
+    CHECK(key("mie.published.entries") == 19 * 5 + 19 * 7 * 2 + 8 * 4 + 2 * 37 * 2 + 3 + 21 * 4 + 13 * 2 + 13 * 2);
+    CHECK(key("mie.published.unexplained") == 0);
+    CHECK(key("mie.published.within_digits") + key("mie.published.documented") == key("mie.published.entries"));
+    // Issue 2: double within 1e-10 of the 50-digit referee everywhere on the map.
+    CHECK(key("mie.map.cells") >= 20);
+    CHECK(key("mie.map.cells_above_1e-10") == 0);
+    CHECK(key("mie.map.max_error") <= 1e-10);
+    CHECK(key("mie.time.max_error.default") <= 1e-10);
+  }
 }
