@@ -53,12 +53,13 @@ BulkOptics condition_bulk_optics(const Condition& c, const Settings& s) {
   q.rel_tolerance = s.rel_tolerance;
   if (c.kind == ConditionKind::rain_mie) {
     // Rain's error is dominated by the large-x bound (~5e-3 relative), so the
-    // resonance floor can be 10x coarser than for fog without changing it.
+    // resonances need not be refined below 1e-3 of sigma.
     q.asymptotic_x = s.rain_asymptotic_x;
-    q.resonance_x_span = 1.0;
+    q.resonance_tolerance = 1e-3;
     q.max_evaluations = 1000000;
   }
-  return bulk_optics(condition_distribution(c), s.wavelength_m, condition_refractive_index(c, s), q);
+  auto m = condition_refractive_index(c, s);
+  return integrate_bulk_optics(condition_distribution(c), s.wavelength_m, mie_efficiencies(m), q, m);
 }
 
 Sigma sigma(const Condition& c, const Settings& s) {
