@@ -1,12 +1,16 @@
-// Benchmark of attenuvis::weather: sigma of advection fog at 550 nm (one core),
-// an 81-wavelength x 4-condition table (2 threads), and the quadrature
-// error-vs-time table.  Speeds are printed as ratios to a baseline measured in
-// this run: one Lorenz-Mie evaluation at x = 100 (attenuvis::mie::sphere).
+// Benchmark of attenuvis::weather: sigma of heavy advection fog at 550 nm on
+// one core (default settings and tolerances 1e-6 / 1e-9), the cost floor of
+// sampling Q_ext's ripple, an 81-wavelength x 4-condition table on 2 threads,
+// and the quadrature error-vs-time table.  Speeds are printed as ratios to a
+// baseline measured in this run: one Lorenz-Mie evaluation at x = 100
+// (attenuvis::mie::sphere, its default precision).
 // Usage: weather_speed [tradeoff.csv]   (writes the trade-off table there)
 #include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+
+#include <tbb/global_control.h>
 
 #include "attenuvis/mie.hpp"
 #include "attenuvis/weather.hpp"
@@ -25,6 +29,14 @@ double best_seconds(F&& f, int repeats) {
   return best;
 }
 
+void print_fog(const char* label, const w::BulkOptics& b, double seconds, double mie_s) {
+  const auto& e = b.extinction;
+  std::printf("  %-34s sigma = %.9f +- %.2e 1/m (%.1e relative; quadrature %.1e, tails %.1e, resonance %.1e), "
+              "%zu Mie evaluations, x <= %.0f, %.3f s = %.0f baseline units (target 10 ms = %.0f units)\n",
+              label, e.value, e.error(), e.error() / e.value, e.quadrature_error, e.tail_error, e.resonance_error,
+              b.evaluations, b.max_size_parameter, seconds, seconds / mie_s, 0.010 / mie_s);
+}
+
 int main(int argc, char** argv) {
   std::complex<double> m = w::refractive_index_table("water").at(550e-9);
   double mie_s = best_seconds([&] {
@@ -33,15 +45,52 @@ int main(int argc, char** argv) {
   }, 3) / 1000;
   std::printf("baseline: one Mie evaluation at x = 100: %.2f us\n", mie_s * 1e6);
 
-  for (double tol : {1e-6, 1e-9}) {
-    w::QuadratureSettings s;
-    s.rel_tolerance = tol;
-    w::BulkOptics b;
-    double t = best_seconds([&] { b = w::bulk_optics(w::preset_distribution("advection"), 550e-9, m, s); }, 1);
-    std::printf("advection fog 550 nm, tol %g: sigma = %.10f +- %.2e 1/m (quadrature %.1e, tails %.1e, resonance %.1e), "
-                "%zu evaluations, %.3f s = %.0f Mie-baseline units (target 10 ms)\n",
-                tol, b.extinction.value, b.extinction.error(), b.extinction.quadrature_error, b.extinction.tail_error,
-                b.extinction.resonance_error, b.evaluations, t, t / mie_s);
+  const auto advection = w::parse_condition("fog:advection");
+  {
+    // One core: the single-sigma figure must not borrow the second core.
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    std::printf("heavy advection fog at 550 nm, one core (what `attenuvis sigma fog:advection` computes; "
+                "Hale & Querry m = %.4f+%.3gi):\n", m.real(), m.imag());
+    struct Run { const char* label; double tol, resonance_tol; };
+    for (const Run& r : {Run{"default (tol 1e-9, resonance 5e-5)", 1e-9, 5e-5},
+                         Run{"tol 1e-6 (resonance 5e-5)", 1e-6, 5e-5},
+                         Run{"tol 1e-9, resonance 1e-4", 1e-9, 1e-4},
+                         Run{"tol 1e-9, resonance 1e-5", 1e-9, 1e-5}}) {
+      w::QuadratureSettings q;
+      q.rel_tolerance = r.tol;
+      q.resonance_tolerance = r.resonance_tol;
+      w::BulkOptics b;
+      auto d = w::condition_distribution(advection);
+      double t = best_seconds([&] { b = w::integrate_bulk_optics(d, 550e-9, w::mie_efficiencies(m), q, m); }, 1);
+      print_fog(r.label, b, t, mie_s);
+    }
+    {
+      // The same through sigma() at default Settings, as the CLI does.
+      w::BulkOptics b;
+      double t = best_seconds([&] { b = w::condition_bulk_optics(advection, w::Settings{}); }, 1);
+      print_fog("condition_bulk_optics (CLI path)", b, t, mie_s);
+    }
+
+    // Cost floor of any rule that samples Q_ext's ripple (period ~0.8 in x for
+    // water): Mie at 4 nodes per period (spacing 0.2) over the x range the
+    // default tail cut keeps, without any resonance resolved.
+    auto sup = w::condition_distribution(advection).support(2.0, 1e-12);
+    double k = 2 * 3.14159265358979323846 / 550e-9;
+    double xa = k * sup.breakpoints_m.front(), xb = k * sup.breakpoints_m.back();
+    auto q = w::mie_efficiencies(m);
+    std::size_t n = 0;
+    double t = best_seconds([&] {
+      volatile double s = 0;
+      n = 0;
+      for (double x = xa; x <= xb; x += 0.2, ++n) s = s + q(x).qext;
+    }, 1);
+    double t1000 = best_seconds([&] {
+      volatile double s = 0;
+      for (int i = 0; i < 200; ++i) s = s + q(1000.0 + 1e-3 * i).qext;
+    }, 1) / 200;
+    std::printf("  cost floor: %zu Mie evaluations at spacing 0.2 over %.1f < x < %.0f (tail cut 1e-12): %.3f s "
+                "= %.0f baseline units; Mie at x = 1000 costs %.3f us per unit of x\n",
+                n, xa, xb, t, t / mie_s, t1000 * 1e6 / 1000);
   }
 
   {
@@ -52,7 +101,7 @@ int main(int argc, char** argv) {
     s.rel_tolerance = 1e-6;
     double t = best_seconds([&] { w::sigma_table(conds, wl, s, 2); }, 1);
     std::printf("table %zu wavelengths x %zu conditions (clear, rain:8, snow:dry:4, fog:radiation; tol 1e-6), "
-                "2 threads: %.3f s = %.0f Mie-baseline units (target 2 s)\n",
+                "2 threads: %.3f s = %.0f baseline units (target 2 s)\n",
                 wl.size(), conds.size(), t, t / mie_s);
   }
 

@@ -25,21 +25,23 @@ std::vector<QuadratureTradeoffRow> quadrature_tradeoff(double wavelength_m, int 
     ref.rel_tolerance = 1e-11;
     ref.kronrod_points = 61;
     ref.tail_fraction = 1e-16;
-    ref.resonance_x_span = 0.01;
+    ref.resonance_tolerance = 2e-6;
     ref.max_evaluations = 4000000;
-    auto reference = bulk_optics(c.d, wavelength_m, m, ref);
+    auto q = mie_efficiencies(m);  // what the CLI uses (sigma.cpp)
+    auto reference = integrate_bulk_optics(c.d, wavelength_m, q, ref, m);
     QuadratureTradeoffRow ref_row;
     ref_row.case_name = name.str() + " (reference)";
     ref_row.rel_tolerance = ref.rel_tolerance;
     ref_row.kronrod_points = ref.kronrod_points;
     ref_row.tail_fraction = ref.tail_fraction;
     ref_row.resonance_x_span = ref.resonance_x_span;
+    ref_row.resonance_tolerance = ref.resonance_tolerance;
     ref_row.sigma_per_m = reference.extinction.value;
     ref_row.reported_quadrature_tail_error = reference.extinction.quadrature_error + reference.extinction.tail_error;
     ref_row.resonance_error = reference.extinction.resonance_error;
     ref_row.evaluations = reference.evaluations;
     rows.push_back(ref_row);
-    for (double floor : {1.0, 0.3, 0.1})
+    for (double resonance_tol : {1e-4, 5e-5, 1e-5})
       for (double tol : {1e-6, 1e-9})
         for (int order : {15, 31})
           for (double tail : {0.0, 1e-6}) {
@@ -47,19 +49,20 @@ std::vector<QuadratureTradeoffRow> quadrature_tradeoff(double wavelength_m, int 
             s.rel_tolerance = tol;
             s.kronrod_points = order;
             s.tail_fraction = tail;
-            s.resonance_x_span = floor;
+            s.resonance_tolerance = resonance_tol;
             s.max_evaluations = 2000000;
             QuadratureTradeoffRow row;
             row.case_name = name.str();
             row.rel_tolerance = tol;
             row.kronrod_points = order;
             row.tail_fraction = tail > 0 ? tail : 1e-3 * tol;
-            row.resonance_x_span = floor;
+            row.resonance_x_span = s.resonance_x_span;
+            row.resonance_tolerance = resonance_tol;
             double best = std::numeric_limits<double>::infinity();
             BulkOptics b;
             for (int r = 0; r < std::max(1, repeats); ++r) {
               auto t0 = std::chrono::steady_clock::now();
-              b = bulk_optics(c.d, wavelength_m, m, s);
+              b = integrate_bulk_optics(c.d, wavelength_m, q, s, m);
               auto t1 = std::chrono::steady_clock::now();
               best = std::min(best, std::chrono::duration<double, std::milli>(t1 - t0).count());
             }
@@ -77,12 +80,12 @@ std::vector<QuadratureTradeoffRow> quadrature_tradeoff(double wavelength_m, int 
 
 std::string quadrature_tradeoff_csv(const std::vector<QuadratureTradeoffRow>& rows) {
   std::ostringstream o;
-  o << "case,rel_tolerance,kronrod_points,tail_fraction,resonance_x_span,sigma_per_m,"
+  o << "case,rel_tolerance,kronrod_points,tail_fraction,resonance_x_span,resonance_tolerance,sigma_per_m,"
        "reported_quadrature_tail_error_per_m,resonance_error_per_m,actual_error_per_m,evaluations,milliseconds\n";
   for (const auto& r : rows) {
     o.precision(6);
     o << '"' << r.case_name << "\"," << r.rel_tolerance << "," << r.kronrod_points << "," << r.tail_fraction << ","
-      << r.resonance_x_span << ",";
+      << r.resonance_x_span << "," << r.resonance_tolerance << ",";
     o.precision(12);
     o << r.sigma_per_m << ",";
     o.precision(6);

@@ -2,13 +2,24 @@
 //
 // Nearly non-absorbing spheres (water in the visible, k ~ 2e-9) have
 // morphology-dependent resonances in Q_ext(x) whose widths (of order k x and
-// narrower) no fixed sampling resolves.  bulk_optics therefore stops splitting
-// panels at QuadratureSettings::resonance_x_span in x when Im(m) is below
-// resonance_free_k(); whatever those panels' Kronrod and Gauss sums still
-// disagree on (a resonance hit by a node shows up there) is reported as the
-// resonance error, not counted against the tolerance.  That this covers the
-// resonances the nodes missed is not proven; it is checked against brute-force
-// dense integration in tests/weather/test_resonances.cpp.
+// narrower) no fixed sampling resolves.  When Im(m) < resonance_free_k(),
+// bulk_optics treats a panel no wider than QuadratureSettings::
+// resonance_x_span (2 in x: 31 nodes over ~2.5 periods of the ~0.8 ripple)
+// as a resonance panel: what its Kronrod and Gauss sums still disagree on (a
+// resonance hit by a node shows up there) is reported as the resonance error,
+// not counted against rel_tolerance.  Resonance panels are then split until
+// that error is below resonance_tolerance x sigma_ext, in an order that does
+// not look at the sampled values (weight x width / x, bulk_optics.cpp): an
+// order driven by |K - G| splits away the nodes that hit resonances and keeps
+// those that missed theirs, biasing sigma low.  That the reported error
+// covers the resonances the nodes missed is not proven; it is checked against
+// brute-force dense integration in tests/weather/test_resonances.cpp.
+//
+// Cost floor (validation/bench/weather_speed.cpp measures it): any rule must
+// sample the ripple, a few nodes per 0.8 in x, up to the tail cut (x ~ 1600
+// for advection fog at 550 nm), and a Mie evaluation costs ~0.06-0.09 us per
+// unit of x, so the sum over nodes of Mie(x) is ~0.1-0.3 s on one core for
+// advection fog before any resonance is resolved.
 //
 // For raindrops at visible wavelengths (x up to ~1e5) Mie is replaced beyond
 // QuadratureSettings::asymptotic_x by the large-sphere expansion
