@@ -46,7 +46,7 @@ TEST_CASE("seed paper fog sigma at 550 nm", "[weather][mie][seed][slow]") {
   // check is therefore agreement to 1e-3 relative, with our error estimate below 2e-4.
   Settings s;
   s.rel_tolerance = 1e-6;
-  // (advection, ~10 s, is in the [slow] test below.)
+  // (advection, ~3 s, is in the [slow] test below.)
   for (auto [cond, seed] : {std::pair<const char*, double>{"fog:radiation", 0.00863808}}) {
     INFO(cond);
     auto r = sigma(parse_condition(cond), s);

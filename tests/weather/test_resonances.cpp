@@ -5,6 +5,8 @@
 #include <cmath>
 #include <iomanip>
 
+#include <tbb/global_control.h>
+
 #include "attenuvis/mie.hpp"
 #include "attenuvis/weather.hpp"
 
@@ -83,4 +85,25 @@ TEST_CASE("resonance floor applies only to nearly non-absorbing spheres", "[weat
   CHECK(lossy.floor_panels == 0);
   auto clear = bulk_optics(d, 550e-9, {1.333, 1.96e-9});
   CHECK(clear.floor_panels > 0);
+}
+
+TEST_CASE("panels split in parallel give the same result on any number of threads", "[weather][resonance]") {
+  // bulk_optics chooses which panels to split before evaluating their halves
+  // concurrently, so the sums, the error and the evaluation count must not
+  // depend on the thread count (bit for bit).
+  auto m = refractive_index_table("water").at(550e-9);
+  auto d = SizeDistribution::log_normal(1e8, 3e-6, 1.03);
+  BulkOptics one, two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = bulk_optics(d, 550e-9, m);
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = bulk_optics(d, 550e-9, m);
+  }
+  CHECK(one.extinction.value == two.extinction.value);
+  CHECK(one.extinction.error() == two.extinction.error());
+  CHECK(one.scattering.value == two.scattering.value);
+  CHECK(one.evaluations == two.evaluations);
 }
