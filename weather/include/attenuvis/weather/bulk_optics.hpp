@@ -19,10 +19,16 @@
 //   aliasing    on panels wider than the rule resolves (0.6 x points in x),
 //               1.5 x (sampled range of Q) x (panel's geometric cross-section)
 //               is added, since K and G can alias alike there,
-//   resonance   for nearly non-absorbing particles, what panels narrower
-//               than the resonance floor still disagree on (resonance.hpp);
-//               reported, not counted against rel_tolerance but refined
-//               (worst panel first) until below resonance_tolerance.
+//   resonance   for nearly non-absorbing particles, what panels no wider
+//               than resonance_x_span still disagree on (resonance.hpp);
+//               not counted against rel_tolerance: those panels are split
+//               in an order set by the weight alone (not by |K - G|, which
+//               would bias sigma low) until it is below resonance_tolerance
+//               x sigma_ext, the evaluation budget is spent, or they reach
+//               min_resonance_x_span; what remains is reported.
+// Panels are split a few at a time and their halves evaluated in parallel
+// (TBB, the threads the caller allows); which panels are split does not
+// depend on the thread count, so neither does the result.
 // If the quadrature part cannot be brought below the tolerance within
 // max_evaluations, or a moment diverges, the function throws
 // std::runtime_error naming the integral and the reason.
