@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "attenuvis/weather/contour_extinction.hpp"
 #include "attenuvis/weather/distribution_file.hpp"
 #include "attenuvis/weather/refractive_index.hpp"
 #include "attenuvis/weather/visibility.hpp"
@@ -126,16 +127,29 @@ Sigma sigma(const Condition& c, const Settings& s) {
         if (auto it = cache.find(key.str()); it != cache.end()) return it->second;
       }
       std::string index_source;
-      condition_refractive_index(c, s, &index_source);
-      BulkOptics b = condition_bulk_optics(c, s);
-      out.per_m = b.extinction.value;
-      out.error_per_m = b.extinction.error();
-      out.model = "Mie over " + condition_distribution(c).describe();
+      const std::complex<double> m = condition_refractive_index(c, s, &index_source);
+      const SizeDistribution d = condition_distribution(c);
+      out.model = "Mie over " + d.describe();
       std::ostringstream note;
       note.precision(3);
-      note << index_source << "; " << b.method << "; error = quadrature " << b.extinction.quadrature_error
-           << " + tails " << b.extinction.tail_error << " + unresolved resonances " << b.extinction.resonance_error;
-      if (b.extinction.asymptotic_error > 0) note << " + large-x expansion " << b.extinction.asymptotic_error;
+      // Analytic distributions within reach: integrate above the real axis,
+      // where Q_ext's resonances are smooth (contour_extinction.hpp); else on
+      // the real axis with the resonances as an error term (bulk_optics.hpp).
+      ContourSettings cs;
+      cs.rel_tolerance = s.rel_tolerance;
+      if (const auto ce = contour_extinction(d, s.wavelength_m, m, cs)) {
+        out.per_m = ce->extinction.value;
+        out.error_per_m = ce->extinction.error();
+        note << index_source << "; " << ce->method << "; error = quadrature " << ce->extinction.quadrature_error
+             << " + tails " << ce->extinction.tail_error << " + rounding " << ce->extinction.rounding_error;
+      } else {
+        BulkOptics b = condition_bulk_optics(c, s);
+        out.per_m = b.extinction.value;
+        out.error_per_m = b.extinction.error();
+        note << index_source << "; " << b.method << "; error = quadrature " << b.extinction.quadrature_error
+             << " + tails " << b.extinction.tail_error << " + unresolved resonances " << b.extinction.resonance_error;
+        if (b.extinction.asymptotic_error > 0) note << " + large-x expansion " << b.extinction.asymptotic_error;
+      }
       note << " 1/m";
       out.note = note.str();
       if (c.model.rfind("file=", 0) != 0) {

@@ -36,6 +36,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "attenuvis/mie/forward_amplitude.hpp"
+
 namespace attenuvis::mie {
 
 // Complex<Real>: the complex type that goes with a real floating type.  Other

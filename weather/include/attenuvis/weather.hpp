@@ -9,6 +9,7 @@
 
 #include "attenuvis/weather/bulk_optics.hpp"
 #include "attenuvis/weather/condition.hpp"
+#include "attenuvis/weather/contour_extinction.hpp"
 #include "attenuvis/weather/distribution_file.hpp"
 #include "attenuvis/weather/empirical_models.hpp"
 #include "attenuvis/weather/quadrature_tradeoff.hpp"

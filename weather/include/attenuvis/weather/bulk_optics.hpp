@@ -65,7 +65,8 @@ struct QuadratureSettings {
 struct IntegralEstimate {
   double value = 0;
   double quadrature_error = 0, tail_error = 0, asymptotic_error = 0, resonance_error = 0;
-  double error() const { return quadrature_error + tail_error + asymptotic_error + resonance_error; }
+  double rounding_error = 0;  // contour_extinction.hpp: cancellation of S(0) above the real axis
+  double error() const { return quadrature_error + tail_error + asymptotic_error + resonance_error + rounding_error; }
 };
 
 struct BulkOptics {

@@ -1,0 +1,76 @@
+// S(0) at complex size parameter (mie/forward_amplitude.hpp), the integrand of
+// the contour extinction integral (weather/contour_extinction.hpp).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "attenuvis/mie.hpp"
+
+using attenuvis::mie::forward_amplitude;
+
+TEST_CASE("forward amplitude at complex x: 60-digit mpmath table", "[mie][complex-x]") {
+  // tests/data/mie/forward_amplitude_mpmath.csv: validation/scripts/forward_amplitude_reference.py,
+  // mpmath at 60 digits from besselj/bessely (B&H eq. 4.53 form of a_n, b_n), an
+  // implementation independent of ours (log-derivative ratios, long double).
+  std::ifstream in(std::string(ATTENUVIS_TEST_DATA_DIR) + "/mie/forward_amplitude_mpmath.csv");
+  REQUIRE(in);
+  std::string line;
+  int rows = 0;
+  double worst = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || line[0] == 'x') continue;
+    std::istringstream s(line);
+    std::vector<double> v;
+    for (std::string cell; std::getline(s, cell, ',');) v.push_back(std::stod(cell));
+    REQUIRE(v.size() == 6);
+    const std::complex<double> x(v[0], v[1]), m(v[2], v[3]), ref(v[4], v[5]);
+    const auto fa = forward_amplitude(x, m);
+    const double err = std::abs(fa.s0 - ref);
+    // The bound the contour integral charges for rounding (contour_extinction.cpp):
+    const double bound = double(fa.terms) * std::numeric_limits<long double>::epsilon() * fa.magnitude +
+                         2 * std::numeric_limits<double>::epsilon() * std::abs(fa.s0);
+    INFO("x = " << x << ", m = " << m << ": S(0) " << fa.s0 << " vs " << ref << ", |error| " << err
+                << ", rounding bound " << bound);
+    CHECK(err <= bound);
+    CHECK(err <= 1e-13 * std::abs(ref));
+    worst = std::max(worst, err / std::abs(ref));
+    ++rows;
+  }
+  CHECK(rows == 18);
+  WARN("forward amplitude vs mpmath: max relative error " << worst << " over " << rows << " points");
+}
+
+TEST_CASE("forward amplitude on the real axis gives sphere()'s Q_ext", "[mie][complex-x]") {
+  // Optical theorem, B&H eq. 4.76: Q_ext = 4 Re S(0) / x^2; sphere() is the
+  // referee-checked product (tests/mie/test_mie_referee.cpp, 1e-10).
+  double worst = 0;
+  for (double x : {1e-3, 0.1, 1.0, 4.493409457909064, 30.0, 250.0, 1000.0, 3000.0})
+    for (std::complex<double> m : {std::complex<double>(1.333, 1.96e-9), {1.5, 0.1}, {1.01, 0.0}, {10.0, 10.0}}) {
+      const auto fa = forward_amplitude({x, 0.0}, m);
+      const double q = attenuvis::mie::sphere(x, m).qext;
+      const double rel = std::abs(4 * fa.s0.real() / (x * x) / q - 1);
+      // For small non-absorbing spheres Re S(0) ~ x^6 sits under Im S(0) ~ x^3:
+      // its relative accuracy is that of |S(0)|, which is what the contour
+      // integral charges (the rounding bound), not that of Q_ext itself.
+      const double bound = 4 / (x * x) *
+                           (double(fa.terms) * std::numeric_limits<long double>::epsilon() * fa.magnitude +
+                            2 * std::numeric_limits<double>::epsilon() * std::abs(fa.s0));
+      INFO("x = " << x << ", m = " << m << ": " << 4 * fa.s0.real() / (x * x) << " vs " << q << ", bound " << bound);
+      CHECK(std::abs(4 * fa.s0.real() / (x * x) - q) <= 1e-11 * q + bound);
+      worst = std::max(worst, rel);
+    }
+  WARN("forward amplitude vs sphere() on the real axis: max relative difference in Q_ext " << worst);
+}
+
+TEST_CASE("forward amplitude: bad arguments are rejected", "[mie][complex-x]") {
+  CHECK_THROWS_WITH(forward_amplitude({10.0, -1.0}, {1.33, 0.0}), Catch::Contains("0 <= Im x <= 20"));
+  CHECK_THROWS_AS(forward_amplitude({0.0, 1.0}, {1.33, 0.0}), std::invalid_argument);
+  CHECK_THROWS_AS(forward_amplitude({10.0, 1.0}, {1.0 + 1e-8, 0.0}), std::invalid_argument);
+  CHECK_THROWS_AS(forward_amplitude({10.0, 1.0}, {1.33, -0.1}), std::invalid_argument);
+  CHECK_THROWS_AS(forward_amplitude({std::nan(""), 1.0}, {1.33, 0.0}), std::invalid_argument);
+}
