@@ -71,13 +71,16 @@ ForwardAmplitude forward_amplitude(std::complex<double> x_in, std::complex<doubl
       t = t * detail::recip(r_psi * q);  // ψₙ/ξₙ
       const C A = dmx[n] * inv_m + n_over_x;
       const C B = m * dmx[n] + n_over_x;
-      const C a = t * ((dmx[n] * inv_m - dx[n]) / (A - r_xi));
-      const C b = t * ((m * dmx[n] - dx[n]) / (B - r_xi));
+      // (recip: one real division instead of std::complex's scaled __divxc3;
+      // nothing here comes near overflow, see lentz.hpp.)
+      const C a = t * ((dmx[n] * inv_m - dx[n]) * detail::recip(A - r_xi));
+      const C b = t * ((m * dmx[n] - dx[n]) * detail::recip(B - r_xi));
       const C term = R(2 * n + 1) * (a + b);
       sum += term;
-      magnitude += R(2 * n + 1) * (std::abs(a) + std::abs(b));
+      magnitude += R(2 * n + 1) * (std::sqrt(detail::norm2(a)) + std::sqrt(detail::norm2(b)));
       // Converged once past |x| and two terms in a row are below the last bit.
-      if (R(n) > ax && std::abs(term) <= std::numeric_limits<R>::epsilon() * std::abs(sum)) {
+      const R eps = std::numeric_limits<R>::epsilon();
+      if (R(n) > ax && detail::norm2(term) <= eps * eps * detail::norm2(sum)) {
         if (++quiet == 2) {
           ForwardAmplitude out;
           out.s0 = std::complex<double>(static_cast<double>(sum.real() / 2), static_cast<double>(sum.imag() / 2));

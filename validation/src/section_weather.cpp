@@ -379,10 +379,12 @@ void quadrature(Context& ctx, Section& s) {
   ctx.step("weather", "quadrature error against run time");
   const auto rows = wx::quadrature_tradeoff(550e-9, 1);
   Table t{"weather_quadrature_tradeoff",
-          "Quadrature error against run time (fog presets at 550 nm): reported vs actual error, one call",
+          "Quadrature error against run time (fog presets and a narrow log-normal at 550 nm): reported vs actual error, one call",
           {"case", "rel. tolerance", "Gauss-Kronrod points", "tail fraction", "sigma [1/m]", "reported error",
            "actual error", "resonance term", "evaluations", "time [ms]"}, {},
-          "Reference: the same integral at tolerance 1e-13, G-K 61, tail 1e-16 (weather/quadrature_tradeoff.hpp)."};
+          "Reference: the contour integral above the real axis (weather/contour_extinction.hpp) at tolerance 1e-12, "
+          "tail 1e-16. 'contour' rows: what sigma() uses; 'real axis' rows: bulk_optics.hpp, whose resonance term "
+          "bounds what it cannot resolve (weather/quadrature_tradeoff.hpp)."};
   std::size_t bounded = 0;
   for (const auto& r : rows) {
     t.add_row({r.case_name, Cell(r.rel_tolerance, 2), r.kronrod_points, Cell(r.tail_fraction, 2), Cell(r.sigma_per_m, 10),

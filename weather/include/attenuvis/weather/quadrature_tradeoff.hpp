@@ -17,19 +17,19 @@ struct QuadratureTradeoffRow {
   double resonance_tolerance = 0;  // resonance panels refined until their error is below this x sigma
   double sigma_per_m = 0;
   double reported_quadrature_tail_error = 0;  // what the integrator claims (quadrature + tails)
-  double actual_error = 0;    // |sigma - reference|; reference: tol 1e-11, G-K 61, tail 1e-16, resonance 2e-6
+  double actual_error = 0;    // |sigma - reference|; reference: contour integral, tol 1e-12, tail 1e-16
   double resonance_error = 0; // the separate unresolved-resonance term
   std::size_t evaluations = 0;
   double milliseconds = 0;    // wall time of one call, best of `repeats`
 };
 
-// Moderate radiation fog and a narrow log-normal (r_g = 3 um, sigma_g = 1.03) at
-// `wavelength_m` (Hale & Querry water, the CLI's Mie: mie_efficiencies) over a
-// grid of tolerances x Gauss-Kronrod orders x tail cuts x resonance tolerances.
-// The reference is the same integral at tolerance 1e-11, G-K 61, tail 1e-16,
-// resonance tolerance 2e-6 (its own resonance error is printed in its row: an
-// actual error below it is not resolved by the reference).  Advection fog is
-// left out (each row takes seconds); the benchmark times it separately.
+// Moderate radiation fog, a narrow log-normal (r_g = 3 um, sigma_g = 1.03) and
+// heavy advection fog at `wavelength_m` (Hale & Querry water): the contour rule
+// (contour_extinction.hpp, what sigma() uses) at heights 2, 4, 6 and tolerances
+// 1e-6, 1e-9, 1e-12, and -- except for advection fog, where each row takes
+// seconds -- the real-axis rule (bulk_optics.hpp) over tolerances x Gauss-
+// Kronrod orders x tail cuts x resonance tolerances.  The reference is the
+// contour integral at tolerance 1e-12 and tail 1e-16 (its error is in its row).
 std::vector<QuadratureTradeoffRow> quadrature_tradeoff(double wavelength_m = 550e-9, int repeats = 3);
 std::string quadrature_tradeoff_csv(const std::vector<QuadratureTradeoffRow>& rows);
 
