@@ -11,8 +11,8 @@
 // exact, so independent of thread count and schedule.
 //
 // Partners of a row:
-//  - exact runs: all j > i (all-to-all) or every target, as contiguous
-//    ranges (no index lists);
+//  - exact runs: all j > i (all-to-all, in x order: see x_order below) or
+//    every target, as contiguous ranges (no index lists);
 //  - all-to-all with a finite radius (pruning or --max-distance) and no edge
 //    output: nodes are sorted by x once; the partners of row r within the
 //    radius lie in the slab x_r <= x <= x_r + R after it, filtered by exact
@@ -233,14 +233,19 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
   // plus 1e-6 m) so that no pair within it is missed by rounding;
   // build_packet then applies "d <= max_distance" exactly.
   const double radius_sq = radius * radius * (1 + 1e-9) + 1e-12;
-  const bool slab = symmetric && std::isfinite(radius) && !options.edge_sink;
+  // All-to-all without edge output works on the nodes sorted by x, exact runs
+  // too: every pair is then cast from the same end (the earlier in x order)
+  // with the same float ray whether or not the run prunes, so a grazing sight
+  // line cannot be decided one way in the exact run and the other way in a
+  // pruned one (Embree's answer for a segment depends on its direction at
+  // edge-on hits).  Results are mapped back to the caller's order below.
+  const bool x_order = symmetric && !options.edge_sink;
+  const bool slab = x_order && std::isfinite(radius);
   const bool use_tree = std::isfinite(radius) && !slab;
-
-  // Slab mode works on the nodes sorted by x; results are mapped back below.
   std::vector<std::uint32_t> order;
   Points sorted;
-  if (slab) sorted = sorted_by_x(given_sources, order);
-  const Points& sources = slab ? sorted : given_sources;
+  if (x_order) sorted = sorted_by_x(given_sources, order);
+  const Points& sources = x_order ? sorted : given_sources;
 
   Pass pass;
   pass.rtc = static_cast<RTCScene>(scene.embree_scene());
@@ -347,7 +352,7 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
     result.pairs_visible += ts.visible;
     result.coincident_pairs += ts.coincident;
   }
-  const auto caller_index = [&](std::size_t i) { return slab ? order[i] : i; };
+  const auto caller_index = [&](std::size_t i) { return x_order ? order[i] : i; };
   if (slab && pruning)
     for (std::size_t i = 0; i < N; ++i)
       pruned[caller_index(i)] = static_cast<std::uint32_t>(static_cast<std::int64_t>(N - 1) - total[within_slot * N + i]);
@@ -397,7 +402,10 @@ VisibilityResult to_targets(const Scene& scene, const std::vector<Eigen::Vector3
 
 std::uint64_t raw_visible_pairs(const Scene& scene, const std::vector<Eigen::Vector3d>& eyes, int threads,
                                 RawMethod method) {
-  const Points P = to_local(scene, eyes, "node");
+  // The same directed rays as all_to_all: nodes in x order, each pair cast
+  // from the earlier one (see x_order in run_pass).
+  std::vector<std::uint32_t> order;
+  const Points P = sorted_by_x(to_local(scene, eyes, "node"), order);
   const RTCScene rtc = static_cast<RTCScene>(scene.embree_scene());
   const std::size_t N = P.size();
   std::atomic<std::uint64_t> visible{0};
