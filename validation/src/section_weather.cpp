@@ -152,7 +152,7 @@ void fog_seed_quadrature(Context& ctx, Section& s, const SeedConditions& seed) {
           {"fog", "step h [um]", "Mie evaluations", "sigma midpoint [1/m]", "midpoint / converged - 1",
            "seed paper / converged - 1"},
           {},
-          "Converged value: the weather module's adaptive quadrature with its error estimate (row h = 0). "
+          "Converged value: the weather module's contour integral (contour_extinction.hpp) with its error estimate (row h = 0). "
           "Seed values: Sec. Methodology, Fog."};
   const std::vector<double> steps_um = ctx.options.quick ? std::vector<double>{0.1, 0.05, 0.02}
                                                           : std::vector<double>{0.2, 0.1, 0.05, 0.02, 0.01};
