@@ -158,6 +158,7 @@ void fog_seed_quadrature(Context& ctx, Section& s, const SeedConditions& seed) {
                                                           : std::vector<double>{0.2, 0.1, 0.05, 0.02, 0.01};
   const std::complex<double> m(1.33, 0.0);
   const double lambda_um = 0.55;
+  constexpr double kPi = 3.14159265358979323846;
   for (const char* name : {"advection", "radiation"}) {
     const std::string fog = std::string("fog:") + name;
     ctx.step("weather", fog + " by fixed-step sums");
@@ -174,8 +175,8 @@ void fog_seed_quadrature(Context& ctx, Section& s, const SeedConditions& seed) {
       std::size_t n = 0;
       for (double r_um = 0.5 * h; r_um < r_max_um; r_um = (++n + 0.5) * h) {
         const double r = r_um * 1e-6;
-        const double q = attenuvis::mie::sphere(2 * M_PI * r_um / lambda_um, m).qext;
-        sum += q * M_PI * r * r * d.density(r) * h * 1e-6;
+        const double q = attenuvis::mie::sphere(2 * kPi * r_um / lambda_um, m).qext;
+        sum += q * kPi * r * r * d.density(r) * h * 1e-6;
       }
       const double rel = sum / converged.per_m - 1;
       worst = std::max(worst, std::fabs(rel));

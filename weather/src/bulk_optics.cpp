@@ -14,8 +14,10 @@
 #include "attenuvis/mie.hpp"
 #include "attenuvis/weather/resonance.hpp"
 #include "gauss_kronrod_rule.hpp"
+#include "significant.hpp"
 
 namespace attenuvis::weather {
+using detail::significant;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -141,13 +143,6 @@ class Integrator {
   std::complex<double> m_;  // for the large-x bound
 };
 
-std::string fmt(double v) {
-  std::ostringstream o;
-  o.precision(3);
-  o << v;
-  return o.str();
-}
-
 }  // namespace
 
 BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double wavelength, const EfficiencyFunction& q,
@@ -163,7 +158,7 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   }
   if (!(support.total_moment > 0) || !std::isfinite(support.total_moment))
     throw std::runtime_error("sigma_ext integral diverges or is empty: the geometric cross-section moment "
-                             "int r^2 n(r) dr is " + fmt(support.total_moment));
+                             "int r^2 n(r) dr is " + significant(support.total_moment, 3));
 
   Integrator integ(d, wavelength, q, s, m);
   double k = 2 * kPi / wavelength;
@@ -313,8 +308,8 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
     for (int c : {kExt, kSca, kAbs, kGSca})
       if (error[c] / scale(c, value) > ratio) { ratio = error[c] / scale(c, value); worst = c; }
     throw std::runtime_error(std::string(names[worst]) + " integral over " + d.describe() + ": relative tolerance " +
-                             fmt(s.rel_tolerance) + " not met after " + std::to_string(evaluations) +
-                             " efficiency evaluations (estimated quadrature error " + fmt(ratio) +
+                             significant(s.rel_tolerance, 3) + " not met after " + std::to_string(evaluations) +
+                             " efficiency evaluations (estimated quadrature error " + significant(ratio, 3) +
                              " relative); the integrand is too rough or too wide for the evaluation budget "
                              "(raise max_evaluations or the tolerance)");
   }
@@ -368,7 +363,7 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   std::ostringstream method;
   method << "adaptive Gauss-Kronrod " << s.kronrod_points << " (Boost.Math) in ln r, rel. tol " << s.rel_tolerance
          << ", tails cut at " << tail_fraction << " of the r^2 moment, " << out.evaluations << " evaluations, x <= "
-         << fmt(out.max_size_parameter);
+         << significant(out.max_size_parameter, 3);
   if (used_asymptotic) method << ", Q_ext large-x expansion beyond x = " << s.asymptotic_x;
   if (s.estimate_resonances)
     method << ", resonance panels <= " << s.resonance_x_span << " in x refined to " << s.resonance_tolerance

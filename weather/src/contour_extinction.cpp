@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 #include <variant>
@@ -13,8 +14,10 @@
 
 #include "attenuvis/mie/forward_amplitude.hpp"
 #include "gauss_kronrod_rule.hpp"
+#include "significant.hpp"
 
 namespace attenuvis::weather {
+using detail::significant;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -103,13 +106,6 @@ PanelResult evaluate_panel(const PathIntegrand& f, const detail::Rule& rule, dou
   return p;
 }
 
-std::string describe(double v) {
-  std::ostringstream o;
-  o.precision(3);
-  o << v;
-  return o.str();
-}
-
 }  // namespace
 
 std::optional<Complex> analytic_density(const SizeDistribution& d, Complex r) {
@@ -155,45 +151,65 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
 
   std::size_t evaluations = down.evaluations;
   for (const auto& p : panels) evaluations += p.evaluations;
+  // Sums over a set of panels plus the downward leg.
+  struct Sums {
+    Complex total;
+    double error = 0, rounding = 0, q_max = 0;
+  };
+  const auto sums = [&](const std::vector<PanelResult>& ps) {
+    Sums out{down.kronrod, down.error, down.rounding, down.q_max};
+    for (const auto& p : ps) {
+      out.total += p.kronrod;
+      out.error += p.error;
+      out.rounding += p.rounding;
+      out.q_max = std::max(out.q_max, p.q_max);
+    }
+    return out;
+  };
+  // The halves of panels[which[j / 2]] for j = 0, 1, ..., evaluated in parallel.
+  const auto halves_of = [&](const std::vector<PanelResult>& ps, const std::vector<std::size_t>& which) {
+    std::vector<PanelResult> halves(2 * which.size());
+    tbb::parallel_for(std::size_t(0), halves.size(), [&](std::size_t j) {
+      const PanelResult& p = ps[which[j / 2]];
+      const double mid = 0.5 * (p.a + p.b);
+      halves[j] = j % 2 == 0 ? panel(p.a, mid) : panel(mid, p.b);
+    });
+    for (const auto& h : halves) evaluations += h.evaluations;
+    return halves;
+  };
+  const auto check_budget = [&](const char* what, const Sums& sum) {
+    if (evaluations > s.max_evaluations)
+      throw std::runtime_error(std::string("sigma_ext by contour: ") + what + " " +
+                               significant(sum.error / std::abs(sum.total.real()), 3) +
+                               " (relative) still above the tolerance " + significant(s.rel_tolerance, 3) + " after " +
+                               std::to_string(evaluations) + " Mie evaluations");
+  };
   // Adaptive: split panels until the summed |K - G| meets the target.
-  const auto refine = [&](std::vector<PanelResult>& panels) {
+  const auto refine = [&](std::vector<PanelResult>& ps) {
     for (;;) {
-      Complex total = down.kronrod;
-      double error = down.error;
-      for (const auto& p : panels) total += p.kronrod, error += p.error;
-      const double target = s.rel_tolerance * std::abs(total.real());
-      if (error <= target) break;
-      if (evaluations > s.max_evaluations) {
-        throw std::runtime_error("sigma_ext by contour: quadrature error " + describe(error / std::abs(total.real())) +
-                                 " (relative) still above the tolerance " + describe(s.rel_tolerance) + " after " +
-                                 std::to_string(evaluations) + " Mie evaluations");
-      }
+      const Sums sum = sums(ps);
+      const double target = s.rel_tolerance * std::abs(sum.total.real());
+      if (sum.error <= target) return;
+      check_budget("quadrature error", sum);
       // Split every panel above its share of the target (at least the worst);
       // which ones depends on the values alone, not on the thread count.
-      const double share = target / static_cast<double>(panels.size());
+      const double share = target / static_cast<double>(ps.size());
       std::vector<std::size_t> split;
-      for (std::size_t i = 0; i < panels.size(); ++i)
-        if (panels[i].error > share) split.push_back(i);
-      std::vector<PanelResult> halves(2 * split.size());
-      tbb::parallel_for(std::size_t(0), halves.size(), [&](std::size_t j) {
-        const PanelResult& p = panels[split[j / 2]];
-        const double mid = 0.5 * (p.a + p.b);
-        halves[j] = j % 2 == 0 ? panel(p.a, mid) : panel(mid, p.b);
-      });
+      for (std::size_t i = 0; i < ps.size(); ++i)
+        if (ps[i].error > share) split.push_back(i);
+      const std::vector<PanelResult> halves = halves_of(ps, split);
       std::vector<PanelResult> next;
-      next.reserve(panels.size() + split.size());
-      std::size_t s_i = 0;
-      for (std::size_t i = 0; i < panels.size(); ++i) {
-        if (s_i < split.size() && split[s_i] == i) {
-          next.push_back(halves[2 * s_i]);
-          next.push_back(halves[2 * s_i + 1]);
-          evaluations += halves[2 * s_i].evaluations + halves[2 * s_i + 1].evaluations;
-          ++s_i;
+      next.reserve(ps.size() + split.size());
+      for (std::size_t i = 0, h = 0; i < ps.size(); ++i) {
+        if (h < split.size() && split[h] == i) {
+          next.push_back(halves[2 * h]);
+          next.push_back(halves[2 * h + 1]);
+          ++h;
         } else {
-          next.push_back(panels[i]);
+          next.push_back(ps[i]);
         }
       }
-      panels.swap(next);
+      ps.swap(next);
     }
   };
 
@@ -204,55 +220,35 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
   // a-posteriori one: the coarse sum's error is measured, not guessed, and the
   // fine sum (the one returned) is the more accurate of the two.
   // If the verified error misses the target, refine from the fine panels.
-  std::vector<PanelResult> fine;
+  Sums fine;
   for (;;) {
     refine(panels);
-    Complex coarse = down.kronrod;
-    for (const auto& p : panels) coarse += p.kronrod;
-    fine.assign(2 * panels.size(), PanelResult{});
-    tbb::parallel_for(std::size_t(0), fine.size(), [&](std::size_t j) {
-      const PanelResult& p = panels[j / 2];
-      const double mid = 0.5 * (p.a + p.b);
-      fine[j] = j % 2 == 0 ? panel(p.a, mid) : panel(mid, p.b);
-    });
-    Complex total = down.kronrod;
-    double error = down.error;
-    for (const auto& p : fine) total += p.kronrod, error += p.error, evaluations += p.evaluations;
-    error += std::abs((total - coarse).real());
-    if (error <= s.rel_tolerance * std::abs(total.real())) break;
-    if (evaluations > s.max_evaluations)
-      throw std::runtime_error("sigma_ext by contour: verified quadrature error " +
-                               describe(error / std::abs(total.real())) + " (relative) still above the tolerance " +
-                               describe(s.rel_tolerance) + " after " + std::to_string(evaluations) + " Mie evaluations");
-    panels.swap(fine);
+    const Complex coarse = sums(panels).total;
+    std::vector<std::size_t> all(panels.size());
+    std::iota(all.begin(), all.end(), std::size_t(0));
+    std::vector<PanelResult> halves = halves_of(panels, all);
+    fine = sums(halves);
+    fine.error += std::abs((fine.total - coarse).real());
+    if (fine.error <= s.rel_tolerance * std::abs(fine.total.real())) break;
+    check_budget("verified quadrature error", fine);
+    panels.swap(halves);
   }
   ContourExtinction out;
-  Complex total = down.kronrod;
-  double q_max = down.q_max;
-  out.extinction.quadrature_error = down.error;
-  out.extinction.rounding_error = down.rounding;
-  Complex coarse = down.kronrod;
-  for (const auto& p : panels) coarse += p.kronrod;
-  for (const auto& p : fine) {
-    total += p.kronrod;
-    out.extinction.quadrature_error += p.error;
-    out.extinction.rounding_error += p.rounding;
-    q_max = std::max(q_max, p.q_max);
-  }
-  out.extinction.quadrature_error += std::abs((total - coarse).real());
-  out.extinction.value = total.real();
+  out.extinction.value = fine.total.real();
+  out.extinction.quadrature_error = fine.error;
+  out.extinction.rounding_error = fine.rounding;
   // Beyond x_max: |Q_ext| <= max(4, 2 max |Q| sampled), as in bulk_optics.
-  out.extinction.tail_error = std::max(4.0, 2 * q_max) * kPi * support.omitted_moment;
+  out.extinction.tail_error = std::max(4.0, 2 * fine.q_max) * kPi * support.omitted_moment;
   out.evaluations = evaluations;
   out.max_size_parameter = x_max;
   out.height = s.height;
   out.angle = *angle;
   std::ostringstream method;
-  method << "contour integral of 4 Re S(0)/x^2 along x = t + i h(t), h <= " << describe(s.height)
-         << ", arg x <= " << describe(*angle) << " (resonances smoothed out; contour_extinction.hpp), "
-         << "adaptive Gauss-Kronrod 31 (Boost.Math), rel. tol " << describe(s.rel_tolerance)
-         << ", tail cut at " << describe(tail_fraction) << " of the r^2 moment, " << evaluations
-         << " evaluations, x <= " << describe(x_max);
+  method << "contour integral of 4 Re S(0)/x^2 along x = t + i h(t), h <= " << significant(s.height, 3)
+         << ", arg x <= " << significant(*angle, 3) << " (resonances smoothed out; contour_extinction.hpp), "
+         << "adaptive Gauss-Kronrod 31 (Boost.Math), rel. tol " << significant(s.rel_tolerance, 3)
+         << ", tail cut at " << significant(tail_fraction, 3) << " of the r^2 moment, " << evaluations
+         << " evaluations, x <= " << significant(x_max, 3);
   out.method = method.str();
   return out;
 }

@@ -11,15 +11,11 @@
 #include "attenuvis/weather/distribution_file.hpp"
 #include "attenuvis/weather/refractive_index.hpp"
 #include "attenuvis/weather/visibility.hpp"
+#include "significant.hpp"
 
 namespace attenuvis::weather {
 namespace {
-std::string g4(double v) {
-  std::ostringstream o;
-  o.precision(4);
-  o << v;
-  return o.str();
-}
+std::string g4(double v) { return detail::significant(v, 4); }
 }  // namespace
 
 SizeDistribution condition_distribution(const Condition& c) {
@@ -49,7 +45,11 @@ std::complex<double> condition_refractive_index(const Condition& c, const Settin
   return m;
 }
 
-BulkOptics condition_bulk_optics(const Condition& c, const Settings& s) {
+namespace {
+// The real-axis quadrature of a Mie condition, over a distribution and index
+// the caller already has (sigma() needs them for the contour first).
+BulkOptics bulk_optics_of(const Condition& c, const Settings& s, const SizeDistribution& d,
+                          std::complex<double> m) {
   QuadratureSettings q;
   q.rel_tolerance = s.rel_tolerance;
   if (c.kind == ConditionKind::rain_mie) {
@@ -59,8 +59,12 @@ BulkOptics condition_bulk_optics(const Condition& c, const Settings& s) {
     q.resonance_tolerance = 1e-3;
     q.max_evaluations = 1000000;
   }
-  auto m = condition_refractive_index(c, s);
-  return integrate_bulk_optics(condition_distribution(c), s.wavelength_m, mie_efficiencies(m), q, m);
+  return integrate_bulk_optics(d, s.wavelength_m, mie_efficiencies(m), q, m);
+}
+}  // namespace
+
+BulkOptics condition_bulk_optics(const Condition& c, const Settings& s) {
+  return bulk_optics_of(c, s, condition_distribution(c), condition_refractive_index(c, s));
 }
 
 Sigma sigma(const Condition& c, const Settings& s) {
@@ -143,7 +147,7 @@ Sigma sigma(const Condition& c, const Settings& s) {
         note << index_source << "; " << ce->method << "; error = quadrature " << ce->extinction.quadrature_error
              << " + tails " << ce->extinction.tail_error << " + rounding " << ce->extinction.rounding_error;
       } else {
-        BulkOptics b = condition_bulk_optics(c, s);
+        const BulkOptics b = bulk_optics_of(c, s, d, m);
         out.per_m = b.extinction.value;
         out.error_per_m = b.extinction.error();
         note << index_source << "; " << b.method << "; error = quadrature " << b.extinction.quadrature_error
