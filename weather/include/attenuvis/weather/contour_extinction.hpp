@@ -43,7 +43,12 @@ struct ContourSettings {
   double height = 4.0;          // H: the path's height in x above the real axis
   double max_x = 5000;          // distributions reaching further are left to bulk_optics (cost ~ x_max^2)
   double tail_fraction = 0;     // of the r^2 moment beyond x_max; 0: 1e-3 x rel_tolerance
-  double initial_panel_heights = 12;  // first panels are this many H wide (in Re x)
+  double initial_panel_heights = 25;  // first panels are this many H wide (in Re x)
+  double tail_panel_fraction = 1e-4;  // beyond the radius leaving this much of the r^2 moment, ...
+  double tail_panel_widths = 4;       // ... first panels are this many times wider
+  int kronrod_points = 61;            // Gauss-Kronrod order per panel (15, 21, 31, 41, 51, 61)
+  bool verify = false;  // always split every converged panel once and charge the change too (done anyway
+                        // when the resonance ripple left at height H is not far below the tolerance)
   std::size_t max_evaluations = 400000;
 };
 
@@ -52,6 +57,7 @@ struct ContourExtinction {
   std::size_t evaluations = 0;
   double max_size_parameter = 0;
   double height = 0, angle = 0;  // H and theta used
+  bool verified = false;         // the verification pass ran
   std::string method;
 };
 
