@@ -160,7 +160,7 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
                                                     const ContourSettings& s) {
   const auto angle = path_angle(d);
   if (!angle) return std::nullopt;
-  const double tail_fraction = s.tail_fraction > 0 ? s.tail_fraction : 1e-3 * s.rel_tolerance;
+  const double tail_fraction = s.tail_fraction > 0 ? s.tail_fraction : 2e-2 * s.rel_tolerance;  // tail bound ~4e-2 tol
   const Support support = d.support(2.0, tail_fraction);
   const double k = 2 * kPi / wavelength_m;
   const double x_max = k * support.breakpoints_m.back();
