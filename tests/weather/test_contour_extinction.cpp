@@ -94,3 +94,62 @@ TEST_CASE("sigma() of a fog preset uses the contour and says so", "[weather][con
   CHECK(r.error_per_m <= 1e-9 * r.per_m);
   CHECK(std::abs(r.per_m / 0.02874311 - 1) < 2e-4);
 }
+
+namespace {
+// Reference for the bound checks below: the same integral at tolerance 1e-13,
+// tail 1e-15, S(0) in long double (height 4.5 > 4), every panel verified by
+// halving; an independent path height, so an error common to one height
+// would show.
+double verified_reference(const SizeDistribution& d, std::complex<double> m) {
+  ContourSettings r;
+  r.rel_tolerance = 1e-13;
+  r.tail_fraction = 1e-15;
+  r.max_x = 2e4;
+  r.height = 4.5;
+  r.verify = true;
+  r.kronrod_points = 31;
+  r.initial_panel_heights = 6;
+  r.tail_panel_widths = 1;
+  r.max_evaluations = 4000000;
+  const auto c = contour_extinction(d, 550e-9, m, r);
+  REQUIRE(c);
+  return c->extinction.value;
+}
+
+void check_error_bounds(const SizeDistribution& d, std::complex<double> m, std::initializer_list<double> heights,
+                        std::initializer_list<double> tolerances) {
+  const double ref = verified_reference(d, m);
+  for (double h : heights)
+    for (double tol : tolerances) {
+      ContourSettings s;
+      s.height = h;
+      s.rel_tolerance = tol;
+      const auto c = contour_extinction(d, 550e-9, m, s);
+      REQUIRE(c);
+      const double actual = std::abs(c->extinction.value - ref);
+      INFO(d.describe() << ", h = " << h << ", tol " << tol << ": " << c->extinction.value << " +- "
+                        << c->extinction.error() << " (" << c->evaluations << " evaluations"
+                        << (c->verified ? ", verified" : "") << "), reference " << ref << ", actual error " << actual);
+      CHECK(actual <= c->extinction.error());
+      CHECK(c->extinction.error() <= 1.5 * tol * ref);  // quadrature (<= tol) + tail (~4e-2 tol) + rounding
+    }
+}
+}  // namespace
+
+TEST_CASE("contour extinction: the reported error bounds the actual error", "[weather][contour]") {
+  // The cases that broke the unverified |K - G| estimate while it was being
+  // tuned: radiation fog at h = 2 (ripple residue 1.5e-7 aliased into both
+  // rules) and a first panel from t = 0 where the path is still low.
+  check_error_bounds(preset_distribution("radiation"), kWater550, {2.0, 4.0}, {1e-6, 1e-9});
+  check_error_bounds(SizeDistribution::log_normal(1e8, 3e-6, 1.03), kWater550, {4.0}, {1e-6, 1e-9});
+}
+
+TEST_CASE("contour extinction: the reported error bounds the actual error over the full grid", "[weather][contour][slow]") {
+  for (const SizeDistribution& d :
+       {preset_distribution("advection"), preset_distribution("radiation"),
+        SizeDistribution::log_normal(1e8, 3e-6, 1.03), SizeDistribution::modified_gamma_um(1e3, 2.0, 15.0, 3.0)})
+    check_error_bounds(d, kWater550, {2.0, 3.0, 4.0, 6.0}, {1e-6, 1e-9, 1e-12});
+  // A broad log-normal: at tolerance 1e-12 its tail reaches beyond max_x and
+  // the contour declines (sigma() then uses the real-axis rule).
+  check_error_bounds(SizeDistribution::log_normal(1e8, 1e-6, 2.0), kWater550, {2.0, 3.0, 4.0, 6.0}, {1e-6, 1e-9});
+}

@@ -160,7 +160,7 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
                                                     const ContourSettings& s) {
   const auto angle = path_angle(d);
   if (!angle) return std::nullopt;
-  const double tail_fraction = s.tail_fraction > 0 ? s.tail_fraction : 2e-2 * s.rel_tolerance;  // tail bound ~4e-2 tol
+  const double tail_fraction = s.effective_tail_fraction();
   const Support support = d.support(2.0, tail_fraction);
   const double k = 2 * kPi / wavelength_m;
   const double x_max = k * support.breakpoints_m.back();
@@ -275,14 +275,16 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
   // and G err alike, |K - G| below the true error) where the integrand carries
   // structure no panel resolves: the resonance ripple, period dx (Chylek
   // 1976, JOSA 66:285: dx = arctan(sqrt(n^2-1))/sqrt(n^2-1), 0.82 for water),
-  // is damped on the path only to ~exp(-2 pi H / dx), which at H = 2 is 1.5e-7
+  // is damped on the path only to ~exp(-2 pi h / dx), which at h = 2 is 1.5e-7
   // (radiation fog at tol 1e-9 came out 5.9e-10 against a reported 4.5e-10).
   // Unless that residue is far below the tolerance, every converged panel is
   // split once and the change of the sum is charged as well: the coarse sum's
   // error is then measured, not guessed, and the fine sum (the one returned)
   // is the more accurate of the two.  If the verified error misses the
   // target, refine from the fine panels.
-  const bool verify = s.verify || ripple_residual(m, s.height) > 1e-2 * s.rel_tolerance;
+  // h is the path's top height, below H where theta x_max / H is small (a
+  // narrow log-normal's path stays near the axis).
+  const bool verify = s.verify || ripple_residual(m, top) > 1e-2 * s.rel_tolerance;
   Sums fine;
   for (;;) {
     refine(panels);

@@ -41,12 +41,13 @@ std::vector<QuadratureTradeoffRow> quadrature_tradeoff(double wavelength_m, int 
     ref.rel_tolerance = 1e-12;
     ref.tail_fraction = 1e-16;
     ref.max_evaluations = 4000000;
+    ref.verify = true;
     const auto reference = contour_extinction(c.d, wavelength_m, m, ref);
     if (!reference) continue;
     QuadratureTradeoffRow ref_row;
-    ref_row.case_name = name.str() + " (reference: contour h=4, tol 1e-12)";
+    ref_row.case_name = name.str() + " (reference: contour h=4, tol 1e-12, verified by halving)";
     ref_row.rel_tolerance = ref.rel_tolerance;
-    ref_row.kronrod_points = 31;
+    ref_row.kronrod_points = ref.kronrod_points;
     ref_row.tail_fraction = ref.tail_fraction;
     ref_row.sigma_per_m = reference->extinction.value;
     ref_row.reported_quadrature_tail_error = reference->extinction.error();
@@ -65,8 +66,8 @@ std::vector<QuadratureTradeoffRow> quadrature_tradeoff(double wavelength_m, int 
         label << name.str() << " contour h=" << height;
         row.case_name = label.str();
         row.rel_tolerance = tol;
-        row.kronrod_points = 31;
-        row.tail_fraction = 1e-3 * tol;
+        row.kronrod_points = s.kronrod_points;
+        row.tail_fraction = s.effective_tail_fraction();
         row.sigma_per_m = r->extinction.value;
         row.reported_quadrature_tail_error = r->extinction.error();
         row.actual_error = std::abs(r->extinction.value - reference->extinction.value);

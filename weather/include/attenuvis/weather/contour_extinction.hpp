@@ -54,6 +54,8 @@ struct ContourSettings {
   bool verify = false;  // always split every converged panel once and charge the change too (done anyway
                         // when the resonance ripple left at height H is not far below the tolerance)
   std::size_t max_evaluations = 400000;
+
+  double effective_tail_fraction() const { return tail_fraction > 0 ? tail_fraction : 2e-2 * rel_tolerance; }
 };
 
 struct ContourExtinction {
