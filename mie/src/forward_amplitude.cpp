@@ -91,7 +91,8 @@ void evaluate(const std::complex<double>* x_in, std::complex<double> m_in, Forwa
     // ψ₀/ξ₀ = sin x / (−i e^{ix}) = i sin x e^{−ix}; ξ₀/ξ₁ = 1/(1/x − i); and
     // ξ_{n−1}/ξₙ = 1/((2n−1)/x − ξ_{n−2}/ξ_{n−1}) upward (stable for the
     // outgoing Hankel function).
-    V t, xi_down, sum{}, magnitude{};
+    V t, xi_down, sum{};
+    R magnitude[L] = {};
     int quiet[L] = {};
     bool done[L] = {};
     for (int j = 0; j < L; ++j) {
@@ -101,7 +102,7 @@ void evaluate(const std::complex<double>* x_in, std::complex<double> m_in, Forwa
     }
     int left = L;
     for (std::size_t n = 1; n <= N; ++n) {
-      const R rn = R(n), weight = R(2 * n + 1), next = weight;  // (2(n+1) − 1)/x starts ξ_{n+1}
+      const R rn = R(n), weight = R(2 * n + 1);
       const V &dx = d_x[n], &dmx = d_mx[n], &up = psi_up[n];
       R term2[L], sum2[L];
       for (int j = 0; j < L; ++j) {
@@ -128,12 +129,12 @@ void evaluate(const std::complex<double>* x_in, std::complex<double> m_in, Forwa
         const R er = weight * (tr * gr - ti * gi), ei = weight * (tr * gi + ti * gr);
         sum.re[j] += er, sum.im[j] += ei;
         // |aₙ| + |bₙ| <= |t| |1/(UV)| (|aV| + |bU|), each |z| <= |Re z| + |Im z|.
-        magnitude.re[j] += weight * (std::abs(tr) + std::abs(ti)) * (std::abs(ir) + std::abs(ii)) *
+        magnitude[j] += weight * (std::abs(tr) + std::abs(ti)) * (std::abs(ir) + std::abs(ii)) *
                            (std::abs(aVr) + std::abs(aVi) + std::abs(bUr) + std::abs(bUi));
         term2[j] = er * er + ei * ei;
         sum2[j] = sum.re[j] * sum.re[j] + sum.im[j] * sum.im[j];
-        // ξₙ/ξ_{n+1} for the next order.
-        const R ur = next * inv_x.re[j] - qr, ui = next * inv_x.im[j] - qi, s2 = 1 / (ur * ur + ui * ui);
+        // ξₙ/ξ_{n+1} = 1/((2(n+1)−1)/x − ξ_{n−1}/ξₙ) for the next order.
+        const R ur = weight * inv_x.re[j] - qr, ui = weight * inv_x.im[j] - qi, s2 = 1 / (ur * ur + ui * ui);
         xi_down.re[j] = ur * s2, xi_down.im[j] = -ui * s2;
       }
       // A lane has converged once past |x| and two terms in a row are below
@@ -145,7 +146,7 @@ void evaluate(const std::complex<double>* x_in, std::complex<double> m_in, Forwa
             done[j] = true;
             --left;
             out[j].s0 = std::complex<double>(double(sum.re[j] / 2), double(sum.im[j] / 2));
-            out[j].magnitude = double(magnitude.re[j] / 2);
+            out[j].magnitude = double(magnitude[j] / 2);
             out[j].terms = n;
             out[j].unit_roundoff = double(eps);
           }

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
@@ -88,8 +87,6 @@ class PathIntegrand {
     return q * w;
   }
 
-  double height() const { return h_; }
-
  private:
   const SizeDistribution& d_;
   double k_;
@@ -167,7 +164,8 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
   if (!(x_max <= s.max_x)) return std::nullopt;
 
   const detail::Rule rule = detail::rule_for(s.kronrod_points);
-  const PathIntegrand f(d, wavelength_m, m, s.height, *angle, arithmetic_for(s));
+  const mie::Arithmetic arithmetic = arithmetic_for(s);
+  const PathIntegrand f(d, wavelength_m, m, s.height, *angle, arithmetic);
   const auto on_path = [&](double t) { return f.x(t); };
   const auto path_jacobian = [&](double t) { return f.dxdt(t); };
   const auto panel = [&](double a, double b) { return evaluate_panel(f, rule, a, b, on_path, path_jacobian); };
@@ -317,7 +315,7 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
   method << "contour integral of 4 Re S(0)/x^2 along x = t + i h(t), h <= " << significant(s.height, 3)
          << ", arg x <= " << significant(*angle, 3) << " (resonances smoothed out; contour_extinction.hpp), "
          << "adaptive Gauss-Kronrod " << s.kronrod_points << " (Boost.Math)" << (verify ? ", verified by halving" : "")
-         << ", S(0) in " << (arithmetic_for(s) == mie::Arithmetic::double_precision ? "double" : "long double")
+         << ", S(0) in " << (arithmetic == mie::Arithmetic::double_precision ? "double" : "long double")
          << ", rel. tol " << significant(s.rel_tolerance, 3)
          << ", tail cut at " << significant(tail_fraction, 3) << " of the r^2 moment, " << evaluations
          << " evaluations, x <= " << significant(x_max, 3);
