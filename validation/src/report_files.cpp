@@ -1,15 +1,14 @@
 // Plain-file writers of the report: numbers as text, tables as CSV, the key
 // numbers as JSON, and the atomic write every output goes through.
-#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
 
-#include <unistd.h>
 
+#include "attenuvis/io/number_text.hpp"
+#include "attenuvis/io/staged_file.hpp"
 #include "attenuvis/validation/report.hpp"
 
 namespace attenuvis::validation {
@@ -49,27 +48,11 @@ std::string format_number(double v, int digits) {
 std::string exact_number(double v) {
   if (std::isnan(v)) return "nan";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
+  return io::shortest(v);
 }
 
 void write_file_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw std::runtime_error("cannot write " + tmp);
-    f << text;
-    f.flush();
-    if (!f) {
-      std::remove(tmp.c_str());
-      throw std::runtime_error("error while writing " + tmp);
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error("cannot rename " + tmp + " to " + path);
-  }
+  io::write_file_atomically(path, text);
 }
 
 namespace {

@@ -2,6 +2,7 @@
 // directory, draws the figures with matplotlib, writes report.html last and
 // only then moves everything into the output directory.
 #include "attenuvis/validation/reproduce.hpp"
+#include "attenuvis/io/shell.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -80,15 +81,6 @@ namespace {
 
 using detail::Context;
 
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) {
-    if (c == '\'') q += "'\\''";
-    else q += c;
-  }
-  return q + "'";
-}
-
 std::string tail_of_file(const fs::path& p, std::size_t max_chars) {
   std::ifstream f(p);
   std::stringstream ss;
@@ -122,9 +114,9 @@ void draw_figures(const Report& report, const std::string& dir, detail::Progress
   if (python.empty() || !fs::exists(python))
     throw std::runtime_error("figures: no Python interpreter (ATTENUVIS_PYTHON='" + python +
                              "'); install python3-matplotlib and python3-numpy (scripts/setup.sh)");
-  const std::string cmd = "MPLCONFIGDIR=" + shell_quote((fs::path(dir) / ".mpl").string()) + " " +
-                          shell_quote(python) + " " + shell_quote(script) + " " + shell_quote(spec_path.string()) +
-                          " " + shell_quote(dir) + " >" + shell_quote(log.string()) + " 2>&1";
+  const std::string cmd = "MPLCONFIGDIR=" + io::shell_quote((fs::path(dir) / ".mpl").string()) + " " +
+                          io::shell_quote(python) + " " + io::shell_quote(script) + " " + io::shell_quote(spec_path.string()) +
+                          " " + io::shell_quote(dir) + " >" + io::shell_quote(log.string()) + " 2>&1";
   const int rc = std::system(cmd.c_str());
   if (rc != 0)
     throw std::runtime_error("figures: " + python + " " + script + " failed (status " + std::to_string(rc) +

@@ -1,0 +1,22 @@
+// Numbers to and from text, the same way in every module.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace attenuvis::io {
+
+// Parses the whole of `text` as a finite double.  Throws std::invalid_argument
+// "WHAT: 'TEXT' is not a number" (or "... is not finite", "... is out of the
+// range of a double") so the caller's message names the input.
+double parse_double(std::string_view text, std::string_view what);
+
+// The shortest decimal text that reads back to the same double (1.7, 1550,
+// 0.1): what an input echo or a machine-readable file should carry.
+std::string shortest(double value);
+
+// `digits` significant digits, as printf's %g would choose between fixed and
+// exponent form (for values that carry an error bar, and for messages).
+std::string significant(double value, int digits);
+
+}  // namespace attenuvis::io
