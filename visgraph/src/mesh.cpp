@@ -28,6 +28,13 @@ std::size_t Mesh::add_group(const std::string& name) {
   return groups.size() - 1;
 }
 
+std::size_t Mesh::add_class(const std::string& name) {
+  for (std::size_t i = 0; i < classes.size(); ++i)
+    if (classes[i] == name) return i;
+  classes.push_back(name);
+  return classes.size() - 1;
+}
+
 double walkable_area(const Mesh& mesh, const std::vector<std::string>& groups) {
   std::vector<char> wanted(mesh.groups.size(), 0);
   for (std::size_t g = 0; g < mesh.groups.size(); ++g)
@@ -57,6 +64,15 @@ MeshStats mesh_stats(const Mesh& mesh) {
     auto& group = stats.groups[mesh.triangle_group[t]];
     ++group.triangles;
     group.projected_area += projected_area(mesh, t);
+  }
+  if (mesh.triangle_class.size() == mesh.triangles.size()) {
+    stats.classes.resize(mesh.classes.size());
+    for (std::size_t c = 0; c < mesh.classes.size(); ++c) stats.classes[c].name = mesh.classes[c];
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      auto& cls = stats.classes[mesh.triangle_class[t]];
+      ++cls.triangles;
+      cls.projected_area += projected_area(mesh, t);
+    }
   }
   return stats;
 }

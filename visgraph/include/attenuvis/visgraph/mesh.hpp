@@ -22,8 +22,19 @@ struct Mesh {
   // are selected by these names (e.g. "sidewalk", "crosswalk").
   std::vector<std::uint32_t> triangle_group;
   std::vector<std::string> groups;
+  // Surface class of each triangle, an index into `classes`: for CityJSON its
+  // semantic surface type (RoofSurface, GroundSurface, ...) or, without
+  // semantics, its city object's type (TINRelief, Road, Building, ...).
+  // Empty when the source has no classes (OBJ, glTF, generated scenes).
+  std::vector<std::uint32_t> triangle_class;
+  std::vector<std::string> classes;
+  // Coordinate reference system as the file names it (CityJSON
+  // metadata.referenceSystem, e.g. "urn:ogc:def:crs:EPSG::28992"); empty
+  // when unknown.
+  std::string crs;
 
   std::size_t add_group(const std::string& name);  // index of name, added if new
+  std::size_t add_class(const std::string& name);  // likewise for classes
 };
 
 // Horizontal (xy-projected) area of the triangles in the named groups: the
@@ -39,6 +50,7 @@ struct MeshStats {
   std::size_t vertices = 0, triangles = 0;
   Eigen::Vector3d lower, upper;   // bounding box of the vertices used by triangles
   std::vector<Group> groups;
+  std::vector<Group> classes;     // empty when the mesh has no classes
 };
 MeshStats mesh_stats(const Mesh& mesh);
 
