@@ -41,6 +41,21 @@ struct Mesh {
 // number of nodes a 1 m grid on those surfaces gives, to within edge effects.
 double walkable_area(const Mesh& mesh, const std::vector<std::string>& groups);
 
+// A horizontal rectangle at the lowest z of the mesh, covering its xy
+// bounding box grown by `margin` metres: ground for a model that has none
+// (buildings only).  Group kGroundPlaneGroup; class kGroundPlaneClass where
+// the mesh has classes.  Facing up.
+inline constexpr const char* kGroundPlaneGroup = "ground-plane";
+inline constexpr const char* kGroundPlaneClass = "GroundPlane";
+void add_ground_plane(Mesh& mesh, double margin = 1.0);
+
+// For messages: the first `shown` names, comma-separated, then
+// " ... and N more" and, if given, `more_hint` (e.g. "(`attenuvis scene info
+// FILE --groups` lists them)"), so that a message stays one short line
+// whatever the scene.
+std::string preview_names(const std::vector<std::string>& names, std::size_t shown = 5,
+                          const std::string& more_hint = "");
+
 struct MeshStats {
   struct Group {
     std::string name;
