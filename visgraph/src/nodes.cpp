@@ -1,5 +1,6 @@
 // Node generation on walkable surfaces and node files.
 #include <attenuvis/visgraph/nodes.hpp>
+#include <attenuvis/visgraph/geojson.hpp>
 #include <attenuvis/visgraph/mesh.hpp>
 
 #include <attenuvis/io/number_text.hpp>
@@ -258,6 +259,19 @@ std::vector<Eigen::Vector3d> read_nodes_csv(const std::string& path) {
   }
   if (nodes.empty()) throw std::runtime_error("node file '" + path + "' holds no x,y,z rows");
   return nodes;
+}
+
+std::vector<Eigen::Vector3d> read_nodes(const std::string& path, std::string* crs) {
+  if (crs) crs->clear();
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read node file '" + path + "'");
+  char first = ' ';
+  while (in.get(first) && std::isspace(static_cast<unsigned char>(first))) {
+  }
+  if (first != '{') return read_nodes_csv(path);
+  GeoJsonPoints points = read_geojson_points(path);
+  if (crs) *crs = points.crs;
+  return std::move(points.points);
 }
 
 Eigen::Vector3d parse_point(const std::string& text) {

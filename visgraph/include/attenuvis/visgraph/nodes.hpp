@@ -77,6 +77,11 @@ NodeSet generate_nodes(const Scene& scene, const NodeGridOptions& options);
 // for malformed or non-finite values, or a file with no nodes.
 std::vector<Eigen::Vector3d> read_nodes_csv(const std::string& path);
 
+// Reads eye positions from a node file, GeoJSON points (geojson.hpp: the
+// text starts with '{') or CSV (read_nodes_csv).  `crs`, if given, receives
+// the GeoJSON file's crs name (empty for CSV or none).
+std::vector<Eigen::Vector3d> read_nodes(const std::string& path, std::string* crs = nullptr);
+
 // Parses "x,y,z" (e.g. a --target-point argument).
 Eigen::Vector3d parse_point(const std::string& text);
 
