@@ -121,6 +121,7 @@ enum class Outcome { node, no_surface, covered, too_steep, no_headroom };
 
 struct Cell {
   Outcome outcome = Outcome::no_surface;
+  Eigen::Vector2d cell_xy{0, 0};  // world
   Eigen::Vector3d eye;
   std::uint32_t triangle = 0;
   double elevation = 0;  // standing surface above the lowest surface
@@ -205,6 +206,7 @@ NodeSet generate_nodes(const Scene& scene, const NodeGridOptions& options) {
                                                              box.min.y() + (iy + 0.5) * options.spacing, 0.0));
       start.z() = top;
       row.push_back(place(scene, walkable, options, start, depth, cos_max_slope));
+      row.back().cell_xy = scene.to_world(start).head<2>();
     }
   });
   NodeSet set;
@@ -216,7 +218,10 @@ NodeSet generate_nodes(const Scene& scene, const NodeGridOptions& options) {
     for (const Cell& c : row) {
       switch (c.outcome) {
         case Outcome::no_surface: ++set.no_surface; break;
-        case Outcome::covered: ++set.covered; break;
+        case Outcome::covered:
+          ++set.covered;
+          set.covered_cells.push_back(c.cell_xy);
+          break;
         case Outcome::too_steep: ++set.too_steep; break;
         case Outcome::no_headroom: ++set.no_headroom; break;
         case Outcome::node:

@@ -66,6 +66,7 @@ struct NodeSet {
   std::vector<SurfaceCount> by_surface;  // most nodes first
   std::size_t elevated = 0;           // nodes more than elevated_height above the lowest surface
   double max_elevation = 0;           // m, largest such height among all nodes
+  std::vector<Eigen::Vector2d> covered_cells;  // world xy of covered cell centres (building footprints)
 };
 
 // Throws std::invalid_argument for a non-positive/non-finite spacing or eye
