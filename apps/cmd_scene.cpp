@@ -7,6 +7,7 @@
 
 #include "attenuvis/visgraph/generators.hpp"
 #include "attenuvis/visgraph/mesh.hpp"
+#include "attenuvis/visgraph/obj.hpp"
 
 #include <cstdio>
 #include <iostream>
@@ -57,7 +58,7 @@ void run_scene(const SceneArgs& a) {
   std::printf("scene: %s -> %s\n", a.what.c_str(), a.out.c_str());
   if (a.what.rfind("city", 0) == 0) {
     std::printf("sidewalk+crosswalk: %.1f m^2 projected (closed form %.1f m^2)\n",
-                vg::walkable_area(mesh, {"sidewalk", "crosswalk"}), vg::city_walkable_area_estimate(a.city));
+                vg::walkable_area(mesh, vg::city_walkable_groups()), vg::city_walkable_area_estimate(a.city));
   }
   print_stats(mesh);
 }

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "attenuvis/visgraph/generators.hpp"
+#include "attenuvis/visgraph/obj.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -106,8 +107,8 @@ bool closed_and_consistent(const vg::Mesh& mesh, const std::string& group) {
 }  // namespace
 
 TEST_CASE("Classic layouts leave the documented free cells on a 1 m grid", "[visgraph][generators]") {
-  // Expected counts: issue 4 (2424, 2000, 2400, 2000, 2460), which follow from
-  // the footprints: 2500 cells minus 4 x 19; 300 + 200; 100; 300 + 300 - 100; 20 + 20.
+  // Expected counts (2424, 2000, 2400, 2000, 2460) follow from the
+  // footprints of layouts.hpp: 2500 cells minus 4 x 19; 300 + 200; 100; 300 + 300 - 100; 20 + 20.
   const int expected[vg::kClassicLayoutCount] = {2424, 2000, 2400, 2000, 2460};
   for (int layout = 0; layout < vg::kClassicLayoutCount; ++layout) {
     INFO("layout " << layout << " (" << vg::classic_layout_name(layout) << ")");

@@ -71,8 +71,8 @@ TEST_CASE("surfaces steeper than the maximum slope are dropped", "[visgraph][nod
 }
 
 TEST_CASE("classic layouts give the published node counts", "[visgraph][nodes]") {
-  // Issue 4 (from the seed paper's test layouts): 1 m grid of cell centres on
-  // the floor of the five 50 x 50 m layouts.
+  // The seed paper's test layouts: 1 m grid of cell centres on the floor of
+  // the five 50 x 50 m layouts (counts from the footprints, layouts.cpp).
   const std::size_t expected[5] = {2424, 2000, 2400, 2000, 2460};
   for (int layout = 0; layout < 5; ++layout) {
     const vg::Scene scene(vg::classic_layout(layout));

@@ -1,9 +1,8 @@
-// The two ways all_to_all finds the partners within a radius
-// (visgraph/src/visibility.cpp) must give the same graph: the x-sorted slab
-// (used without edge output) and the kd-tree radius search (used when an
-// edge sink asks for edges in (i, j) order).  Both add the same fixed-point
-// contributions, so their results agree bit for bit; they are also checked
-// against the exact pass, pair by pair, through the edge list.
+// all_to_all with a finite radius finds each row's partners in the x-sorted
+// slab (visgraph/src/visibility.cpp), with or without an edge list; the
+// results with and without edge output agree bit for bit, and the pruned
+// graph is checked against the exact pass, pair by pair, through the edge
+// list.
 #include "test_visibility_scenes.hpp"
 
 #include <attenuvis/visgraph/scene.hpp>
@@ -39,7 +38,7 @@ Mesh scene_with_nodes(std::mt19937_64& rng, std::vector<Vector3d>& nodes) {
 }
 }  // namespace
 
-TEST_CASE("pruning: slab and kd-tree partner searches give identical results", "[visgraph][visibility][pruning]") {
+TEST_CASE("pruning: runs with and without edge output give identical results", "[visgraph][visibility][pruning]") {
   std::mt19937_64 rng(2024);
   std::vector<Vector3d> nodes;
   const Mesh m = scene_with_nodes(rng, nodes);
@@ -80,7 +79,7 @@ TEST_CASE("pruning: slab and kd-tree partner searches give identical results", "
   }
 }
 
-TEST_CASE("max distance: slab and kd-tree give the same exact degrees", "[visgraph][visibility][pruning]") {
+TEST_CASE("max distance: runs with and without edge output give the same exact degrees", "[visgraph][visibility][pruning]") {
   std::mt19937_64 rng(77);
   std::vector<Vector3d> nodes;
   const Mesh m = scene_with_nodes(rng, nodes);

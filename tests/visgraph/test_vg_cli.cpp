@@ -2,7 +2,7 @@
 // PNG heatmap, JSON summary and edge list it writes, the two ways of giving
 // nodes and targets, and bad input (non-zero exit, a message naming the
 // problem, no output file).  Scene: classic layout 2, one 10 m block over
-// [25,35] x [15,25] on a 50 x 50 m floor (issue 4; visgraph/generators.hpp).
+// [25,35] x [15,25] on a 50 x 50 m floor (visgraph/layouts.hpp).
 #include <catch2/catch.hpp>
 
 #include <nlohmann/json.hpp>
@@ -108,12 +108,12 @@ TEST_CASE("vg writes CSV, PLY, heatmap, summary and edges for layout 2", "[visgr
   INFO(r.output);
   REQUIRE(r.status == 0);
 
-  // CSV: conditions as written, sum and avg side by side (issue 4).
+  // CSV: conditions as written, each condition's sum and avg side by side.
   const Csv csv = read_csv(dir / "nodes.csv");
   CHECK(csv.header == std::vector<std::string>{"x", "y", "z", "degree", "sum:clear", "avg:clear", "sum:rain:8",
                                                "avg:rain:8", "sum:sigma:0.05", "avg:sigma:0.05"});
-  // Layout 2 on a 1 m grid of cell centres gives 2400 nodes (issue 4 text:
-  // 2500 cells less the 10 x 10 under the block).
+  // Layout 2 on a 1 m grid of cell centres gives 2400 nodes (2500 cells
+  // less the 10 x 10 under the block).
   REQUIRE(csv.rows.size() == 2400);
   const std::size_t degree = csv.column("degree");
   for (const auto& row : csv.rows) {

@@ -1,4 +1,4 @@
-// Benchmark of the visibility-graph engine (issue 4, "Performance"):
+// Benchmark of the visibility-graph engine:
 //  1. pairs/s of all_to_all with degree + 4 conditions against a raw Embree
 //     occlusion loop over the same unordered pairs, in the same run
 //     (visgraph::raw_visible_pairs: 16-wide packets and single rays), on the

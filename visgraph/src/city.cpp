@@ -19,7 +19,8 @@
 //    3 m alley) around an open courtyard, or nothing (a park).
 // These pieces tile the city exactly in plan, so walkable_area of
 // sidewalk+crosswalk equals city_walkable_area_estimate up to rounding.
-#include "attenuvis/visgraph/generators.hpp"
+#include <attenuvis/visgraph/city.hpp>
+#include <attenuvis/visgraph/scene_spec.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -284,12 +285,12 @@ City make_city(const CityOptions& o) {
   }
 
   Mesh& mesh = city.mesh;
-  const auto g_sidewalk = static_cast<std::uint32_t>(mesh.add_group("sidewalk"));
-  const auto g_crosswalk = static_cast<std::uint32_t>(mesh.add_group("crosswalk"));
-  const auto g_road = static_cast<std::uint32_t>(mesh.add_group("road"));
-  const auto g_ground = static_cast<std::uint32_t>(mesh.add_group("ground"));
-  const auto g_building = static_cast<std::uint32_t>(mesh.add_group("building"));
-  const auto g_terrain = static_cast<std::uint32_t>(mesh.add_group("terrain"));
+  const auto g_sidewalk = static_cast<std::uint32_t>(mesh.add_group(scene_group::sidewalk));
+  const auto g_crosswalk = static_cast<std::uint32_t>(mesh.add_group(scene_group::crosswalk));
+  const auto g_road = static_cast<std::uint32_t>(mesh.add_group(scene_group::road));
+  const auto g_ground = static_cast<std::uint32_t>(mesh.add_group(scene_group::ground));
+  const auto g_building = static_cast<std::uint32_t>(mesh.add_group(scene_group::building));
+  const auto g_terrain = static_cast<std::uint32_t>(mesh.add_group(scene_group::terrain));
   Builder build(mesh, terrain);
   const double edge = o.paved_max_edge;
 

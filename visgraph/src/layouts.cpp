@@ -1,12 +1,11 @@
-// The five classic 50x50 m visibility test layouts (issue 4): a floor at z=0
-// and 10 m obstacles built from axis-aligned closed boxes.  On a 1 m grid of
-// cell centres they leave 2424, 2000, 2400, 2000 and 2460 free cells
-// (2500 minus the covered cells: 4 L-walls of 19 cells; 300 + 200; 100;
-// 300 + 300 - 100 overlap; 20 + 20).  Also the scene-spec parser of the
-// `scene` command ("layout:N", "city", "city:SEED").
-#include "attenuvis/visgraph/generators.hpp"
+// The five classic 50x50 m visibility test layouts of the seed paper: a
+// floor at z=0 and 10 m obstacles built from axis-aligned closed boxes.  On a
+// 1 m grid of cell centres they leave 2424, 2000, 2400, 2000 and 2460 free
+// cells (2500 minus the covered cells: 4 L-walls of 19 cells; 300 + 200; 100;
+// 300 + 300 - 100 overlap; 20 + 20).
+#include <attenuvis/visgraph/layouts.hpp>
+#include <attenuvis/visgraph/scene_spec.hpp>
 
-#include <charconv>
 #include <stdexcept>
 #include <string>
 
@@ -73,48 +72,14 @@ std::vector<Footprint> classic_layout_obstacles(int index) {
 Mesh classic_layout(int index) {
   check_index(index);
   Mesh mesh;
-  const auto floor = static_cast<std::uint32_t>(mesh.add_group("floor"));
+  const auto floor = static_cast<std::uint32_t>(mesh.add_group(scene_group::floor));
   const double s = kClassicLayoutSize;
   mesh.vertices = {{0, 0, 0}, {s, 0, 0}, {s, s, 0}, {0, s, 0}};
   mesh.triangles = {{0, 1, 2}, {0, 2, 3}};  // normal +z
   mesh.triangle_group = {floor, floor};
-  const auto obstacle = static_cast<std::uint32_t>(mesh.add_group("obstacle"));
+  const auto obstacle = static_cast<std::uint32_t>(mesh.add_group(scene_group::obstacle));
   for (const Footprint& f : classic_layout_obstacles(index)) add_box(mesh, f, 0.0, kClassicObstacleHeight, obstacle);
   return mesh;
-}
-
-namespace {
-
-bool parse_integer(const std::string& text, long long& value) {
-  if (text.empty()) return false;
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  return ec == std::errc() && ptr == text.data() + text.size();
-}
-
-}  // namespace
-
-bool is_scene_spec(const std::string& text) {
-  return text == "city" || text.rfind("city:", 0) == 0 || text.rfind("layout:", 0) == 0;
-}
-
-Mesh scene_from_spec(const std::string& spec, const CityOptions& base) {
-  const std::string grammar = "expected layout:N (N = 0.." + std::to_string(kClassicLayoutCount - 1) +
-                              "), city or city:SEED";
-  long long value = 0;
-  if (spec.rfind("layout:", 0) == 0) {
-    if (!parse_integer(spec.substr(7), value) || value < 0 || value >= kClassicLayoutCount)
-      throw std::invalid_argument("bad scene '" + spec + "': " + grammar);
-    return classic_layout(static_cast<int>(value));
-  }
-  if (spec == "city") return synthetic_city(base);
-  if (spec.rfind("city:", 0) == 0) {
-    if (!parse_integer(spec.substr(5), value) || value < 0)
-      throw std::invalid_argument("bad scene '" + spec + "': the seed must be a non-negative integer; " + grammar);
-    CityOptions options = base;
-    options.seed = static_cast<std::uint64_t>(value);
-    return synthetic_city(options);
-  }
-  throw std::invalid_argument("bad scene '" + spec + "': " + grammar);
 }
 
 }  // namespace attenuvis::visgraph

@@ -1,6 +1,9 @@
 // Node generation on walkable surfaces and node files.
 #include <attenuvis/visgraph/nodes.hpp>
 
+#include <attenuvis/io/number_text.hpp>
+
+#include <boost/math/constants/constants.hpp>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -12,17 +15,18 @@
 namespace attenuvis::visgraph {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
+// A CSV field as a finite double (surrounding blanks allowed); false if it
+// is not one.
 bool parse_double(const std::string& field, double& value) {
-  std::size_t used = 0;
+  const auto first = field.find_first_not_of(" \t");
+  if (first == std::string::npos) return false;
+  const auto last = field.find_last_not_of(" \t");
   try {
-    value = std::stod(field, &used);
-  } catch (const std::exception&) {
+    value = io::parse_double(std::string_view(field).substr(first, last - first + 1), "coordinate");
+  } catch (const std::invalid_argument&) {
     return false;
   }
-  while (used < field.size() && std::isspace(static_cast<unsigned char>(field[used]))) ++used;
-  return used == field.size();
+  return true;
 }
 
 std::vector<std::string> split_commas(const std::string& line) {
@@ -52,7 +56,7 @@ NodeSet generate_nodes(const Scene& scene, const NodeGridOptions& options) {
     }
     walkable[static_cast<std::size_t>(it - groups.begin())] = 1;
   }
-  const double cos_max_slope = std::cos(std::min(options.max_slope_deg, 90.0) * kPi / 180.0);
+  const double cos_max_slope = std::cos(std::min(options.max_slope_deg, 90.0) * boost::math::constants::pi<double>() / 180.0);
 
   const BoundingBox& box = scene.bounds();
   const Eigen::Vector3d extent = box.extent();

@@ -1,6 +1,9 @@
 // CSV, PLY, heatmap and JSON outputs of a visibility pass.
 #include <attenuvis/visgraph/outputs.hpp>
 
+#include <attenuvis/io/shell.hpp>
+#include <attenuvis/io/staged_file.hpp>
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -11,7 +14,6 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
-#include <unistd.h>
 
 #ifndef ATTENUVIS_PYTHON
 #define ATTENUVIS_PYTHON "/usr/bin/python3"
@@ -23,18 +25,8 @@
 namespace attenuvis::visgraph {
 
 namespace {
-std::string temporary_beside(const std::string& path) {
-  return path + ".tmp." + std::to_string(static_cast<long>(::getpid()));
-}
-
 bool has_pruning(const VisibilityResult& r) {
   return r.tolerance > 0 && std::isfinite(r.pruning_radius);
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
 }
 
 // Viridis, sampled at 9 points (matplotlib's _viridis_data at 0, 1/8, ..., 1).
@@ -53,19 +45,7 @@ Eigen::Vector3d viridis(double t) {
 }  // namespace
 
 void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& fill) {
-  const std::string temp = temporary_beside(path);
-  try {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write '" + path + "'");
-    fill(out);
-    out.flush();
-    if (!out) throw std::runtime_error("error while writing '" + path + "'");
-    out.close();
-    if (std::rename(temp.c_str(), path.c_str()) != 0) throw std::runtime_error("cannot rename onto '" + path + "'");
-  } catch (...) {
-    std::remove(temp.c_str());
-    throw;
-  }
+  io::write_file_atomically(path, fill);
 }
 
 std::vector<std::string> score_columns(const ScoreTable& table) {
@@ -73,7 +53,8 @@ std::vector<std::string> score_columns(const ScoreTable& table) {
   std::vector<std::string> columns = {"x", "y", "z"};
   if (r.degree_exact) columns.push_back("degree");
   // Per condition its sum and (when the degree is exact) its average, side by
-  // side: x,y,z,degree,sum:A,avg:A,sum:B,avg:B,... (issue 4, README).
+  // side, so that a reader compares S_S and S_A of one condition at a glance:
+  // x,y,z,degree,sum:A,avg:A,sum:B,avg:B,... (README).
   for (const std::string& label : table.labels) {
     columns.push_back("sum:" + label);
     if (r.degree_exact) columns.push_back("avg:" + label);
@@ -161,19 +142,16 @@ void write_ply(const std::string& path, const ScoreTable& table, const std::stri
 
 void write_heatmap(const std::string& png_path, const std::string& csv_path, const std::string& column,
                    const std::string& title) {
-  const std::string temp = temporary_beside(png_path);
-  const std::string command = shell_quote(ATTENUVIS_PYTHON) + " " + shell_quote(ATTENUVIS_VG_HEATMAP_SCRIPT) + " " +
-                              shell_quote(csv_path) + " " + shell_quote(column) + " " + shell_quote(temp) +
-                              " --title " + shell_quote(title);
+  // The script writes the staged temporary; commit() renames it into place,
+  // and a failure leaves neither a partial PNG nor the temporary behind.
+  io::StagedFile png(png_path);
+  const std::string command = io::shell_quote(ATTENUVIS_PYTHON) + " " + io::shell_quote(ATTENUVIS_VG_HEATMAP_SCRIPT) +
+                              " " + io::shell_quote(csv_path) + " " + io::shell_quote(column) + " " +
+                              io::shell_quote(png.temporary_path()) + " --title " + io::shell_quote(title);
   const int status = std::system(command.c_str());
-  if (status != 0) {
-    std::remove(temp.c_str());
+  if (status != 0)
     throw std::runtime_error("heatmap: '" + command + "' failed (status " + std::to_string(status) + ")");
-  }
-  if (std::rename(temp.c_str(), png_path.c_str()) != 0) {
-    std::remove(temp.c_str());
-    throw std::runtime_error("cannot rename onto '" + png_path + "'");
-  }
+  png.commit();
 }
 
 std::string summary_json(const ScoreTable& table, const RunInfo& info) {

@@ -19,6 +19,8 @@
 
 namespace attenuvis::visgraph::detail {
 
+double end_gap(double d) { return 1e-4 + 1e-6 * d; }
+
 #ifdef ATTENUVIS_X86_DISPATCH
 #define ATTENUVIS_LANE_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
@@ -85,7 +87,7 @@ inline void build_packet_lanes(double ox, double oy, double oz, const double* px
 #endif
   alignas(64) double gap[kLanes], ratio[kLanes];
   for (int l = 0; l < kLanes; ++l) {
-    gap[l] = 1e-4 + 1e-6 * d[l];  // end_gap(d)
+    gap[l] = end_gap(d[l]);
     ratio[l] = gap[l] / d[l];     // inf for d = 0: never selected
   }
   for (int l = 0; l < kLanes; ++l) {

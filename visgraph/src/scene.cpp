@@ -1,18 +1,69 @@
 // Scene: recentres a Mesh in double precision and builds an Embree BVH.
-#include <attenuvis/visgraph/scene.hpp>
-
-#include <embree3/rtcore.h>
+//
+// Every Scene shares one Embree device (a device owns the thread pool and
+// memory accounting; one per scene would start a pool per scene).  Embree
+// reports failures through the device's error callback, whose message is
+// kept and put into the exception the failing call throws.
+#include "scene_access.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace attenuvis::visgraph {
 
+namespace {
+
+// Embree's last error message (its callback may run on a worker thread).
+std::mutex embree_message_mutex;
+std::string embree_message;
+
+void remember_embree_error(void* /*user*/, RTCError code, const char* text) {
+  const std::lock_guard<std::mutex> lock(embree_message_mutex);
+  embree_message = "Embree error " + std::to_string(static_cast<int>(code)) + (text ? std::string(": ") + text : "");
+}
+
+std::string last_embree_message() {
+  const std::lock_guard<std::mutex> lock(embree_message_mutex);
+  return embree_message.empty() ? std::string("no message from Embree") : embree_message;
+}
+
+std::string embree_error_name(RTCError code) {
+  switch (code) {
+    case RTC_ERROR_NONE: return "no error";
+    case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
+    case RTC_ERROR_CANCELLED: return "cancelled";
+    default: return "unknown error";
+  }
+}
+
+// The process's Embree device, made on first use; each Scene holds a
+// reference, so the device outlives every scene whatever the order of
+// static destruction.
+std::shared_ptr<RTCDeviceTy> shared_device() {
+  static const std::shared_ptr<RTCDeviceTy> device = [] {
+    RTCDevice d = rtcNewDevice(nullptr);
+    if (!d)
+      throw std::runtime_error("scene: Embree device could not be created (" +
+                               embree_error_name(rtcGetDeviceError(nullptr)) + ")");
+    rtcSetDeviceErrorFunction(d, remember_embree_error, nullptr);
+    return std::shared_ptr<RTCDeviceTy>(d, rtcReleaseDevice);
+  }();
+  return device;
+}
+
+}  // namespace
+
 struct Scene::Impl {
-  RTCDevice device = nullptr;
+  std::shared_ptr<RTCDeviceTy> device;
   RTCScene scene = nullptr;
   std::size_t triangles = 0;
   BoundingBox bounds;
@@ -21,7 +72,6 @@ struct Scene::Impl {
   std::vector<std::uint32_t> triangle_group;
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
   }
 };
 
@@ -53,21 +103,24 @@ Scene::Scene(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
     ++impl_->groups[g].triangles;
   }
 
-  impl_->device = rtcNewDevice(nullptr);
-  if (!impl_->device) throw std::runtime_error("scene: Embree device could not be created");
-  impl_->scene = rtcNewScene(impl_->device);
+  impl_->device = shared_device();
+  RTCDevice device = impl_->device.get();
+  impl_->scene = rtcNewScene(device);
+  if (!impl_->scene) throw std::runtime_error("scene: Embree could not create a scene: " + last_embree_message());
   // ROBUST: a segment grazing the shared edge of two wall triangles must not
   // slip through the crack (it would add a false line of sight).
   rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
   rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
-  RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  if (!geometry) throw std::runtime_error("scene: Embree could not create the geometry: " + last_embree_message());
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                                3 * sizeof(float), mesh.vertices.size()));
   auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                                  3 * sizeof(unsigned), mesh.triangles.size()));
   if (!vertices || !indices) {
     rtcReleaseGeometry(geometry);
-    throw std::runtime_error("scene: Embree could not allocate the geometry buffers");
+    throw std::runtime_error("scene: Embree could not allocate the geometry buffers (" +
+                             std::to_string(mesh.triangles.size()) + " triangles): " + last_embree_message());
   }
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
     const Eigen::Vector3d local = mesh.vertices[v] - impl_->origin;  // subtract in double, round once
@@ -79,8 +132,10 @@ Scene::Scene(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
   rtcAttachGeometry(impl_->scene, geometry);
   rtcReleaseGeometry(geometry);
   rtcCommitScene(impl_->scene);
-  if (rtcGetDeviceError(impl_->device) != RTC_ERROR_NONE)
-    throw std::runtime_error("scene: Embree failed to build the BVH");
+  const RTCError error = rtcGetDeviceError(device);
+  if (error != RTC_ERROR_NONE)
+    throw std::runtime_error("scene: Embree failed to build the BVH (" + embree_error_name(error) +
+                             "): " + last_embree_message());
 }
 
 Scene::~Scene() = default;
@@ -90,7 +145,7 @@ const BoundingBox& Scene::bounds() const { return impl_->bounds; }
 const Eigen::Vector3d& Scene::origin() const { return impl_->origin; }
 const std::vector<GroupInfo>& Scene::groups() const { return impl_->groups; }
 std::uint32_t Scene::triangle_group(std::size_t triangle) const { return impl_->triangle_group.at(triangle); }
-void* Scene::embree_scene() const { return impl_->scene; }
+RTCScene detail::SceneAccess::embree(const Scene& scene) { return scene.impl_->scene; }
 
 Scene::Hit Scene::intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_near, double t_far) const {
   RTCIntersectContext context;

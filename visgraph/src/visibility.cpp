@@ -11,19 +11,19 @@
 // exact, so independent of thread count and schedule.
 //
 // Partners of a row:
-//  - exact runs: all j > i (all-to-all, in x order: see x_order below) or
-//    every target, as contiguous ranges (no index lists);
-//  - all-to-all with a finite radius (pruning or --max-distance) and no edge
-//    output: nodes are sorted by x once; the partners of row r within the
-//    radius lie in the slab x_r <= x <= x_r + R after it, filtered by exact
-//    distance (no tree search, no per-row sort);
-//  - otherwise (to_targets, or edge output in (i, j) order): a kd-tree
-//    radius search (nanoflann), sorted.
+//  - exact runs: all j > i (all-to-all, rows = nodes sorted by x: see
+//    plan_pass) or every target, as contiguous ranges (no index lists);
+//  - all-to-all with a finite radius (pruning or --max-distance): the
+//    partners of row r within the radius lie in the slab x_r <= x <= x_r + R
+//    after it, filtered by exact distance (no tree search, no per-row sort);
+//  - to_targets with a finite radius: a kd-tree radius search (nanoflann),
+//    sorted.
 #include <attenuvis/visgraph/visibility.hpp>
 
 #include "contrast_kernel.hpp"
 #include "pair_packet.hpp"
 #include "progress.hpp"
+#include "scene_access.hpp"
 
 #include <embree3/rtcore.h>
 #include <nanoflann.hpp>
@@ -128,7 +128,16 @@ struct Pass {
   std::vector<double> neg_sigma;
   double max_distance = 0;
   bool keep_max = false;
+  // All-to-all: caller's index of each (x-sorted) row, for the edge list.
+  const std::uint32_t* caller = nullptr;
 };
+
+// An edge in the caller's numbering; all-to-all edges as (smaller, larger).
+Edge edge(const Pass& pass, std::size_t row, std::uint32_t partner, double distance) {
+  if (!pass.caller) return Edge{static_cast<std::uint32_t>(row), partner, distance};
+  const std::uint32_t a = pass.caller[row], b = pass.caller[partner];
+  return Edge{std::min(a, b), std::max(a, b), distance};
+}
 
 // Casts row i against `count` partners and accumulates: partners j0 .. j0 +
 // count - 1 when `cand` is null, else cand[0 .. count).
@@ -193,7 +202,7 @@ void process_row(const Pass& pass, std::size_t i, const std::uint32_t* cand, std
           ts.max_distance[i] = std::max(ts.max_distance[i], d);
           if (pass.symmetric) ts.max_distance[j] = std::max(ts.max_distance[j], d);
         }
-        if (edges) edges->push_back(Edge{static_cast<std::uint32_t>(i), j, d});
+        if (edges) edges->push_back(edge(pass, i, j, d));
       }
     }
   }
@@ -205,145 +214,149 @@ void process_row(const Pass& pass, std::size_t i, const std::uint32_t* cand, std
   }
 }
 
-VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const Points& partners, bool symmetric,
-                          const VisibilityOptions& options) {
-  validate(options);
-  if (given_sources.size() == 0) throw std::invalid_argument("visibility: no nodes");
-  if (!symmetric && partners.size() == 0) throw std::invalid_argument("visibility: no targets");
-  if (given_sources.size() > 0xFFFFFFFFu || partners.size() > 0xFFFFFFFFu)
-    throw std::invalid_argument("visibility: more than 2^32 nodes");
-  const auto start_time = std::chrono::steady_clock::now();
+// How a pass finds each row's partners (see the file comment).
+struct Plan {
+  double prune_radius = std::numeric_limits<double>::infinity();  // R = ln(1/eps)/sigma_min
+  double radius = 0;         // min(R, max_distance)
+  double radius_sq = 0;      // with slack, for candidate searches
+  bool pruning = false;      // R < max_distance: partners within max_distance may be skipped
+  bool x_order = false;      // rows are the nodes sorted by x
+  bool slab = false;         // partners from the x slab (x_order and a finite radius)
+  bool use_tree = false;     // partners from a kd-tree radius search
+  std::size_t slots = 0;     // accumulator slots per node
+  std::size_t within_slot = 0;  // slab only: partners within the radius, per node
+};
 
-  VisibilityResult result;
-  const std::size_t N = given_sources.size(), M = symmetric ? N : partners.size();
-  result.nodes = N;
-  result.tolerance = options.tolerance;
+Plan plan_pass(const VisibilityOptions& options, bool symmetric) {
+  Plan plan;
   const int K = static_cast<int>(options.sigmas.size());
-
-  // Pruning radius R = ln(1/eps)/sigma_min (infinite without pruning).
   double sigma_min = std::numeric_limits<double>::infinity();
   for (double s : options.sigmas) sigma_min = std::min(sigma_min, s);
-  double prune_radius = std::numeric_limits<double>::infinity();
-  if (options.tolerance > 0 && K > 0 && sigma_min > 0) prune_radius = std::log(1.0 / options.tolerance) / sigma_min;
-  const double radius = std::min(prune_radius, options.max_distance);
-  const bool pruning = prune_radius < options.max_distance;
-  result.pruning_radius = prune_radius;
-  result.degree_exact = !pruning;
+  if (options.tolerance > 0 && K > 0 && sigma_min > 0) plan.prune_radius = std::log(1.0 / options.tolerance) / sigma_min;
+  plan.radius = std::min(plan.prune_radius, options.max_distance);
+  plan.pruning = plan.prune_radius < options.max_distance;
   // Candidates within a radius are found with a little slack (relative 5e-10
   // plus 1e-6 m) so that no pair within it is missed by rounding;
   // build_packet then applies "d <= max_distance" exactly.
-  const double radius_sq = radius * radius * (1 + 1e-9) + 1e-12;
-  // All-to-all without edge output works on the nodes sorted by x, exact runs
-  // too: every pair is then cast from the same end (the earlier in x order)
-  // with the same float ray whether or not the run prunes, so a grazing sight
-  // line cannot be decided one way in the exact run and the other way in a
-  // pruned one (Embree's answer for a segment depends on its direction at
-  // edge-on hits).  Results are mapped back to the caller's order below.
-  const bool x_order = symmetric && !options.edge_sink;
-  const bool slab = x_order && std::isfinite(radius);
-  const bool use_tree = std::isfinite(radius) && !slab;
-  std::vector<std::uint32_t> order;
-  Points sorted;
-  if (x_order) sorted = sorted_by_x(given_sources, order);
-  const Points& sources = x_order ? sorted : given_sources;
+  plan.radius_sq = plan.radius * plan.radius * (1 + 1e-9) + 1e-12;
+  // All-to-all works on the nodes sorted by x, whatever the outputs asked
+  // for: every pair is then cast from the same end (the earlier in x order) in
+  // the same packets of the same rows with or without an edge list, so a
+  // grazing sight line cannot be decided one way in one run and the other way
+  // in another (Embree's answer for a segment that touches an edge depends on
+  // its direction, and on whether its packet is traversed as a packet or ray
+  // by ray).  Results are mapped back to the caller's order at the end; edges
+  // as they are found.
+  plan.x_order = symmetric;
+  plan.slab = symmetric && std::isfinite(plan.radius);
+  plan.use_tree = !symmetric && std::isfinite(plan.radius);
+  plan.within_slot = 2 + static_cast<std::size_t>(K);
+  plan.slots = plan.within_slot + (plan.slab ? 1 : 0);
+  return plan;
+}
 
-  Pass pass;
-  pass.rtc = static_cast<RTCScene>(scene.embree_scene());
-  pass.sources = &sources;
-  pass.partners = symmetric ? &sources : &partners;
-  pass.symmetric = symmetric;
-  pass.N = N;
-  pass.K = K;
-  for (double s : options.sigmas) pass.neg_sigma.push_back(-s);
-  pass.max_distance = options.max_distance;
-  pass.keep_max = options.distance_stats;
-  const std::size_t slots = 2 + static_cast<std::size_t>(K) + (slab ? 1 : 0);
-  const std::size_t within_slot = 2 + static_cast<std::size_t>(K);
+// Partners after row i (x order) within the radius: the slab
+// x_i <= x <= x_i + R, filtered by distance.  Counts, for the pruning bound,
+// the partners within the radius of both ends.
+void slab_candidates(const Points& P, const Plan& plan, std::size_t i, std::size_t N, ThreadState& ts) {
+  const double xi = P.x[i], yi = P.y[i], zi = P.z[i];
+  const double slab_width = std::sqrt(plan.radius_sq);
+  const std::size_t end = static_cast<std::size_t>(
+      std::upper_bound(P.x.begin() + static_cast<std::ptrdiff_t>(i + 1), P.x.end(), xi + slab_width) - P.x.begin());
+  ts.candidates.clear();
+  std::int64_t* within = ts.acc.data() + plan.within_slot * N;
+  for (std::size_t j = i + 1; j < end; ++j) {
+    const double dx = P.x[j] - xi, dy = P.y[j] - yi, dz = P.z[j] - zi;
+    if (dx * dx + dy * dy + dz * dz > plan.radius_sq) continue;
+    ts.candidates.push_back(static_cast<std::uint32_t>(j));
+    ++within[j];
+  }
+  within[i] += static_cast<std::int64_t>(ts.candidates.size());
+}
 
-  std::unique_ptr<KdTree> tree;
-  if (use_tree) tree = std::make_unique<KdTree>(3, *pass.partners, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  const double slab_width = std::sqrt(radius_sq);
+// Targets of source i within the radius by kd-tree search, sorted (edges in
+// (source, target) order); returns how many lie within the radius.
+std::size_t tree_candidates(const KdTree& tree, const Points& S, const Plan& plan, bool symmetric, std::size_t i,
+                            ThreadState& ts) {
+  const double q[3] = {S.x[i], S.y[i], S.z[i]};
+  const std::size_t first = symmetric ? i + 1 : 0;
+  ts.matches.clear();
+  tree.radiusSearch(q, plan.radius_sq, ts.matches, nanoflann::SearchParams(32, 0, false));
+  ts.candidates.clear();
+  std::size_t within = 0;
+  for (const auto& m : ts.matches) {
+    if (symmetric && m.first == i) continue;
+    ++within;
+    if (m.first >= first) ts.candidates.push_back(m.first);
+  }
+  std::sort(ts.candidates.begin(), ts.candidates.end());
+  return within;
+}
 
-  tbb::enumerable_thread_specific<ThreadState> states([&] {
-    ThreadState ts;
-    ts.acc.assign(N * slots, 0);
-    if (pass.keep_max) ts.max_distance.assign(N, 0.0);
-    ts.c_fixed.assign(static_cast<std::size_t>(std::max(K, 1)) * kLanes, 0);
-    ts.row.assign((2 + static_cast<std::size_t>(K)) * kLanes, 0);
-    return ts;
-  });
-  std::vector<std::uint32_t> pruned(N, 0);
-  result.pairs_total = symmetric ? static_cast<std::uint64_t>(N) * (N - 1) / 2 : static_cast<std::uint64_t>(N) * M;
+// One row: find its partners and cast them.
+void run_row(const Pass& pass, const Plan& plan, const KdTree* tree, std::size_t i, ThreadState& ts,
+             std::vector<Edge>* edges, std::vector<std::uint32_t>& pruned) {
+  const std::size_t N = pass.N;
+  const std::size_t M = pass.symmetric ? N : pass.partners->size();
+  const std::size_t first = pass.symmetric ? i + 1 : 0;
+  if (plan.slab) {
+    slab_candidates(*pass.sources, plan, i, N, ts);
+    process_row(pass, i, ts.candidates.data(), 0, ts.candidates.size(), ts, edges);
+  } else if (tree) {
+    const std::size_t within = tree_candidates(*tree, *pass.sources, plan, pass.symmetric, i, ts);
+    if (plan.pruning) pruned[i] = static_cast<std::uint32_t>((pass.symmetric ? N - 1 : M) - within);
+    process_row(pass, i, ts.candidates.data(), 0, ts.candidates.size(), ts, edges);
+  } else {
+    process_row(pass, i, nullptr, first, M - first, ts, edges);
+  }
+}
 
-  // Edge output goes block by block, in row order, so the list never sits
-  // whole in memory.
+// Every row, in parallel.  Edge output goes block by block, in row order, so
+// the list never sits whole in memory.
+void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const VisibilityOptions& options,
+              tbb::enumerable_thread_specific<ThreadState>& states, std::vector<std::uint32_t>& pruned,
+              std::uint64_t pairs_total) {
+  const std::size_t N = pass.N;
+  const std::size_t M = pass.symmetric ? N : pass.partners->size();
   const std::size_t block_rows =
       options.edge_sink ? std::max<std::size_t>(1, (std::size_t{1} << 22) / std::max<std::size_t>(M, 1)) : N;
   std::vector<std::vector<Edge>> row_edges(options.edge_sink ? block_rows : 0);
-
-  Progress progress(options.progress, result.pairs_total, "vg");
+  Progress progress(options.progress, pairs_total, "vg");
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     for (std::size_t block = 0; block < N; block += block_rows) {
       const std::size_t block_end = std::min(N, block + block_rows);
       tbb::parallel_for(tbb::blocked_range<std::size_t>(block, block_end, 1),
                         [&](const tbb::blocked_range<std::size_t>& range) {
-        ThreadState& ts = states.local();
-        std::uint64_t done = 0;
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-          std::vector<Edge>* edges = options.edge_sink ? &row_edges[i - block] : nullptr;
-          if (edges) edges->clear();
-          const std::size_t first = symmetric ? i + 1 : 0;
-          done += symmetric ? N - 1 - i : M;
-          if (slab) {
-            // Partners after i in x order within the radius: the slab
-            // x_i <= x <= x_i + R, filtered by distance.
-            const Points& P = sources;
-            const double xi = P.x[i], yi = P.y[i], zi = P.z[i];
-            const std::size_t end =
-                static_cast<std::size_t>(std::upper_bound(P.x.begin() + first, P.x.end(), xi + slab_width) - P.x.begin());
-            ts.candidates.clear();
-            std::int64_t* within = ts.acc.data() + within_slot * N;
-            for (std::size_t j = first; j < end; ++j) {
-              const double dx = P.x[j] - xi, dy = P.y[j] - yi, dz = P.z[j] - zi;
-              if (dx * dx + dy * dy + dz * dz > radius_sq) continue;
-              ts.candidates.push_back(static_cast<std::uint32_t>(j));
-              ++within[j];
-            }
-            within[i] += static_cast<std::int64_t>(ts.candidates.size());
-            process_row(pass, i, ts.candidates.data(), 0, ts.candidates.size(), ts, nullptr);
-          } else if (tree) {
-            const double q[3] = {sources.x[i], sources.y[i], sources.z[i]};
-            ts.matches.clear();
-            tree->radiusSearch(q, radius_sq, ts.matches, nanoflann::SearchParams(32, 0, false));
-            ts.candidates.clear();
-            std::size_t within = 0;
-            for (const auto& m : ts.matches) {
-              if (symmetric && m.first == i) continue;
-              ++within;
-              if (m.first >= first) ts.candidates.push_back(m.first);
-            }
-            std::sort(ts.candidates.begin(), ts.candidates.end());  // edges in (i, j) order
-            if (pruning) pruned[i] = static_cast<std::uint32_t>((symmetric ? N - 1 : M) - within);
-            process_row(pass, i, ts.candidates.data(), 0, ts.candidates.size(), ts, edges);
-          } else {
-            process_row(pass, i, nullptr, first, M - first, ts, edges);
-          }
-        }
-        progress.add(done);
-      });
+                          ThreadState& ts = states.local();
+                          std::uint64_t done = 0;
+                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                            std::vector<Edge>* edges = options.edge_sink ? &row_edges[i - block] : nullptr;
+                            if (edges) edges->clear();
+                            done += pass.symmetric ? N - 1 - i : M;
+                            run_row(pass, plan, tree, i, ts, edges, pruned);
+                          }
+                          progress.add(done);
+                        });
       if (options.edge_sink) {
         std::vector<Edge> out;
-        for (std::size_t i = block; i < block_end; ++i) out.insert(out.end(), row_edges[i - block].begin(), row_edges[i - block].end());
+        for (std::size_t i = block; i < block_end; ++i)
+          out.insert(out.end(), row_edges[i - block].begin(), row_edges[i - block].end());
         options.edge_sink(out);
       }
     }
   });
   progress.finish();
+}
 
-  // Exact reduction of the per-thread integer accumulators, back to the
-  // caller's node order.
-  std::vector<std::int64_t> total(N * slots, 0);
+// Exact reduction of the per-thread integer accumulators into `result`, in
+// the caller's node order (order[i] = caller index of row i; empty: same).
+void collect_results(const tbb::enumerable_thread_specific<ThreadState>& states, const Plan& plan, const Pass& pass,
+                     const std::vector<std::uint32_t>& order, std::vector<std::uint32_t> pruned,
+                     VisibilityResult& result) {
+  const std::size_t N = pass.N;
+  const int K = pass.K;
+  std::vector<std::int64_t> total(N * plan.slots, 0);
   std::vector<double> max_distance(pass.keep_max ? N : 0, 0.0);
   for (const ThreadState& ts : states) {
     for (std::size_t s = 0; s < total.size(); ++s) total[s] += ts.acc[s];
@@ -352,10 +365,11 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
     result.pairs_visible += ts.visible;
     result.coincident_pairs += ts.coincident;
   }
-  const auto caller_index = [&](std::size_t i) { return x_order ? order[i] : i; };
-  if (slab && pruning)
+  const auto caller_index = [&](std::size_t i) { return order.empty() ? i : order[i]; };
+  if (plan.slab && plan.pruning)
     for (std::size_t i = 0; i < N; ++i)
-      pruned[caller_index(i)] = static_cast<std::uint32_t>(static_cast<std::int64_t>(N - 1) - total[within_slot * N + i]);
+      pruned[caller_index(i)] =
+          static_cast<std::uint32_t>(static_cast<std::int64_t>(N - 1) - total[plan.within_slot * N + i]);
   result.sum.assign(static_cast<std::size_t>(K), std::vector<double>(N));
   for (int k = 0; k < K; ++k) {
     const std::int64_t* t = total.data() + static_cast<std::size_t>(2 + k) * N;
@@ -366,7 +380,7 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
   if (result.degree_exact) {
     result.degree.resize(N);
     for (std::size_t i = 0; i < N; ++i) result.degree[caller_index(i)] = static_cast<std::uint32_t>(total[i]);
-    if (options.distance_stats) {
+    if (pass.keep_max) {
       result.mean_distance.resize(N);
       result.max_distance.resize(N);
       for (std::size_t i = 0; i < N; ++i) {
@@ -377,6 +391,60 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
     }
   }
   result.pruned = std::move(pruned);
+}
+
+void check_pass_input(const Points& sources, const Points& partners, bool symmetric, const VisibilityOptions& options) {
+  validate(options);
+  if (sources.size() == 0) throw std::invalid_argument("visibility: no nodes");
+  if (!symmetric && partners.size() == 0) throw std::invalid_argument("visibility: no targets");
+  if (sources.size() > 0xFFFFFFFFu || partners.size() > 0xFFFFFFFFu)
+    throw std::invalid_argument("visibility: more than 2^32 nodes");
+}
+
+VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const Points& partners, bool symmetric,
+                          const VisibilityOptions& options) {
+  check_pass_input(given_sources, partners, symmetric, options);
+  const auto start_time = std::chrono::steady_clock::now();
+  const Plan plan = plan_pass(options, symmetric);
+  const std::size_t N = given_sources.size(), M = symmetric ? N : partners.size();
+  const int K = static_cast<int>(options.sigmas.size());
+  VisibilityResult result;
+  result.nodes = N;
+  result.tolerance = options.tolerance;
+  result.pruning_radius = plan.prune_radius;
+  result.degree_exact = !plan.pruning;
+  result.pairs_total = symmetric ? static_cast<std::uint64_t>(N) * (N - 1) / 2 : static_cast<std::uint64_t>(N) * M;
+
+  std::vector<std::uint32_t> order;
+  Points sorted;
+  if (plan.x_order) sorted = sorted_by_x(given_sources, order);
+  const Points& sources = plan.x_order ? sorted : given_sources;
+
+  Pass pass;
+  pass.rtc = detail::SceneAccess::embree(scene);
+  pass.sources = &sources;
+  pass.partners = symmetric ? &sources : &partners;
+  pass.symmetric = symmetric;
+  pass.N = N;
+  pass.K = K;
+  for (double s : options.sigmas) pass.neg_sigma.push_back(-s);
+  pass.max_distance = options.max_distance;
+  pass.keep_max = options.distance_stats;
+  pass.caller = order.empty() ? nullptr : order.data();
+
+  std::unique_ptr<KdTree> tree;
+  if (plan.use_tree) tree = std::make_unique<KdTree>(3, *pass.partners, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  tbb::enumerable_thread_specific<ThreadState> states([&] {
+    ThreadState ts;
+    ts.acc.assign(N * plan.slots, 0);
+    if (pass.keep_max) ts.max_distance.assign(N, 0.0);
+    ts.c_fixed.assign(static_cast<std::size_t>(std::max(K, 1)) * kLanes, 0);
+    ts.row.assign((2 + static_cast<std::size_t>(K)) * kLanes, 0);
+    return ts;
+  });
+  std::vector<std::uint32_t> pruned(N, 0);
+  run_rows(pass, plan, tree.get(), options, states, pruned, result.pairs_total);
+  collect_results(states, plan, pass, order, std::move(pruned), result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;
 }
@@ -403,10 +471,10 @@ VisibilityResult to_targets(const Scene& scene, const std::vector<Eigen::Vector3
 std::uint64_t raw_visible_pairs(const Scene& scene, const std::vector<Eigen::Vector3d>& eyes, int threads,
                                 RawMethod method) {
   // The same directed rays as all_to_all: nodes in x order, each pair cast
-  // from the earlier one (see x_order in run_pass).
+  // from the earlier one (see plan_pass).
   std::vector<std::uint32_t> order;
   const Points P = sorted_by_x(to_local(scene, eyes, "node"), order);
-  const RTCScene rtc = static_cast<RTCScene>(scene.embree_scene());
+  const RTCScene rtc = detail::SceneAccess::embree(scene);
   const std::size_t N = P.size();
   std::atomic<std::uint64_t> visible{0};
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);

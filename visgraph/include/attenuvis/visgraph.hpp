@@ -5,6 +5,7 @@
 #include <attenuvis/visgraph/generators.hpp>
 #include <attenuvis/visgraph/mesh.hpp>
 #include <attenuvis/visgraph/nodes.hpp>
+#include <attenuvis/visgraph/obj.hpp>
 #include <attenuvis/visgraph/outputs.hpp>
 #include <attenuvis/visgraph/scene.hpp>
 #include <attenuvis/visgraph/visibility.hpp>

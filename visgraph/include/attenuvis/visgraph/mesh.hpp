@@ -1,11 +1,13 @@
-// A triangle mesh in world coordinates (metres), as read from OBJ or made by a
-// scene generator.  Coordinates are kept in double: Embree works in float, so
-// the scene recentres them before building its BVH (see scene.hpp).
+// A triangle mesh in world coordinates (metres), as read from a file or made
+// by a scene generator, and the small measures reports and tests use.
+// Coordinates are kept in double: Embree works in float, so the scene
+// recentres them before building its BVH (see scene.hpp).
 #pragma once
 
 #include <Eigen/Core>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -24,13 +26,20 @@ struct Mesh {
   std::size_t add_group(const std::string& name);  // index of name, added if new
 };
 
-// Reads an OBJ file; polygons are triangulated, groups and materials kept.
-// Throws std::runtime_error naming the file (and line, where one is to blame)
-// for an unreadable file, NaN/inf vertices, bad indices or an empty mesh.
-Mesh load_obj(const std::string& path);
+// Horizontal (xy-projected) area of the triangles in the named groups: the
+// number of nodes a 1 m grid on those surfaces gives, to within edge effects.
+double walkable_area(const Mesh& mesh, const std::vector<std::string>& groups);
 
-// Writes the mesh as OBJ, one `g` block per group, atomically (temporary
-// file renamed into place).
-void write_obj(const Mesh& mesh, const std::string& path);
+struct MeshStats {
+  struct Group {
+    std::string name;
+    std::size_t triangles = 0;
+    double projected_area = 0.0;  // m^2, as walkable_area
+  };
+  std::size_t vertices = 0, triangles = 0;
+  Eigen::Vector3d lower, upper;   // bounding box of the vertices used by triangles
+  std::vector<Group> groups;
+};
+MeshStats mesh_stats(const Mesh& mesh);
 
 }  // namespace attenuvis::visgraph

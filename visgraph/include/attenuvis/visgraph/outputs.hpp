@@ -39,7 +39,7 @@ void write_csv(const std::string& path, const ScoreTable& table);
 void write_ply(const std::string& path, const ScoreTable& table, const std::string& column);
 
 // Top-view heatmap of `column` drawn from an existing CSV by
-// validation/scripts/vg_heatmap.py with Debian's python3 (matplotlib).
+// visgraph/scripts/vg_heatmap.py with Debian's python3 (matplotlib).
 void write_heatmap(const std::string& png_path, const std::string& csv_path, const std::string& column,
                    const std::string& title);
 
@@ -68,7 +68,8 @@ struct RunInfo {
 std::string summary_json(const ScoreTable& table, const RunInfo& info);
 
 // Writes through `fill` into a temporary file beside `path`, renamed into
-// place on success; removed (and the error rethrown) on failure.
+// place on success; removed (and the error rethrown) on failure
+// (attenuvis::io::write_file_atomically, kept here for the CLI's edge list).
 void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& fill);
 
 }  // namespace attenuvis::visgraph

@@ -20,6 +20,10 @@
 
 namespace attenuvis::visgraph {
 
+namespace detail {
+struct SceneAccess;  // the library's own kernels reach Embree through it (src/scene_access.hpp)
+}
+
 struct BoundingBox {
   Eigen::Vector3d min, max;
   Eigen::Vector3d centre() const { return 0.5 * (min + max); }
@@ -34,8 +38,10 @@ struct GroupInfo {
 
 class Scene {
  public:
-  // Builds the BVH (robust, high quality).  Throws std::invalid_argument for
-  // an empty mesh, a non-finite vertex or an out-of-range index.
+  // Builds the BVH (robust, high quality) on the process's one Embree device.
+  // Throws std::invalid_argument for an empty mesh, a non-finite vertex or an
+  // out-of-range index; std::runtime_error with Embree's own message when
+  // Embree fails (out of memory, ...).
   explicit Scene(const Mesh& mesh);
   ~Scene();
   Scene(const Scene&) = delete;
@@ -65,10 +71,8 @@ class Scene {
   // `end_gap` metres at both ends.
   bool occluded(const Eigen::Vector3d& a_local, const Eigen::Vector3d& b_local, double end_gap) const;
 
-  // The Embree RTCScene, as an opaque pointer for the library's own kernels.
-  void* embree_scene() const;
-
  private:
+  friend struct detail::SceneAccess;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

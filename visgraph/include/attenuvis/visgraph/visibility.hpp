@@ -14,7 +14,10 @@
 // scenes up to ~1 km from their centre (float spacing 6e-5 m there), the
 // relative term the rounding of a direction of length d.  Pairs with d <
 // 1e-6 m are coincident: never cast, neither visible nor counted (reported
-// as `coincident_pairs`).  Pairs with d <= 2 gap(d) but not coincident are
+// as `coincident_pairs`).  all_to_all casts every pair from its end earlier
+// in x order (ties by y, z, index), in the same packets whatever outputs are
+// asked for, so that a segment that just touches an edge (Embree's answer
+// then depends on the ray's direction) is decided the same way in every run.  Pairs with d <= 2 gap(d) but not coincident are
 // visible without a ray (no room for geometry between them).
 //
 // Determinism.  Contributions are accumulated as 64-bit integers in fixed
@@ -25,8 +28,8 @@
 //
 // Pruning.  With tolerance eps > 0 and sigma_min > 0, pairs farther than
 // R = ln(1/eps)/sigma_min are never cast (all-to-all: candidates from the
-// slab x_i <= x <= x_i + R of the nodes sorted by x; with edge output or
-// targets: a kd-tree radius search).  Each skipped partner would have contributed at most
+// slab x_i <= x <= x_i + R of the nodes sorted by x; to_targets: a kd-tree
+// radius search).  Each skipped partner would have contributed at most
 // exp(-sigma_k R) <= eps to S_S[k], so |S_S error| <= pruned x eps, reported
 // per node (`pruned`).  Degree and distance statistics need every pair, so
 // they are reported only when no pair within max_distance is pruned.
@@ -55,8 +58,11 @@ struct VisibilityOptions {
   double tolerance = 0;                  // eps; 0 = exact (every pair cast)
   double max_distance = std::numeric_limits<double>::infinity();  // farther pairs are not lines of sight
   int threads = 0;                       // 0 = all cores
-  // If set, receives the visible edges in (i, j) order, in blocks (so the
-  // edge list is never held whole in memory).
+  // If set, receives the visible edges in blocks (so the edge list is never
+  // held whole in memory).  all_to_all: each visible pair once as (i, j),
+  // i < j, grouped by the end each pair is cast from, in increasing x of that
+  // end (the order the pass visits them); to_targets: (source, target) in
+  // source order.  Asking for edges never changes the scores.
   std::function<void(const std::vector<Edge>&)> edge_sink;
   bool progress = false;                 // progress line on stderr after ~3 s
 };

@@ -1,6 +1,4 @@
-// OBJ input and output for Mesh, plus the small measures the `scene` command
-// and the visibility-graph summary report (triangle count, bounding box,
-// groups, projected areas).
+// OBJ input and output for Mesh.
 //
 // Reading is split in two passes over the file held in memory:
 //  1. our own light scan of the `v`, `f` and `usemtl` lines.  It exists for
@@ -15,43 +13,30 @@
 //     `usemtl` name gets a material id even when the file's .mtl is missing
 //     (material properties are never needed, only the names).
 //
-// Naming rule (documented in mesh.hpp): a triangle's group is its OBJ group
+// Naming rule (documented in obj.hpp): a triangle's group is its OBJ group
 // (`g`, or `o` where the file uses objects); a triangle with no group takes
 // its material name (`usemtl`); one with neither is in group "default".
-#include "attenuvis/visgraph/generators.hpp"
-#include "attenuvis/visgraph/mesh.hpp"
+#include <attenuvis/visgraph/obj.hpp>
+
+#include <attenuvis/io/number_text.hpp>
+#include <attenuvis/io/staged_file.hpp>
 
 #include <tiny_obj_loader.h>
 
-#include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
 
-#include <fcntl.h>
-#include <unistd.h>
-
 namespace attenuvis::visgraph {
-
-std::size_t Mesh::add_group(const std::string& name) {
-  // Meshes have a handful of groups: a linear search is the simplest fast way.
-  for (std::size_t i = 0; i < groups.size(); ++i)
-    if (groups[i] == name) return i;
-  groups.push_back(name);
-  return groups.size() - 1;
-}
 
 namespace {
 
@@ -239,19 +224,6 @@ Mesh load_obj(const std::string& path) {
 
 namespace {
 
-// Shortest decimal form that strtod reads back to the same double (C++17
-// to_chars guarantee), so UTM coordinates round-trip exactly.
-void append_number(std::string& out, double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  out.append(buffer, result.ptr);
-}
-
-std::atomic<unsigned>& temp_counter() {
-  static std::atomic<unsigned> counter{0};
-  return counter;
-}
-
 void validate_for_writing(const Mesh& mesh, const std::string& path) {
   if (mesh.triangle_group.size() != mesh.triangles.size())
     fail(path, 0, "cannot write mesh: triangle_group size differs from triangle count");
@@ -275,13 +247,8 @@ void write_obj(const Mesh& mesh, const std::string& path) {
   out += std::to_string(mesh.vertices.size()) + " vertices, " + std::to_string(mesh.triangles.size()) +
          " triangles, " + std::to_string(mesh.groups.size()) + " groups\n";
   for (const auto& v : mesh.vertices) {
-    out += "v ";
-    append_number(out, v.x());
-    out += ' ';
-    append_number(out, v.y());
-    out += ' ';
-    append_number(out, v.z());
-    out += '\n';
+    // Shortest round-trip text: UTM coordinates come back bit for bit.
+    out += "v " + io::shortest(v.x()) + ' ' + io::shortest(v.y()) + ' ' + io::shortest(v.z()) + '\n';
   }
   // One `g` block per group, in the order of mesh.groups.
   std::vector<std::vector<std::uint32_t>> by_group(mesh.groups.size());
@@ -297,77 +264,7 @@ void write_obj(const Mesh& mesh, const std::string& path) {
     }
   }
 
-  // Atomic: write a temporary file in the same directory, then rename it.
-  // open(O_CREAT | O_EXCL, 0666) rather than mkstemp, whose 0600 mode would
-  // survive the rename: the result gets the permissions the umask allows.
-  std::string temp;
-  int fd = -1;
-  for (int attempt = 0; fd < 0 && attempt < 100; ++attempt) {
-    temp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(temp_counter()++);
-    fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd < 0 && errno != EEXIST) break;
-  }
-  if (fd < 0) fail(path, 0, std::string("cannot create temporary file: ") + std::strerror(errno));
-  std::FILE* file = ::fdopen(fd, "wb");
-  if (!file) {
-    ::close(fd);
-    ::unlink(temp.c_str());
-    fail(path, 0, "cannot open temporary file for writing");
-  }
-  const bool written = std::fwrite(out.data(), 1, out.size(), file) == out.size();
-  const bool closed = std::fclose(file) == 0;
-  if (!written || !closed) {
-    ::unlink(temp.c_str());
-    fail(path, 0, "write error (disk full?)");
-  }
-  if (std::rename(temp.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
-    ::unlink(temp.c_str());
-    fail(path, 0, "cannot rename temporary file into place: " + why);
-  }
-}
-
-double walkable_area(const Mesh& mesh, const std::vector<std::string>& groups) {
-  std::vector<char> wanted(mesh.groups.size(), 0);
-  for (std::size_t g = 0; g < mesh.groups.size(); ++g)
-    wanted[g] = std::find(groups.begin(), groups.end(), mesh.groups[g]) != groups.end();
-  double area = 0.0;
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    if (!wanted[mesh.triangle_group[t]]) continue;
-    const auto& a = mesh.vertices[mesh.triangles[t][0]];
-    const auto& b = mesh.vertices[mesh.triangles[t][1]];
-    const auto& c = mesh.vertices[mesh.triangles[t][2]];
-    // Horizontal (xy-projected) area: what a grid of nodes at 1 m spacing
-    // counts.  Absolute value so winding does not matter.
-    area += 0.5 * std::abs((b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x()));
-  }
-  return area;
-}
-
-MeshStats mesh_stats(const Mesh& mesh) {
-  MeshStats stats;
-  stats.vertices = mesh.vertices.size();
-  stats.triangles = mesh.triangles.size();
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  stats.lower = Eigen::Vector3d::Constant(inf);
-  stats.upper = Eigen::Vector3d::Constant(-inf);
-  for (const auto& tri : mesh.triangles)
-    for (auto i : tri) {
-      stats.lower = stats.lower.cwiseMin(mesh.vertices[i]);
-      stats.upper = stats.upper.cwiseMax(mesh.vertices[i]);
-    }
-  stats.groups.resize(mesh.groups.size());
-  for (std::size_t g = 0; g < mesh.groups.size(); ++g) stats.groups[g].name = mesh.groups[g];
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    auto& group = stats.groups[mesh.triangle_group[t]];
-    ++group.triangles;
-    const auto& a = mesh.vertices[mesh.triangles[t][0]];
-    const auto& b = mesh.vertices[mesh.triangles[t][1]];
-    const auto& c = mesh.vertices[mesh.triangles[t][2]];
-    group.projected_area +=
-        0.5 * std::abs((b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x()));
-  }
-  return stats;
+  io::write_file_atomically(path, out);  // its errors name the path
 }
 
 }  // namespace attenuvis::visgraph

@@ -1,10 +1,11 @@
-// OBJ reading and writing (visgraph/src/mesh_io.cpp): exact round trip of
+// OBJ reading and writing (visgraph/src/obj.cpp): exact round trip of
 // UTM-sized coordinates, triangulation, group and material names, and one
 // clear error (file and line) per kind of bad input.
 #include <catch2/catch.hpp>
 
 #include "attenuvis/visgraph/generators.hpp"
 #include "attenuvis/visgraph/mesh.hpp"
+#include "attenuvis/visgraph/obj.hpp"
 
 #include <algorithm>
 #include <cstdio>

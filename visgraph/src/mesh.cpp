@@ -1,0 +1,64 @@
+// Mesh bookkeeping and the small measures the `scene` command and the
+// visibility-graph summary report (triangle count, bounding box, groups,
+// projected areas).
+#include <attenuvis/visgraph/mesh.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace attenuvis::visgraph {
+
+namespace {
+// Horizontal (xy-projected) area of triangle t: what a grid of nodes at 1 m
+// spacing counts.  Absolute value so winding does not matter.
+double projected_area(const Mesh& mesh, std::size_t t) {
+  const auto& a = mesh.vertices[mesh.triangles[t][0]];
+  const auto& b = mesh.vertices[mesh.triangles[t][1]];
+  const auto& c = mesh.vertices[mesh.triangles[t][2]];
+  return 0.5 * std::abs((b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x()));
+}
+}  // namespace
+
+std::size_t Mesh::add_group(const std::string& name) {
+  // Meshes have a handful of groups: a linear search is the simplest fast way.
+  for (std::size_t i = 0; i < groups.size(); ++i)
+    if (groups[i] == name) return i;
+  groups.push_back(name);
+  return groups.size() - 1;
+}
+
+double walkable_area(const Mesh& mesh, const std::vector<std::string>& groups) {
+  std::vector<char> wanted(mesh.groups.size(), 0);
+  for (std::size_t g = 0; g < mesh.groups.size(); ++g)
+    wanted[g] = std::find(groups.begin(), groups.end(), mesh.groups[g]) != groups.end();
+  double area = 0.0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (wanted[mesh.triangle_group[t]]) area += projected_area(mesh, t);
+  }
+  return area;
+}
+
+MeshStats mesh_stats(const Mesh& mesh) {
+  MeshStats stats;
+  stats.vertices = mesh.vertices.size();
+  stats.triangles = mesh.triangles.size();
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  stats.lower = Eigen::Vector3d::Constant(inf);
+  stats.upper = Eigen::Vector3d::Constant(-inf);
+  for (const auto& tri : mesh.triangles)
+    for (auto i : tri) {
+      stats.lower = stats.lower.cwiseMin(mesh.vertices[i]);
+      stats.upper = stats.upper.cwiseMax(mesh.vertices[i]);
+    }
+  stats.groups.resize(mesh.groups.size());
+  for (std::size_t g = 0; g < mesh.groups.size(); ++g) stats.groups[g].name = mesh.groups[g];
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    auto& group = stats.groups[mesh.triangle_group[t]];
+    ++group.triangles;
+    group.projected_area += projected_area(mesh, t);
+  }
+  return stats;
+}
+
+}  // namespace attenuvis::visgraph
