@@ -1,15 +1,10 @@
 // `attenuvis vg`: weather-weighted visibility graph of a scene.  Parses the
 // arguments, turns condition strings into sigma through the weather module
-// and calls the visgraph library; `attenuvis scene` is registered from
-// cmd_scene.cpp.
+// and calls the visgraph library.
 #include "commands.hpp"
 
 #include <attenuvis/visgraph.hpp>
-
-#if __has_include(<attenuvis/weather.hpp>)
 #include <attenuvis/weather.hpp>
-#define ATTENUVIS_VG_HAS_WEATHER 1
-#endif
 
 #include <chrono>
 #include <cmath>
@@ -21,11 +16,6 @@
 #include <vector>
 
 namespace attenuvis::cli {
-
-// cmd_scene.cpp (colleague's file).  Weak until it lands, so this program
-// links without it; the call is skipped while it is absent.
-void register_scene_command(CLI::App& app) __attribute__((weak));
-
 namespace {
 namespace vg = attenuvis::visgraph;
 
@@ -60,47 +50,21 @@ std::vector<vg::ConditionInfo> conditions_to_sigma(const VgArguments& a, double&
   std::vector<vg::ConditionInfo> out;
   const std::vector<std::string> labels = split(a.conditions, ',');
   if (labels.empty()) throw std::invalid_argument("--conditions: give at least one condition");
-#ifdef ATTENUVIS_VG_HAS_WEATHER
   weather::Settings settings;
-  settings.wavelength_m = weather::parse_wavelength(a.wavelength);
   settings.convention = weather::parse_convention(a.convention);
-  wavelength_m = settings.wavelength_m;
-#else
-  // Until the weather module lands: only plain `sigma:VALUE` (1/m).
-  wavelength_m = 0;
-  if (a.convention != "itu" && a.convention != "seed")
-    throw std::invalid_argument("--convention: expected itu or seed, got '" + a.convention + "'");
-#endif
+  wavelength_m = weather::parse_wavelength(a.wavelength);
   for (const std::string& label : labels) {
     if (label.empty()) throw std::invalid_argument("--conditions: empty condition in '" + a.conditions + "'");
     for (const vg::ConditionInfo& seen : out)
       if (seen.label == label) throw std::invalid_argument("--conditions: '" + label + "' given twice");
     vg::ConditionInfo info;
     info.label = label;
-#ifdef ATTENUVIS_VG_HAS_WEATHER
-    const weather::Sigma s = weather::sigma(weather::parse_condition(label), settings);
+    const weather::Sigma s = weather::sigma(weather::parse_condition(label), wavelength_m, settings);
     info.sigma = s.per_m;
     info.sigma_error = s.error_per_m;
     info.model = s.model;
     info.convention = s.convention;
     info.note = s.note;
-#else
-    const std::string prefix = "sigma:";
-    if (label.compare(0, prefix.size(), prefix) != 0)
-      throw std::invalid_argument("unknown condition '" + label +
-                                  "' (this build knows only sigma:VALUE, VALUE in 1/m)");
-    std::size_t used = 0;
-    const std::string value = label.substr(prefix.size());
-    try {
-      info.sigma = std::stod(value, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != value.size() || !std::isfinite(info.sigma) || info.sigma < 0)
-      throw std::invalid_argument("condition '" + label + "': sigma must be a finite number >= 0 (1/m)");
-    info.model = "given sigma";
-    info.convention = "none";
-#endif
     out.push_back(info);
   }
   return out;
@@ -232,7 +196,6 @@ void register_visgraph(CLI::App& app) {
   vgc->add_flag("--quiet", args->quiet, "no report or progress on stderr");
   (void)nodes;
   vgc->callback([args] { run_vg(*args); });
-  if (register_scene_command) register_scene_command(app);
 }
 
 }  // namespace attenuvis::cli

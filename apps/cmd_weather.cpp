@@ -3,6 +3,8 @@
 #include <iostream>
 #include <sstream>
 
+#include <boost/math/constants/constants.hpp>
+
 #include <nlohmann/json.hpp>
 
 #include "attenuvis/weather.hpp"
@@ -36,7 +38,6 @@ void add_common(CLI::App* cmd, CommonOptions& o) {
 
 w::Settings settings_from(const CommonOptions& o) {
   w::Settings s;
-  s.wavelength_m = w::parse_wavelength(o.wavelength);
   s.convention = w::parse_convention(o.convention);
   s.contrast_threshold = o.threshold;
   s.rel_tolerance = o.tolerance;
@@ -54,16 +55,17 @@ std::string num(double v, int precision = 6) {
 
 void run_sigma(const std::vector<std::string>& conditions, const CommonOptions& o, bool json) {
   w::Settings s = settings_from(o);
+  const double wavelength_m = w::parse_wavelength(o.wavelength);
   w::SigmaUnit unit = w::parse_sigma_unit(o.units);
-  std::vector<w::Condition> parsed;
-  for (const auto& text : conditions) parsed.push_back(w::parse_condition(text));  // all parse before any work
+  std::vector<w::LabelledCondition> parsed;
+  for (const auto& text : conditions) parsed.push_back({text, w::parse_condition(text)});  // all parse before any work
   nlohmann::json out = nlohmann::json::array();
   for (const auto& c : parsed) {
-    w::Sigma r = w::sigma(c, s);
+    w::Sigma r = w::sigma(c.condition, wavelength_m, s);
     double vis = r.per_m > 0 ? w::koschmieder_visibility_m(r.per_m, s.contrast_threshold) : INFINITY;
     if (json) {
-      nlohmann::json row = {{"condition", c.text},
-                            {"wavelength_nm", s.wavelength_m * 1e9},
+      nlohmann::json row = {{"condition", c.label},
+                            {"wavelength_nm", wavelength_m * 1e9},
                             {"sigma", w::convert_from_per_m(r.per_m, unit)},
                             {"error", w::convert_from_per_m(r.error_per_m, unit)},
                             {"units", w::to_string(unit)},
@@ -75,9 +77,9 @@ void run_sigma(const std::vector<std::string>& conditions, const CommonOptions& 
       else row["visibility_m"] = nullptr;
       out.push_back(row);
     } else {
-      std::cout << c.text << ": sigma = " << num(w::convert_from_per_m(r.per_m, unit), 10) << " +- "
+      std::cout << c.label << ": sigma = " << num(w::convert_from_per_m(r.per_m, unit), 10) << " +- "
                 << num(w::convert_from_per_m(r.error_per_m, unit), 3) << " " << w::to_string(unit)
-                << " at " << num(s.wavelength_m * 1e9) << " nm, convention " << r.convention << ", visibility "
+                << " at " << num(wavelength_m * 1e9) << " nm, convention " << r.convention << ", visibility "
                 << num(vis) << " m (contrast " << num(100 * s.contrast_threshold) << " %)\n"
                 << "  model: " << r.model << "\n";
       if (!r.note.empty()) std::cout << "  note: " << r.note << "\n";
@@ -99,12 +101,12 @@ void run_table(const std::string& conditions, const std::string& wavelengths, co
                const std::string& path, int threads, const CommonOptions& o) {
   CommonOptions with_wavelength = o;
   w::Settings s = settings_from(with_wavelength);
-  std::vector<w::Condition> parsed;
+  std::vector<w::LabelledCondition> parsed;
   for (const auto& text : split_conditions(conditions)) {
     auto expanded = w::expand_conditions(text);
     parsed.insert(parsed.end(), expanded.begin(), expanded.end());
   }
-  if (parsed.empty()) throw std::invalid_argument("--conditions is empty\n" + std::string(w::condition_grammar()));
+  if (parsed.empty()) throw std::invalid_argument("--conditions is empty\n" + w::condition_grammar());
   auto table = w::sigma_table(parsed, w::parse_wavelength_list(wavelengths), s, threads);
   w::write_sigma_table(table, path, w::parse_table_format(format), w::parse_sigma_unit(o.units));
   std::cout << "wrote " << table.cells.size() << " sigma values (" << table.wavelengths_m.size() << " wavelengths x "
@@ -126,7 +128,7 @@ void run_distribution(const std::string& what, double density, bool json) {
                           {"mode_radius_um", m.mode_radius_m * 1e6},
                           {"mean_radius_um", m.mean_radius_m * 1e6},
                           {"r2_support_um", {support.breakpoints_m.front() * 1e6, support.breakpoints_m.back() * 1e6}},
-                          {"geometric_cross_section_per_m", 3.14159265358979323846 * support.total_moment},
+                          {"geometric_cross_section_per_m", boost::math::constants::pi<double>() * support.total_moment},
                           {"checks_passed", ok}};
     std::cout << out.dump(2) << "\n";
   } else {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include <boost/math/constants/constants.hpp>
 #include <boost/math/quadrature/exp_sinh.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 
@@ -14,7 +15,7 @@ using namespace attenuvis::weather;
 using Catch::Matchers::Contains;
 
 namespace {
-const double kPi = 3.14159265358979323846;
+const double kPi = boost::math::constants::pi<double>();
 std::string data(const std::string& name) { return std::string(ATTENUVIS_TEST_DATA_DIR) + "/weather/" + name; }
 }  // namespace
 

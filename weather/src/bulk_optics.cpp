@@ -9,18 +9,20 @@
 #include <stdexcept>
 #include <vector>
 
+#include <boost/math/constants/constants.hpp>
+
 #include <tbb/parallel_for.h>
 
 #include "attenuvis/mie.hpp"
 #include "attenuvis/weather/resonance.hpp"
 #include "gauss_kronrod_rule.hpp"
-#include "significant.hpp"
+#include "attenuvis/io/number_text.hpp"
 
 namespace attenuvis::weather {
-using detail::significant;
+using io::significant;
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = boost::math::constants::pi<double>();
 // Components integrated together: ext, sca, abs, g*sca, asymptotic-bound, and
 // the weight pi r^2 n(r) alone (the geometric cross-section of the panel).
 constexpr int kExt = 0, kSca = 1, kAbs = 2, kGSca = 3, kAsym = 4, kWeight = 5, kComponents = 6;

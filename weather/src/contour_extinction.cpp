@@ -9,17 +9,19 @@
 #include <variant>
 #include <vector>
 
+#include <boost/math/constants/constants.hpp>
+
 #include <tbb/parallel_for.h>
 
 #include "attenuvis/mie/forward_amplitude.hpp"
 #include "gauss_kronrod_rule.hpp"
-#include "significant.hpp"
+#include "attenuvis/io/number_text.hpp"
 
 namespace attenuvis::weather {
-using detail::significant;
+using io::significant;
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = boost::math::constants::pi<double>();
 using Complex = std::complex<double>;
 
 // Largest arg(r) on the path for which the continued density stays as tame as

@@ -6,11 +6,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <boost/math/constants/constants.hpp>
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/special_functions/erf.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 
-#include "attenuvis/weather/units.hpp"
+#include "attenuvis/io/number_text.hpp"
 
 namespace attenuvis::weather {
 namespace {
@@ -20,7 +21,7 @@ struct Overloaded : Ts... { using Ts::operator()...; };
 template <class... Ts>
 Overloaded(Ts...) -> Overloaded<Ts...>;
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = boost::math::constants::pi<double>();
 
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
@@ -242,7 +243,7 @@ SizeDistribution preset_distribution(const std::string& name) {
     auto d = SizeDistribution::modified_gamma_um(607.5, 6, 3);
     return SizeDistribution(d.form(), "moderate radiation fog (P.1817-1: alpha=6, a=607.5, b=3; r um, n cm^-3 um^-1)");
   }
-  auto rate_of = [&](std::size_t prefix) { return parse_number(name.substr(prefix), "rate in '" + name + "'"); };
+  auto rate_of = [&](std::size_t prefix) { return io::parse_double(name.substr(prefix), "rate in '" + name + "'"); };
   if (name.rfind("marshall-palmer:", 0) == 0) return SizeDistribution::marshall_palmer(rate_of(16));
   if (name.rfind("gunn-marshall:", 0) == 0) return SizeDistribution::gunn_marshall(rate_of(14));
   throw std::invalid_argument("unknown size distribution preset '" + name + "'; presets: " + kPresetList);
