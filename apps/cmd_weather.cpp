@@ -9,41 +9,22 @@
 
 #include "attenuvis/weather.hpp"
 #include "commands.hpp"
+#include "weather_options.hpp"
 
 namespace attenuvis::cli {
 namespace {
 
 namespace w = attenuvis::weather;
 
+// Options of sigma and table: the shared weather options and the output unit.
 struct CommonOptions {
-  std::string wavelength = "550nm";
+  WeatherOptions weather;
   std::string units = "m";
-  std::string convention = "itu";
-  double threshold = 0.02;
-  double tolerance = 1e-9;
-  std::string water = "hale-querry";
 };
 
-void add_common(CLI::App* cmd, CommonOptions& o) {
+void add_common(CLI::App* cmd, CommonOptions& o, WeatherOptionSet which) {
   cmd->add_option("--units", o.units, "sigma units: m (1/m), km (1/km) or dB/km")->capture_default_str();
-  cmd->add_option("--convention", o.convention,
-                  "how P.1817 rain/snow power laws are read: itu (dB/km) or seed (1/km, 4.34x larger)")
-      ->capture_default_str();
-  cmd->add_option("--threshold", o.threshold, "Koschmieder contrast threshold: 0.02 (3.912) or 0.05 (2.996)")
-      ->capture_default_str();
-  cmd->add_option("--tolerance", o.tolerance, "relative tolerance of Mie size integrals")->capture_default_str();
-  cmd->add_option("--water", o.water, "water refractive-index table: hale-querry or segelstein")
-      ->capture_default_str();
-}
-
-w::Settings settings_from(const CommonOptions& o) {
-  w::Settings s;
-  s.convention = w::parse_convention(o.convention);
-  s.contrast_threshold = o.threshold;
-  s.rel_tolerance = o.tolerance;
-  s.water_table = o.water;
-  w::koschmieder_visibility_m(1.0, o.threshold);  // validates the threshold
-  return s;
+  add_weather_options(cmd, o.weather, which);
 }
 
 std::string num(double v, int precision = 6) {
@@ -54,8 +35,8 @@ std::string num(double v, int precision = 6) {
 }
 
 void run_sigma(const std::vector<std::string>& conditions, const CommonOptions& o, bool json) {
-  w::Settings s = settings_from(o);
-  const double wavelength_m = w::parse_wavelength(o.wavelength);
+  const w::Settings s = weather_settings(o.weather);
+  const double wavelength_m = cli::wavelength_m(o.weather);
   w::SigmaUnit unit = w::parse_sigma_unit(o.units);
   std::vector<w::LabelledCondition> parsed;
   for (const auto& text : conditions) parsed.push_back({text, w::parse_condition(text)});  // all parse before any work
@@ -99,8 +80,7 @@ std::vector<std::string> split_conditions(const std::string& text) {
 
 void run_table(const std::string& conditions, const std::string& wavelengths, const std::string& format,
                const std::string& path, int threads, const CommonOptions& o) {
-  CommonOptions with_wavelength = o;
-  w::Settings s = settings_from(with_wavelength);
+  const w::Settings s = weather_settings(o.weather);
   std::vector<w::LabelledCondition> parsed;
   for (const auto& text : split_conditions(conditions)) {
     auto expanded = w::expand_conditions(text);
@@ -156,8 +136,7 @@ void register_weather(CLI::App& app) {
     auto opts = std::make_shared<CommonOptions>();
     auto json = std::make_shared<bool>(false);
     cmd->add_option("conditions", *conditions, "conditions, e.g. clear rain:8 fog:advection")->required();
-    cmd->add_option("--wavelength", opts->wavelength, "wavelength, e.g. 550nm or 10.6um")->capture_default_str();
-    add_common(cmd, *opts);
+    add_common(cmd, *opts, {});
     cmd->add_flag("--json", *json, "print JSON");
     cmd->callback([=] { run_sigma(*conditions, *opts, *json); });
   }
@@ -175,7 +154,7 @@ void register_weather(CLI::App& app) {
     cmd->add_option("--format", *format, "csv or json")->capture_default_str();
     cmd->add_option("--out", *out, "output file")->required();
     cmd->add_option("--threads", *threads, "worker threads (0: all cores)")->capture_default_str();
-    add_common(cmd, *opts);
+    add_common(cmd, *opts, {/*wavelength=*/false, /*tolerance=*/true});
     cmd->callback([=] { run_table(*conditions, *wavelengths, *format, *out, *threads, *opts); });
   }
   {
