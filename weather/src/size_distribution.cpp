@@ -266,10 +266,15 @@ Moments moments(const SizeDistribution& d, double rho) {
                  },
                  [&](const PowerLaw& p) { return p.nu > 0 ? p.r_min_m : p.r_max_m; },
                  [&](const Tabulated& t) {
+                   // The largest density; on a flat segment (a bin, or a plateau
+                   // between two equal points) the mode is its middle.
                    double best = -1, at = 0;
                    for (const auto& s : t.segments) {
-                     if (s.n0 > best) { best = s.n0; at = s.n1 > s.r0 && s.n0 == s.n1 ? 0.5 * (s.r0 + s.r1) : s.r0; }
-                     if (s.n1 > best) { best = s.n1; at = s.n0 == s.n1 ? 0.5 * (s.r0 + s.r1) : s.r1; }
+                     const bool flat = s.n0 == s.n1;
+                     const double middle = 0.5 * (s.r0 + s.r1);
+                     if (s.n0 > best) { best = s.n0; at = flat ? middle : s.r0; }
+                     else if (flat && s.n0 == best && at == s.r0) at = middle;  // the peak continues as a plateau
+                     if (s.n1 > best) { best = s.n1; at = s.r1; }
                    }
                    return at;
                  }},
