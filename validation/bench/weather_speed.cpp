@@ -17,6 +17,7 @@
 
 #include "attenuvis/io/staged_file.hpp"
 #include "attenuvis/mie.hpp"
+#include "attenuvis/validation/quadrature_tradeoff.hpp"
 #include "attenuvis/weather.hpp"
 
 namespace w = attenuvis::weather;
@@ -130,8 +131,8 @@ int main(int argc, char** argv) {
     }
   }
 
-  auto rows = w::quadrature_tradeoff(550e-9, 1);
-  std::string csv = w::quadrature_tradeoff_csv(rows);
+  auto rows = attenuvis::validation::quadrature_tradeoff(550e-9, 1);
+  std::string csv = attenuvis::validation::quadrature_tradeoff_csv(rows);
   if (argc > 1) {
     attenuvis::io::write_file_atomically(argv[1], csv);
     std::printf("trade-off table written to %s\n", argv[1]);

@@ -11,6 +11,7 @@
 #include <boost/math/constants/constants.hpp>
 
 #include "attenuvis/mie.hpp"
+#include "attenuvis/validation/quadrature_tradeoff.hpp"
 #include "attenuvis/weather.hpp"
 #include "sections.hpp"
 
@@ -368,14 +369,14 @@ void quadrature(Context& ctx, Section& s) {
     return;
   }
   ctx.step("weather", "quadrature error against run time");
-  const auto rows = wx::quadrature_tradeoff(550e-9, 1);
+  const auto rows = quadrature_tradeoff(550e-9, 1);
   Table t{"weather_quadrature_tradeoff",
           "Quadrature error against run time (fog presets and a narrow log-normal at 550 nm): reported vs actual error, one call",
           {"case", "rel. tolerance", "Gauss-Kronrod points", "tail fraction", "sigma [1/m]", "reported error",
            "actual error", "resonance term", "evaluations", "time [ms]"}, {},
           "Reference: the contour integral above the real axis (weather/contour_extinction.hpp) at tolerance 1e-12, "
           "tail 1e-16. 'contour' rows: what sigma() uses; 'real axis' rows: bulk_optics.hpp, whose resonance term "
-          "bounds what it cannot resolve (weather/quadrature_tradeoff.hpp)."};
+          "bounds what it cannot resolve (validation/quadrature_tradeoff.hpp)."};
   std::size_t bounded = 0;
   for (const auto& r : rows) {
     t.add_row({r.case_name, Cell(r.rel_tolerance, 2), r.kronrod_points, Cell(r.tail_fraction, 2), Cell(r.sigma_per_m, 10),

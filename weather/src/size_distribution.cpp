@@ -11,6 +11,7 @@
 #include <boost/math/special_functions/erf.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 
+#include "analytic_density.hpp"
 #include "attenuvis/io/number_text.hpp"
 
 namespace attenuvis::weather {
@@ -129,15 +130,8 @@ double SizeDistribution::density(double r) const {
   if (!(r > 0)) return 0;
   return std::visit(
       Overloaded{
-          [&](const ModifiedGamma& g) {
-            // In log form so that t^alpha exp(-b t^gamma) -> 0 instead of inf * 0 at huge r.
-            double t = r / g.r0;
-            return g.a * std::exp(g.alpha * std::log(t) - g.b * std::pow(t, g.gamma));
-          },
-          [&](const LogNormal& l) {
-            double s = std::log(l.sigma_g), z = (std::log(r) - std::log(l.median_radius_m)) / s;
-            return l.number_per_m3 / (std::sqrt(2 * kPi) * s * r) * std::exp(-0.5 * z * z);
-          },
+          [&](const ModifiedGamma& g) { return detail::modified_gamma_density(g, r); },
+          [&](const LogNormal& l) { return detail::log_normal_density(l, r); },
           [&](const PowerLaw& p) { return (r < p.r_min_m || r > p.r_max_m) ? 0.0 : p.c * std::pow(r, -p.nu); },
           [&](const Tabulated& t) {
             for (const auto& s : t.segments)

@@ -13,7 +13,6 @@
 #include "attenuvis/weather/contour_extinction.hpp"
 #include "attenuvis/weather/distribution_file.hpp"
 #include "attenuvis/weather/empirical_models.hpp"
-#include "attenuvis/weather/quadrature_tradeoff.hpp"
 #include "attenuvis/weather/refractive_index.hpp"
 #include "attenuvis/weather/settings.hpp"
 #include "attenuvis/weather/sigma.hpp"
