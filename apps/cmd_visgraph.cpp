@@ -70,12 +70,6 @@ std::vector<vg::ConditionInfo> conditions_to_sigma(const VgArguments& a, double&
   return out;
 }
 
-std::vector<std::string> default_walkable(const std::string& scene) {
-  if (scene.rfind("layout:", 0) == 0) return {"floor"};
-  if (scene == "city" || scene.rfind("city:", 0) == 0) return {"sidewalk", "crosswalk"};
-  return {};
-}
-
 void run_vg(const VgArguments& a) {
   const auto start = std::chrono::steady_clock::now();
   if (!a.targets_file.empty() && !a.target_point.empty())
@@ -96,7 +90,7 @@ void run_vg(const VgArguments& a) {
     options.spacing = a.spacing;
     options.eye_height = a.eye_height;
     options.max_slope_deg = a.max_slope;
-    options.walkable = a.walkable.empty() ? default_walkable(a.scene) : split(a.walkable, ',');
+    options.walkable = a.walkable.empty() ? vg::default_walkable_groups(a.scene) : split(a.walkable, ',');
     grid = std::make_unique<vg::NodeSet>(vg::generate_nodes(scene, options));
     eyes = grid->eyes;
     if (!a.quiet)
