@@ -1,15 +1,11 @@
 // `attenuvis vg`: weather-weighted visibility graph of a scene.  Parses the
 // arguments, turns condition strings into sigma through the weather module
-// and calls the visgraph library; `attenuvis scene` is registered from
-// cmd_scene.cpp.
+// and calls the visgraph library.
 #include "commands.hpp"
+#include "weather_options.hpp"
 
 #include <attenuvis/visgraph.hpp>
-
-#if __has_include(<attenuvis/weather.hpp>)
 #include <attenuvis/weather.hpp>
-#define ATTENUVIS_VG_HAS_WEATHER 1
-#endif
 
 #include <chrono>
 #include <cmath>
@@ -21,11 +17,6 @@
 #include <vector>
 
 namespace attenuvis::cli {
-
-// cmd_scene.cpp (colleague's file).  Weak until it lands, so this program
-// links without it; the call is skipped while it is absent.
-void register_scene_command(CLI::App& app) __attribute__((weak));
-
 namespace {
 namespace vg = attenuvis::visgraph;
 
@@ -37,9 +28,9 @@ struct VgArguments {
   double max_slope = 90.0;
   std::string nodes_file, targets_file, target_point;
   std::string conditions;
-  std::string convention = "itu";
-  std::string wavelength = "550nm";
-  double tolerance = 0;
+  WeatherOptions weather;
+  double prune_below = 0;
+  double deprecated_tolerance = 0;  // --tolerance, the old name of --prune-below
   double max_distance = std::numeric_limits<double>::infinity();
   int threads = 0;
   bool distances = false;
@@ -60,56 +51,23 @@ std::vector<vg::ConditionInfo> conditions_to_sigma(const VgArguments& a, double&
   std::vector<vg::ConditionInfo> out;
   const std::vector<std::string> labels = split(a.conditions, ',');
   if (labels.empty()) throw std::invalid_argument("--conditions: give at least one condition");
-#ifdef ATTENUVIS_VG_HAS_WEATHER
-  weather::Settings settings;
-  settings.wavelength_m = weather::parse_wavelength(a.wavelength);
-  settings.convention = weather::parse_convention(a.convention);
-  wavelength_m = settings.wavelength_m;
-#else
-  // Until the weather module lands: only plain `sigma:VALUE` (1/m).
-  wavelength_m = 0;
-  if (a.convention != "itu" && a.convention != "seed")
-    throw std::invalid_argument("--convention: expected itu or seed, got '" + a.convention + "'");
-#endif
+  const weather::Settings settings = weather_settings(a.weather);
+  wavelength_m = cli::wavelength_m(a.weather);
   for (const std::string& label : labels) {
     if (label.empty()) throw std::invalid_argument("--conditions: empty condition in '" + a.conditions + "'");
     for (const vg::ConditionInfo& seen : out)
       if (seen.label == label) throw std::invalid_argument("--conditions: '" + label + "' given twice");
     vg::ConditionInfo info;
     info.label = label;
-#ifdef ATTENUVIS_VG_HAS_WEATHER
-    const weather::Sigma s = weather::sigma(weather::parse_condition(label), settings);
+    const weather::Sigma s = weather::sigma(weather::parse_condition(label), wavelength_m, settings);
     info.sigma = s.per_m;
     info.sigma_error = s.error_per_m;
     info.model = s.model;
     info.convention = s.convention;
     info.note = s.note;
-#else
-    const std::string prefix = "sigma:";
-    if (label.compare(0, prefix.size(), prefix) != 0)
-      throw std::invalid_argument("unknown condition '" + label +
-                                  "' (this build knows only sigma:VALUE, VALUE in 1/m)");
-    std::size_t used = 0;
-    const std::string value = label.substr(prefix.size());
-    try {
-      info.sigma = std::stod(value, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != value.size() || !std::isfinite(info.sigma) || info.sigma < 0)
-      throw std::invalid_argument("condition '" + label + "': sigma must be a finite number >= 0 (1/m)");
-    info.model = "given sigma";
-    info.convention = "none";
-#endif
     out.push_back(info);
   }
   return out;
-}
-
-std::vector<std::string> default_walkable(const std::string& scene) {
-  if (scene.rfind("layout:", 0) == 0) return {"floor"};
-  if (scene == "city" || scene.rfind("city:", 0) == 0) return {"sidewalk", "crosswalk"};
-  return {};
 }
 
 void run_vg(const VgArguments& a) {
@@ -132,7 +90,7 @@ void run_vg(const VgArguments& a) {
     options.spacing = a.spacing;
     options.eye_height = a.eye_height;
     options.max_slope_deg = a.max_slope;
-    options.walkable = a.walkable.empty() ? default_walkable(a.scene) : split(a.walkable, ',');
+    options.walkable = a.walkable.empty() ? vg::default_walkable_groups(a.scene) : split(a.walkable, ',');
     grid = std::make_unique<vg::NodeSet>(vg::generate_nodes(scene, options));
     eyes = grid->eyes;
     if (!a.quiet)
@@ -148,7 +106,7 @@ void run_vg(const VgArguments& a) {
   vg::VisibilityOptions options;
   for (const vg::ConditionInfo& c : conditions) options.sigmas.push_back(c.sigma);
   options.distance_stats = a.distances;
-  options.tolerance = a.tolerance;
+  options.tolerance = a.prune_below;
   options.max_distance = a.max_distance;
   options.threads = a.threads;
   options.progress = !a.quiet;
@@ -211,15 +169,20 @@ void register_visgraph(CLI::App& app) {
   vgc->add_option("--walkable", args->walkable,
                   "walkable OBJ groups, comma-separated (default: all; floor for layouts; sidewalk,crosswalk for city)");
   vgc->add_option("--max-slope", args->max_slope, "steepest walkable surface (degrees)")->capture_default_str();
-  auto* nodes = vgc->add_option("--nodes", args->nodes_file, "CSV x,y,z of eye positions instead of the grid");
+  vgc->add_option("--nodes", args->nodes_file, "CSV x,y,z of eye positions instead of the grid");
   vgc->add_option("--targets", args->targets_file, "CSV x,y,z of targets: nodes -> targets instead of all pairs");
   vgc->add_option("--target-point", args->target_point, "one target x,y,z");
   vgc->add_option("--conditions", args->conditions,
                   "comma-separated conditions, e.g. clear,rain:8,fog:advection,snow:dry:4,sigma:0.01")
       ->required();
-  vgc->add_option("--convention", args->convention, "itu | seed (P.1817 power laws in dB/km or 1/km)")->capture_default_str();
-  vgc->add_option("--wavelength", args->wavelength, "wavelength, e.g. 550nm")->capture_default_str();
-  vgc->add_option("--tolerance", args->tolerance, "prune pairs whose C < eps for every condition (certified bound)");
+  // --tolerance is the Mie tolerance in sigma and table; here it was the
+  // pruning threshold, now --prune-below, and stays as a deprecated alias.
+  add_weather_options(vgc, args->weather, {/*wavelength=*/true, /*tolerance=*/false});
+  auto* prune = vgc->add_option("--prune-below", args->prune_below,
+                                "prune pairs whose C < eps for every condition (certified bound)");
+  auto* old_prune = vgc->add_option("--tolerance", args->deprecated_tolerance,
+                                    "deprecated: the old name of --prune-below");
+  old_prune->excludes(prune);
   vgc->add_option("--max-distance", args->max_distance, "pairs farther than this (m) are not lines of sight");
   vgc->add_option("--threads", args->threads, "worker threads (0 = all cores)")->capture_default_str();
   vgc->add_flag("--distances", args->distances, "add mean_distance and max_distance columns");
@@ -230,9 +193,14 @@ void register_visgraph(CLI::App& app) {
   vgc->add_option("--summary", args->summary, "JSON summary");
   vgc->add_option("--edges", args->edges, "CSV edge list i,j,distance (O(edges) output)");
   vgc->add_flag("--quiet", args->quiet, "no report or progress on stderr");
-  (void)nodes;
-  vgc->callback([args] { run_vg(*args); });
-  if (register_scene_command) register_scene_command(app);
+  vgc->callback([args, old_prune] {
+    if (old_prune->count() > 0) {
+      std::cerr << "attenuvis vg: --tolerance is deprecated here (it means the Mie tolerance in sigma and table); "
+                   "use --prune-below\n";
+      args->prune_below = args->deprecated_tolerance;
+    }
+    run_vg(*args);
+  });
 }
 
 }  // namespace attenuvis::cli

@@ -3,46 +3,28 @@
 #include <iostream>
 #include <sstream>
 
+#include <boost/math/constants/constants.hpp>
+
 #include <nlohmann/json.hpp>
 
 #include "attenuvis/weather.hpp"
 #include "commands.hpp"
+#include "weather_options.hpp"
 
 namespace attenuvis::cli {
 namespace {
 
 namespace w = attenuvis::weather;
 
+// Options of sigma and table: the shared weather options and the output unit.
 struct CommonOptions {
-  std::string wavelength = "550nm";
+  WeatherOptions weather;
   std::string units = "m";
-  std::string convention = "itu";
-  double threshold = 0.02;
-  double tolerance = 1e-9;
-  std::string water = "hale-querry";
 };
 
-void add_common(CLI::App* cmd, CommonOptions& o) {
+void add_common(CLI::App* cmd, CommonOptions& o, WeatherOptionSet which) {
   cmd->add_option("--units", o.units, "sigma units: m (1/m), km (1/km) or dB/km")->capture_default_str();
-  cmd->add_option("--convention", o.convention,
-                  "how P.1817 rain/snow power laws are read: itu (dB/km) or seed (1/km, 4.34x larger)")
-      ->capture_default_str();
-  cmd->add_option("--threshold", o.threshold, "Koschmieder contrast threshold: 0.02 (3.912) or 0.05 (2.996)")
-      ->capture_default_str();
-  cmd->add_option("--tolerance", o.tolerance, "relative tolerance of Mie size integrals")->capture_default_str();
-  cmd->add_option("--water", o.water, "water refractive-index table: hale-querry or segelstein")
-      ->capture_default_str();
-}
-
-w::Settings settings_from(const CommonOptions& o) {
-  w::Settings s;
-  s.wavelength_m = w::parse_wavelength(o.wavelength);
-  s.convention = w::parse_convention(o.convention);
-  s.contrast_threshold = o.threshold;
-  s.rel_tolerance = o.tolerance;
-  s.water_table = o.water;
-  w::koschmieder_visibility_m(1.0, o.threshold);  // validates the threshold
-  return s;
+  add_weather_options(cmd, o.weather, which);
 }
 
 std::string num(double v, int precision = 6) {
@@ -53,17 +35,18 @@ std::string num(double v, int precision = 6) {
 }
 
 void run_sigma(const std::vector<std::string>& conditions, const CommonOptions& o, bool json) {
-  w::Settings s = settings_from(o);
+  const w::Settings s = weather_settings(o.weather);
+  const double wavelength_m = cli::wavelength_m(o.weather);
   w::SigmaUnit unit = w::parse_sigma_unit(o.units);
-  std::vector<w::Condition> parsed;
-  for (const auto& text : conditions) parsed.push_back(w::parse_condition(text));  // all parse before any work
+  std::vector<w::LabelledCondition> parsed;
+  for (const auto& text : conditions) parsed.push_back({text, w::parse_condition(text)});  // all parse before any work
   nlohmann::json out = nlohmann::json::array();
   for (const auto& c : parsed) {
-    w::Sigma r = w::sigma(c, s);
+    w::Sigma r = w::sigma(c.condition, wavelength_m, s);
     double vis = r.per_m > 0 ? w::koschmieder_visibility_m(r.per_m, s.contrast_threshold) : INFINITY;
     if (json) {
-      nlohmann::json row = {{"condition", c.text},
-                            {"wavelength_nm", s.wavelength_m * 1e9},
+      nlohmann::json row = {{"condition", c.label},
+                            {"wavelength_nm", wavelength_m * 1e9},
                             {"sigma", w::convert_from_per_m(r.per_m, unit)},
                             {"error", w::convert_from_per_m(r.error_per_m, unit)},
                             {"units", w::to_string(unit)},
@@ -75,9 +58,9 @@ void run_sigma(const std::vector<std::string>& conditions, const CommonOptions& 
       else row["visibility_m"] = nullptr;
       out.push_back(row);
     } else {
-      std::cout << c.text << ": sigma = " << num(w::convert_from_per_m(r.per_m, unit), 10) << " +- "
+      std::cout << c.label << ": sigma = " << num(w::convert_from_per_m(r.per_m, unit), 10) << " +- "
                 << num(w::convert_from_per_m(r.error_per_m, unit), 3) << " " << w::to_string(unit)
-                << " at " << num(s.wavelength_m * 1e9) << " nm, convention " << r.convention << ", visibility "
+                << " at " << num(wavelength_m * 1e9) << " nm, convention " << r.convention << ", visibility "
                 << num(vis) << " m (contrast " << num(100 * s.contrast_threshold) << " %)\n"
                 << "  model: " << r.model << "\n";
       if (!r.note.empty()) std::cout << "  note: " << r.note << "\n";
@@ -97,14 +80,13 @@ std::vector<std::string> split_conditions(const std::string& text) {
 
 void run_table(const std::string& conditions, const std::string& wavelengths, const std::string& format,
                const std::string& path, int threads, const CommonOptions& o) {
-  CommonOptions with_wavelength = o;
-  w::Settings s = settings_from(with_wavelength);
-  std::vector<w::Condition> parsed;
+  const w::Settings s = weather_settings(o.weather);
+  std::vector<w::LabelledCondition> parsed;
   for (const auto& text : split_conditions(conditions)) {
     auto expanded = w::expand_conditions(text);
     parsed.insert(parsed.end(), expanded.begin(), expanded.end());
   }
-  if (parsed.empty()) throw std::invalid_argument("--conditions is empty\n" + std::string(w::condition_grammar()));
+  if (parsed.empty()) throw std::invalid_argument("--conditions is empty\n" + w::condition_grammar());
   auto table = w::sigma_table(parsed, w::parse_wavelength_list(wavelengths), s, threads);
   w::write_sigma_table(table, path, w::parse_table_format(format), w::parse_sigma_unit(o.units));
   std::cout << "wrote " << table.cells.size() << " sigma values (" << table.wavelengths_m.size() << " wavelengths x "
@@ -126,7 +108,7 @@ void run_distribution(const std::string& what, double density, bool json) {
                           {"mode_radius_um", m.mode_radius_m * 1e6},
                           {"mean_radius_um", m.mean_radius_m * 1e6},
                           {"r2_support_um", {support.breakpoints_m.front() * 1e6, support.breakpoints_m.back() * 1e6}},
-                          {"geometric_cross_section_per_m", 3.14159265358979323846 * support.total_moment},
+                          {"geometric_cross_section_per_m", boost::math::constants::pi<double>() * support.total_moment},
                           {"checks_passed", ok}};
     std::cout << out.dump(2) << "\n";
   } else {
@@ -154,8 +136,7 @@ void register_weather(CLI::App& app) {
     auto opts = std::make_shared<CommonOptions>();
     auto json = std::make_shared<bool>(false);
     cmd->add_option("conditions", *conditions, "conditions, e.g. clear rain:8 fog:advection")->required();
-    cmd->add_option("--wavelength", opts->wavelength, "wavelength, e.g. 550nm or 10.6um")->capture_default_str();
-    add_common(cmd, *opts);
+    add_common(cmd, *opts, {});
     cmd->add_flag("--json", *json, "print JSON");
     cmd->callback([=] { run_sigma(*conditions, *opts, *json); });
   }
@@ -173,7 +154,7 @@ void register_weather(CLI::App& app) {
     cmd->add_option("--format", *format, "csv or json")->capture_default_str();
     cmd->add_option("--out", *out, "output file")->required();
     cmd->add_option("--threads", *threads, "worker threads (0: all cores)")->capture_default_str();
-    add_common(cmd, *opts);
+    add_common(cmd, *opts, {/*wavelength=*/false, /*tolerance=*/true});
     cmd->callback([=] { run_table(*conditions, *wavelengths, *format, *out, *threads, *opts); });
   }
   {

@@ -14,7 +14,8 @@ int& exit_status();
 
 void register_mie(CLI::App& app);          // cmd_mie.cpp
 void register_weather(CLI::App& app);      // cmd_weather.cpp: sigma, table, distribution
-void register_visgraph(CLI::App& app);     // cmd_visgraph.cpp: vg, scene
+void register_visgraph(CLI::App& app);     // cmd_visgraph.cpp: vg
+void register_scene_command(CLI::App& app);  // cmd_scene.cpp: scene
 void register_reproduce(CLI::App& app);    // cmd_reproduce.cpp
 
 }  // namespace attenuvis::cli

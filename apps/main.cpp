@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   attenuvis::cli::register_mie(app);
   attenuvis::cli::register_weather(app);
   attenuvis::cli::register_visgraph(app);
+  attenuvis::cli::register_scene_command(app);
   attenuvis::cli::register_reproduce(app);
   try {
     app.parse(argc, argv);

@@ -12,6 +12,9 @@ packages=(
   libcli11-dev nlohmann-json3-dev catch2 libbenchmark-dev
   python3 python3-matplotlib python3-numpy
 )
+# Callers add what only they need (scripts/test.sh: clang and its libFuzzer runtime).
+read -r -a extra <<<"${ATTENUVIS_EXTRA_PACKAGES:-}"
+packages+=("${extra[@]}")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

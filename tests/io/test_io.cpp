@@ -9,6 +9,7 @@
 
 #include <unistd.h>
 
+#include "attenuvis/io/input_file.hpp"
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/io/shell.hpp"
 #include "attenuvis/io/staged_file.hpp"
@@ -104,4 +105,16 @@ TEST_CASE("number text: shortest round trip and significant digits", "[io]") {
 TEST_CASE("shell quoting survives quotes and spaces", "[io]") {
   CHECK(shell_quote("plain") == "'plain'");
   CHECK(shell_quote("it's a b") == "'it'\\''s a b'");
+}
+
+TEST_CASE("input files: regular files only, within the reader's limit", "[io]") {
+  const fs::path d = fresh_dir("input");
+  const std::string p = (d / "in.txt").string();
+  write_file_atomically(p, "0123456789");
+  CHECK(read_input_file(p, 100) == "0123456789");
+  CHECK_THROWS_WITH(read_input_file(p, 5), Catch::Contains("more than"));
+  CHECK_THROWS_WITH(read_input_file(d.string(), 100), Catch::Contains("not a regular file"));
+  if (fs::exists("/dev/zero")) CHECK_THROWS_WITH(read_input_file("/dev/zero", 100), Catch::Contains("not a regular file"));
+  CHECK_THROWS_WITH(read_input_file((d / "missing").string(), 100), Catch::Contains("No such file"));
+  fs::remove_all(d);
 }

@@ -3,11 +3,13 @@
 // whose origin is stated next to each check:
 //   * the seed paper (/work/shared/seed-paper.tex: Schwartz, Vinnikov & Federici,
 //     SimAUD 2021) for the sigma table at 550 nm;
-//   * issue 4's text for the five layouts' node counts;
+//   * the five layouts' node counts: 2500 cells of 1 m^2 minus each layout's
+//     obstacle footprint (visgraph/generators.hpp: 2424, 2000, 2400, 2000, 2460);
 //   * physics bounds that hold for any correct visibility graph (S_S <= degree,
 //     S_S >= degree * exp(-sigma * longest sight line), monotonicity in sigma);
 //   * the report's own documented rules (P1/P2/P3 choice, S_A definitions);
-//   * issue 2's accuracy requirement (1e-10) and the published Mie tables.
+//   * the Mie accuracy requirement (double within 1e-10 of the 50-digit
+//     referee) and the published Mie tables.
 // No number computed by attenuvis is pasted in as an expected value.
 //
 // The quick run takes over 30 s on 2 cores: tagged [slow] (Release CI only).
@@ -199,7 +201,7 @@ TEST_CASE("reproduce --quick: report files and key numbers", "[validation][slow]
 
   SECTION("the five layouts' node counts and degree statistics") {
     REQUIRE(quick_run().status == 0);
-    // Issue 4: 2500 cells of 1 m^2 minus each layout's obstacle footprint.
+    // 2500 cells of 1 m^2 minus each layout's obstacle footprint (visgraph/generators.hpp).
     const double nodes[5] = {2424, 2000, 2400, 2000, 2460};
     // Longest sight line in a 50 m x 50 m square: 50 sqrt(2) m (plus nothing in z:
     // all eyes at 1.7 m), so every visible pair has C >= exp(-sigma * 50 sqrt 2).
@@ -281,7 +283,7 @@ TEST_CASE("reproduce --quick: report files and key numbers", "[validation][slow]
     CHECK(key("mie.published.entries") == 19 * 5 + 19 * 7 * 2 + 8 * 4 + 2 * 37 * 2 + 3 + 21 * 4 + 13 * 2 + 13 * 2);
     CHECK(key("mie.published.unexplained") == 0);
     CHECK(key("mie.published.within_digits") + key("mie.published.documented") == key("mie.published.entries"));
-    // Issue 2: double within 1e-10 of the 50-digit referee everywhere on the map.
+    // Required accuracy: double within 1e-10 of the 50-digit referee everywhere on the map.
     CHECK(key("mie.map.cells") >= 20);
     CHECK(key("mie.map.cells_above_1e-10") == 0);
     CHECK(key("mie.map.max_error") <= 1e-10);

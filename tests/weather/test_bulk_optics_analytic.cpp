@@ -4,13 +4,15 @@
 
 #include <cmath>
 
+#include <boost/math/constants/constants.hpp>
+
 #include "attenuvis/weather.hpp"
 
 using namespace attenuvis::weather;
 using Catch::Matchers::Contains;
 
 namespace {
-const double kPi = 3.14159265358979323846;
+const double kPi = boost::math::constants::pi<double>();
 
 // Anomalous diffraction (van de Hulst 1957, Sec. 11.22), non-absorbing:
 // Q_ext = 2 - (4/rho) sin rho + (4/rho^2)(1 - cos rho), rho = 2 x (n - 1).

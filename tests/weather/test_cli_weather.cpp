@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -92,4 +93,45 @@ TEST_CASE("distribution reports moments and validates files", "[weather][cli]") 
   auto bad = run("distribution " + data("bad_negative.csv"));
   CHECK(bad.status != 0);
   CHECK_THAT(bad.out, Contains("bad_negative.csv:3:"));
+}
+
+TEST_CASE("vg takes the weather options of sigma; --tolerance there is the old name of --prune-below",
+          "[weather][cli]") {
+  const std::string csv = "weather_cli_vg_test.csv", summary = "weather_cli_vg_test.json";
+  const std::string scene = "vg layout:2 --spacing 10 --quiet --out " + csv + " --summary " + summary;
+  // Koschmieder at the 5 % threshold: sigma = -ln(0.05) / V (meteorological optical range).
+  auto r = run(scene + " --conditions visibility:2km,rain:8 --threshold 0.05 --convention seed");
+  REQUIRE(r.status == 0);
+  {
+    std::ifstream in(summary);
+    auto j = nlohmann::json::parse(in);
+    CHECK(j["conditions"][0]["sigma_per_m"].get<double>() == Approx(-std::log(0.05) / 2000).epsilon(1e-12));
+    // Seed paper, Sec. Results: rain 8 mm/h sigma = 0.0045 1/m in the seed convention.
+    CHECK(j["conditions"][1]["sigma_per_m"].get<double>() == Approx(0.0045).margin(5e-5));
+    CHECK(j["conditions"][1]["convention"] == "seed");
+  }
+  auto water = run(scene + " --conditions fog:radiation --water segelstein");
+  REQUIRE(water.status == 0);
+  {
+    std::ifstream in(summary);
+    CHECK_THAT(nlohmann::json::parse(in)["conditions"][0]["note"].get<std::string>(), Contains("segelstein"));
+  }
+  auto pruned = run(scene + " --conditions rain:8 --prune-below 1e-3");
+  REQUIRE(pruned.status == 0);
+  double radius = 0;
+  {
+    std::ifstream in(summary);
+    radius = nlohmann::json::parse(in)["pruning"]["radius_m"].get<double>();
+  }
+  auto old = run("vg layout:2 --spacing 10 --out " + csv + " --summary " + summary +
+                 " --conditions rain:8 --tolerance 1e-3");
+  REQUIRE(old.status == 0);
+  CHECK_THAT(old.out, Contains("--tolerance is deprecated") && Contains("--prune-below"));
+  {
+    std::ifstream in(summary);
+    CHECK(nlohmann::json::parse(in)["pruning"]["radius_m"].get<double>() == radius);
+  }
+  CHECK(run(scene + " --conditions rain:8 --tolerance 1e-3 --prune-below 1e-3").status != 0);
+  std::remove(csv.c_str());
+  std::remove(summary.c_str());
 }

@@ -89,7 +89,7 @@ TEST_CASE("sigma() of a fog preset uses the contour and says so", "[weather][con
   // Seed paper, Sec. Fog: heavy advection fog 0.02874311 1/m at 550 nm.  Our
   // converged value differs by 1.3e-4 relative (see reproduce's fog tables:
   // not the water index; the size of a coarse fixed-step quadrature's error).
-  const auto r = sigma(parse_condition("fog:advection"), Settings{});
+  const auto r = sigma(parse_condition("fog:advection"), 550e-9, Settings{});
   CHECK(r.note.find("contour integral") != std::string::npos);
   CHECK(r.error_per_m <= 1e-9 * r.per_m);
   CHECK(std::abs(r.per_m / 0.02874311 - 1) < 2e-4);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <iomanip>
 
+#include <boost/math/constants/constants.hpp>
+
 #include <tbb/global_control.h>
 
 #include "attenuvis/mie.hpp"
@@ -13,7 +15,7 @@
 using namespace attenuvis::weather;
 
 namespace {
-const double kPi = 3.14159265358979323846;
+const double kPi = boost::math::constants::pi<double>();
 
 // Truth by brute force: trapezoid in x with step h over the range holding all
 // but `tail` of the r^2 moment, so that every resonance wider than ~h is
@@ -73,7 +75,7 @@ TEST_CASE("reported error covers unresolved resonances (brute force, broad fog, 
   CHECK(std::abs(b.extinction.value - truth) <= b.extinction.error());
   CHECK(b.extinction.resonance_error > b.extinction.quadrature_error);
   // The same through the CLI's path (double-precision Mie, sigma.cpp).
-  auto c = condition_bulk_optics(parse_condition("fog:radiation"), Settings{});
+  auto c = condition_bulk_optics(std::get<MieCondition>(parse_condition("fog:radiation")), 550e-9, Settings{});
   INFO(std::setprecision(10) << "sigma() path: " << c.extinction.value << " +- " << c.extinction.error());
   CHECK(std::abs(c.extinction.value - truth) <= c.extinction.error());
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include <boost/math/constants/constants.hpp>
 #include <boost/math/quadrature/exp_sinh.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 
@@ -14,7 +15,7 @@ using namespace attenuvis::weather;
 using Catch::Matchers::Contains;
 
 namespace {
-const double kPi = 3.14159265358979323846;
+const double kPi = boost::math::constants::pi<double>();
 std::string data(const std::string& name) { return std::string(ATTENUVIS_TEST_DATA_DIR) + "/weather/" + name; }
 }  // namespace
 
@@ -106,4 +107,25 @@ TEST_CASE("CSV distributions: errors name the line", "[weather][distribution][fi
 TEST_CASE("presets reject unknown names with the list", "[weather][distribution]") {
   CHECK_THROWS_WITH(preset_distribution("drizzle"), Contains("advection") && Contains("radiation"));
   CHECK(preset_distribution("gunn-marshall:2").moment(0) > 0);
+}
+
+TEST_CASE("mode radius of tabulated distributions does not depend on how many particles there are",
+          "[weather][distribution]") {
+  // A bin has a constant density: its mode is taken at the bin's middle.  The
+  // density's size must not enter: sparse large particles (here 5e-7 hail
+  // stones per m^3 between 1 and 2 mm radius, n = 5e-4 m^-4, numerically below
+  // the radius in metres) have the same mode as a dense bin.
+  std::istringstream sparse("radius_lo_mm,radius_hi_mm,count_per_m3\n1,2,5e-7\n");
+  const auto hail = read_distribution_csv(sparse, "sparse hail");
+  CHECK(moments(hail).mode_radius_m == Approx(1.5e-3).epsilon(1e-12));
+  std::istringstream dense("radius_lo_mm,radius_hi_mm,count_per_m3\n1,2,5e+7\n");
+  CHECK(moments(read_distribution_csv(dense, "dense hail")).mode_radius_m == moments(hail).mode_radius_m);
+  // Scaling n by any factor leaves the mode where it was.
+  for (double f : {1e-20, 1e-3, 1e6})
+    CHECK(moments(hail.scaled(f)).mode_radius_m == moments(hail).mode_radius_m);
+  // A plateau between two equal points: its middle; a peak at a point: that point.
+  std::istringstream plateau("radius_um,dNdr_per_cm3_per_um\n1,0\n2,5\n3,5\n4,0\n");
+  CHECK(moments(read_distribution_csv(plateau, "plateau")).mode_radius_m == Approx(2.5e-6).epsilon(1e-12));
+  std::istringstream peak("radius_um,dNdr_per_cm3_per_um\n1,0\n2,5\n3,1\n");
+  CHECK(moments(read_distribution_csv(peak, "peak")).mode_radius_m == Approx(2e-6).epsilon(1e-12));
 }

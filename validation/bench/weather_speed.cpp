@@ -11,9 +11,13 @@
 #include <iostream>
 #include <optional>
 
+#include <boost/math/constants/constants.hpp>
+
 #include <tbb/global_control.h>
 
+#include "attenuvis/io/staged_file.hpp"
 #include "attenuvis/mie.hpp"
+#include "attenuvis/validation/quadrature_tradeoff.hpp"
 #include "attenuvis/weather.hpp"
 
 namespace w = attenuvis::weather;
@@ -46,7 +50,7 @@ int main(int argc, char** argv) {
   }, 3) / 1000;
   std::printf("baseline: one Mie evaluation at x = 100: %.2f us\n", mie_s * 1e6);
 
-  const auto advection = w::parse_condition("fog:advection");
+  const w::MieCondition advection{w::FogPreset::advection, w::SettingsWaterTable{}, w::AsGiven{}};
   {
     // One core: the single-sigma figure must not borrow the second core.
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
@@ -94,7 +98,7 @@ int main(int argc, char** argv) {
     // water): Mie at 4 nodes per period (spacing 0.2) over the x range the
     // default tail cut keeps, without any resonance resolved.
     auto sup = w::condition_distribution(advection).support(2.0, 1e-12);
-    double k = 2 * 3.14159265358979323846 / 550e-9;
+    double k = 2 * boost::math::constants::pi<double>() / 550e-9;
     double xa = k * sup.breakpoints_m.front(), xb = k * sup.breakpoints_m.back();
     auto q = w::mie_efficiencies(m);
     std::size_t n = 0;
@@ -113,8 +117,8 @@ int main(int argc, char** argv) {
   }
 
   {
-    std::vector<w::Condition> conds;
-    for (const char* c : {"clear", "rain:8", "snow:dry:4", "fog:radiation"}) conds.push_back(w::parse_condition(c));
+    std::vector<w::LabelledCondition> conds;
+    for (const char* c : {"clear", "rain:8", "snow:dry:4", "fog:radiation"}) conds.push_back({c, w::parse_condition(c)});
     auto wl = w::parse_wavelength_list("380:780:5nm");
     // sigma() caches Mie results per process: each tolerance is a fresh set of keys.
     for (double tol : {1e-9, 1e-6}) {
@@ -127,10 +131,10 @@ int main(int argc, char** argv) {
     }
   }
 
-  auto rows = w::quadrature_tradeoff(550e-9, 1);
-  std::string csv = w::quadrature_tradeoff_csv(rows);
+  auto rows = attenuvis::validation::quadrature_tradeoff(550e-9, 1);
+  std::string csv = attenuvis::validation::quadrature_tradeoff_csv(rows);
   if (argc > 1) {
-    w::write_file_atomically(argv[1], csv);
+    attenuvis::io::write_file_atomically(argv[1], csv);
     std::printf("trade-off table written to %s\n", argv[1]);
   } else {
     std::cout << csv;

@@ -10,26 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "attenuvis/visgraph/generators.hpp"
+#include "attenuvis/visgraph/nodes.hpp"
+#include "attenuvis/visgraph/scene.hpp"
+#include "attenuvis/visgraph/visibility.hpp"
 #include "sections.hpp"
 
-#if __has_include(<attenuvis/visgraph/generators.hpp>) && __has_include(<attenuvis/visgraph/visibility.hpp>)
-#define ATTENUVIS_HAVE_VISGRAPH 1
-#include <attenuvis/visgraph/generators.hpp>
-#include <attenuvis/visgraph/nodes.hpp>
-#include <attenuvis/visgraph/scene.hpp>
-#include <attenuvis/visgraph/visibility.hpp>
-#endif
-
 namespace attenuvis::validation::detail {
-
-#ifndef ATTENUVIS_HAVE_VISGRAPH
-void section_city(Context& ctx, Section& s, const SeedConditions&, CityPerformance&) {
-  ctx.step("city", "not available");
-  s.missing("the visibility-graph engine or the city generator (visgraph/generators.hpp) are not in this build.");
-  s.summary.push_back("not available in this build");
-  ctx.conclude("missing", "Section 4 (the city) was not computed: visibility-graph module missing.");
-}
-#else
 
 namespace {
 namespace vg = attenuvis::visgraph;
@@ -308,6 +295,5 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
   perf.prune_condition = conds[snow_k].label;
   perf.prune_sigma = sigmas[snow_k];
 }
-#endif
 
 }  // namespace attenuvis::validation::detail

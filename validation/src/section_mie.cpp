@@ -211,7 +211,7 @@ void error_map(Context& ctx, Section& s) {
           {},
           "Reference: the same series in Boost cpp_bin_float_50 (attenuvis::mie::sphere_referee), independent of "
           "the double code's term count and precision choices. Error measure: |q - q_ref| / max(|q_ref|, 1e-4 "
-          "Qext_ref) (mie_accuracy.hpp); requirement (issue 2): <= 1e-10."};
+          "Qext_ref) (mie_accuracy.hpp); requirement: <= 1e-10 of the referee."};
   double worst = 0, worst_x = 0;
   std::complex<double> worst_m;
   std::size_t above = 0;
@@ -264,7 +264,7 @@ void error_map(Context& ctx, Section& s) {
            "per cell there. x = 1e6 is covered for m = 1.33+1e-8i and 10+10i; the benchmark "
            "validation/bench/mie_error_vs_time.cpp and tests/mie/test_mie_referee.cpp ([slow]) cover the other indices.");
   if (above == 0) s.agree(line + ".");
-  else s.disagree(line + ". These cells miss the 1e-10 requirement of issue 2.");
+  else s.disagree(line + ". These cells miss the required 1e-10 against the referee.");
   ctx.conclude(above == 0 ? "agree" : "disagree", "Mie " + line + ".");
 }
 
@@ -309,7 +309,7 @@ void error_vs_time(Context& ctx, Section& s) {
   for (const auto& [mode, x] : ex) series.push_back({{"label", mode}, {"x", x}, {"y", ey[mode]}, {"style", "o"}});
   s.figure({"mie_error_vs_time",
             "Error against run time per call, every (x, m) of the table; one colour per code. Errors below 1e-17 "
-            "drawn at 1e-17; the dotted line is issue 2's 1e-10.",
+            "drawn at 1e-17; the dotted line is the required 1e-10.",
             {{"kind", "lines"},
              {"series", series},
              {"hlines", {{{"y", 1e-10}, {"label", "1e-10"}}}},

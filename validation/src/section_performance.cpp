@@ -7,26 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "attenuvis/validation/visgraph_benchmark.hpp"
+#include "attenuvis/visgraph/generators.hpp"
+#include "attenuvis/visgraph/nodes.hpp"
+#include "attenuvis/visgraph/scene.hpp"
+#include "attenuvis/visgraph/visibility.hpp"
 #include "sections.hpp"
 
-#if __has_include(<attenuvis/visgraph/generators.hpp>) && __has_include(<attenuvis/visgraph/visibility.hpp>)
-#define ATTENUVIS_HAVE_VISGRAPH 1
-#include <attenuvis/visgraph/generators.hpp>
-#include <attenuvis/visgraph/nodes.hpp>
-#include <attenuvis/visgraph/scene.hpp>
-#include <attenuvis/visgraph/visibility.hpp>
-#include <attenuvis/validation/visgraph_benchmark.hpp>
-#endif
-
 namespace attenuvis::validation::detail {
-
-#ifndef ATTENUVIS_HAVE_VISGRAPH
-void section_performance(Context& ctx, Section& s, const CityPerformance&) {
-  ctx.step("performance", "not available");
-  s.missing("the visibility-graph engine (visgraph/visibility.hpp) is not in this build.");
-  s.summary.push_back("not available in this build");
-}
-#else
 
 namespace {
 namespace vg = attenuvis::visgraph;
@@ -127,6 +115,5 @@ void section_performance(Context& ctx, Section& s, const CityPerformance& city) 
     s.missing("the city section did not run, so there is no city timing or pruning study.");
   }
 }
-#endif
 
 }  // namespace attenuvis::validation::detail

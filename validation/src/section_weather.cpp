@@ -8,37 +8,29 @@
 #include <string>
 #include <vector>
 
+#include <boost/math/constants/constants.hpp>
+
+#include "attenuvis/mie.hpp"
+#include "attenuvis/validation/quadrature_tradeoff.hpp"
+#include "attenuvis/weather.hpp"
 #include "sections.hpp"
 
-#if __has_include(<attenuvis/weather.hpp>) && __has_include(<attenuvis/weather/sigma.hpp>) && __has_include(<attenuvis/mie.hpp>)
-#define ATTENUVIS_HAVE_WEATHER 1
-#include <attenuvis/mie.hpp>
-#include <attenuvis/weather.hpp>
-#endif
-
 namespace attenuvis::validation::detail {
-
-#ifndef ATTENUVIS_HAVE_WEATHER
-void section_weather(Context& ctx, Section& s, SeedConditions& seed) {
-  ctx.step("weather", "not available");
-  seed = seed_published_conditions();
-  seed.available = false;
-  seed.why_missing = "weather module not in this build";
-  s.missing("the weather API (weather/include/attenuvis/weather.hpp: parse_condition, sigma) or the Mie core it needs (mie/include/attenuvis/mie.hpp) is not in this build.");
-  s.summary.push_back("not available in this build");
-  ctx.conclude("missing", "Section 2 (weather) was not computed: weather module missing; the visibility "
-                          "sections use the sigma values printed in the seed.");
-}
-#else
 
 namespace {
 namespace wx = attenuvis::weather;
 
-wx::Settings settings_at(double wavelength_m, wx::Convention c) {
+wx::Settings with_convention(wx::Convention c) {
   wx::Settings st;
-  st.wavelength_m = wavelength_m;
   st.convention = c;
   return st;
+}
+const wx::Settings kItu = with_convention(wx::Convention::itu);
+const wx::Settings kSeed = with_convention(wx::Convention::seed);
+
+// Mie over a fog preset with the given refractive-index source.
+wx::Condition mie_fog(wx::FogPreset preset, wx::IndexSource index = wx::SettingsWaterTable{}) {
+  return wx::MieCondition{preset, index, wx::AsGiven{}};
 }
 
 double dbkm(double per_m) { return wx::per_m_to_dB_per_km(per_m); }
@@ -59,11 +51,10 @@ void sigma_table(Context& ctx, Section& s, SeedConditions& seed) {
           "the Recommendation states; 'seed' reads them as 1/km as the seed paper does (x4.3429)."};
   for (auto& row : seed.rows) {
     ctx.step("weather", "sigma of " + row.condition + " at 550 nm");
-    const wx::Condition c = wx::parse_condition(row.condition);
-    const wx::Sigma a = wx::sigma(c, settings_at(550e-9, wx::Convention::itu));
+    const wx::Sigma a = wx::sigma(row.weather, 550e-9, kItu);
     // The convention only enters power laws: a Mie or clear condition is not computed twice.
-    const bool power_law = c.kind == wx::ConditionKind::rain_power_law || c.kind == wx::ConditionKind::snow;
-    const wx::Sigma b = power_law ? wx::sigma(c, settings_at(550e-9, wx::Convention::seed)) : a;
+    const bool power_law = wx::depends_on_convention(row.weather);
+    const wx::Sigma b = power_law ? wx::sigma(row.weather, 550e-9, kSeed) : a;
     row.itu = a.per_m;
     row.seed = b.per_m;
     row.error_itu = a.error_per_m;
@@ -97,7 +88,6 @@ void sigma_table(Context& ctx, Section& s, SeedConditions& seed) {
                    "the power law read as 1/km (seed convention: " + sig(b.per_m, 5) +
                    " 1/m); ITU-R P.1817-1's dB/km gives " + sig(a.per_m, 4) + " 1/m, 4.34x smaller.");
   }
-  seed.available = true;
   add_table(ctx, s, t);
 }
 
@@ -112,20 +102,21 @@ void fog_refractive_index(Context& ctx, Section& s, const SeedConditions& seed) 
           "part of the refractive index', i.e. non-absorbing drops."};
   struct Variant {
     const char* label;
-    const char* suffix;
+    wx::IndexSource index;
   };
+  const Variant variants[] = {{"Hale & Querry 1973 (default)", wx::SettingsWaterTable{}},
+                              {"Segelstein 1981", wx::WaterTable::segelstein},
+                              {"n' = 1.333 only (k = 0)", wx::ConstantIndex{{1.333, 0.0}}},
+                              {"n' = 1.33 only (k = 0)", wx::ConstantIndex{{1.33, 0.0}}}};
   double best = 1e300;
   std::string best_label;
-  for (const char* fog : {"fog:advection", "fog:radiation"}) {
-    const auto* row = seed.find(fog);
-    for (const Variant v : {Variant{"Hale & Querry 1973 (default)", ""}, Variant{"Segelstein 1981", ":water=segelstein"},
-                            Variant{"n' = 1.333 only (k = 0)", ":m=1.333+0i"},
-                            Variant{"n' = 1.33 only (k = 0)", ":m=1.33+0i"}}) {
-      ctx.step("weather", std::string(fog) + v.suffix);
-      const wx::Condition c = wx::parse_condition(std::string(fog) + v.suffix);
-      const wx::Settings st = settings_at(550e-9, wx::Convention::itu);
-      const wx::Sigma r = wx::sigma(c, st);
-      const auto m = wx::condition_refractive_index(c, st);
+  for (const wx::FogPreset fog : {wx::FogPreset::advection, wx::FogPreset::radiation}) {
+    const auto* row = seed.find("fog:" + wx::to_string(fog));
+    for (const Variant& v : variants) {
+      const wx::MieCondition c{fog, v.index, wx::AsGiven{}};
+      ctx.step("weather", wx::to_text(c));
+      const wx::Sigma r = wx::sigma(c, 550e-9, kItu);
+      const auto m = wx::condition_refractive_index(c, 550e-9, kItu);
       const double rel = r.per_m / row->seed_published - 1;
       t.add_row({row->name, v.label, format_number(m.real(), 6) + " + " + format_number(m.imag(), 3) + "i",
                  Cell(r.per_m, 8), Cell(r.error_per_m, 2), Cell(row->seed_published, 8), Cell(rel, 3)});
@@ -158,12 +149,13 @@ void fog_seed_quadrature(Context& ctx, Section& s, const SeedConditions& seed) {
                                                           : std::vector<double>{0.2, 0.1, 0.05, 0.02, 0.01};
   const std::complex<double> m(1.33, 0.0);
   const double lambda_um = 0.55;
-  constexpr double kPi = 3.14159265358979323846;
-  for (const char* name : {"advection", "radiation"}) {
-    const std::string fog = std::string("fog:") + name;
+  const double kPi = boost::math::constants::pi<double>();
+  for (const wx::FogPreset preset : {wx::FogPreset::advection, wx::FogPreset::radiation}) {
+    const std::string name = wx::to_string(preset);
+    const std::string fog = "fog:" + name;
     ctx.step("weather", fog + " by fixed-step sums");
     const auto* row = seed.find(fog);
-    const wx::Sigma converged = wx::sigma(wx::parse_condition(fog + ":m=1.33+0i"), settings_at(550e-9, wx::Convention::itu));
+    const wx::Sigma converged = wx::sigma(mie_fog(preset, wx::ConstantIndex{m}), 550e-9, kItu);
     const double seed_rel = row->seed_published / converged.per_m - 1;
     t.add_row({row->name, Cell(0.0, 1), Cell("adaptive"), Cell(converged.per_m, 8),
                Cell("+- " + sig(converged.error_per_m / converged.per_m, 2)), Cell(seed_rel, 3)});
@@ -241,8 +233,8 @@ void charts(Context& ctx, Section& s) {
     nlohmann::json adv_x = nlohmann::json::array(), adv_y = adv_x, rad_y = adv_x;
     auto add = [&](double l) {
       std::vector<double> v;
-      for (const char* f : {"fog:advection", "fog:radiation"})
-        v.push_back(wx::sigma(wx::parse_condition(f), settings_at(l * 1e-6, wx::Convention::itu)).per_m);
+      for (const wx::FogPreset f : {wx::FogPreset::advection, wx::FogPreset::radiation})
+        v.push_back(wx::sigma(mie_fog(f), l * 1e-6, kItu).per_m);
       t.add_row({Cell(l, 4), Cell(v[0], 6), Cell(dbkm(v[0]), 6), Cell(v[1], 6), Cell(dbkm(v[1]), 6)});
       return v;
     };
@@ -279,19 +271,18 @@ void charts(Context& ctx, Section& s) {
     nlohmann::json xs = nlohmann::json::array();
     for (double r : rates) {
       std::vector<double> v;
-      for (const char* m : {"seed", "carbonneau", "p1814"})
-        v.push_back(dbkm(wx::sigma(wx::parse_condition("rain:" + format_number(r, 6) + ":" + m),
-                                   settings_at(550e-9, wx::Convention::itu)).per_m));
+      for (const wx::RainLaw law : {wx::RainLaw::seed, wx::RainLaw::carbonneau, wx::RainLaw::p1814})
+        v.push_back(dbkm(wx::sigma(wx::RainPowerLaw{r, law}, 550e-9, kItu).per_m));
       const bool do_mie = std::find(mie_rates.begin(), mie_rates.end(), r) != mie_rates.end();
       const double nan = std::numeric_limits<double>::quiet_NaN();
       wx::Sigma mie;
       mie.per_m = mie.error_per_m = nan;
       if (do_mie) {
         ctx.step("weather", "rain " + format_number(r, 4) + " mm/h, Mie over Marshall-Palmer");
-        mie = wx::sigma(wx::parse_condition("rain:" + format_number(r, 6) + ":mie"), settings_at(550e-9, wx::Convention::itu));
+        mie = wx::sigma(wx::MieCondition{wx::MarshallPalmerRain{r}, wx::SettingsWaterTable{}, wx::AsGiven{}}, 550e-9,
+                        kItu);
       }
-      const double seed_reading = dbkm(wx::sigma(wx::parse_condition("rain:" + format_number(r, 6)),
-                                                 settings_at(550e-9, wx::Convention::seed)).per_m);
+      const double seed_reading = dbkm(wx::sigma(wx::RainPowerLaw{r, wx::RainLaw::seed}, 550e-9, kSeed).per_m);
       t.add_row({r, Cell(v[0], 5), Cell(v[1], 5), Cell(v[2], 5), do_mie ? Cell(dbkm(mie.per_m), 5) : Cell("not computed"),
                  do_mie ? Cell(dbkm(mie.error_per_m), 2) : Cell("-"), Cell(seed_reading, 5)});
       xs.push_back(r);
@@ -318,10 +309,8 @@ void charts(Context& ctx, Section& s) {
     nlohmann::json xs = nlohmann::json::array(), wet = xs, dry = xs;
     for (double r : {0.1, 0.2, 0.5, 1.0, 2.0, 4.0, 5.0, 10.0}) {
       std::vector<double> v;
-      for (const char* k : {"wet", "dry"})
-        for (auto c : {wx::Convention::itu, wx::Convention::seed})
-          v.push_back(wx::sigma(wx::parse_condition(std::string("snow:") + k + ":" + format_number(r, 6)),
-                                settings_at(550e-9, c)).per_m);
+      for (const wx::SnowType k : {wx::SnowType::wet, wx::SnowType::dry})
+        for (const wx::Settings* c : {&kItu, &kSeed}) v.push_back(wx::sigma(wx::Snow{k, r}, 550e-9, *c).per_m);
       t.add_row({r, Cell(dbkm(v[0]), 5), Cell(dbkm(v[2]), 5), Cell(v[1], 5), Cell(v[3], 5)});
       xs.push_back(r), wet.push_back(dbkm(v[0])), dry.push_back(dbkm(v[2]));
     }
@@ -337,8 +326,11 @@ void charts(Context& ctx, Section& s) {
     ctx.step("weather", "empirical fog models against visibility");
     Table t{"weather_fog_visibility", "Empirical fog models: attenuation [dB/km] against visibility, 550 and 1550 nm",
             {"visibility [km]"}, {}, "Kruse et al. (1962), Kim et al. (2001), Al Naboulsi et al. (2004) as implemented by the weather module (formulas in weather/empirical_models.hpp)."};
-    const std::vector<std::pair<const char*, const char*>> models = {
-        {"kruse", "Kruse"}, {"kim", "Kim"}, {"naboulsi-advection", "Al Naboulsi adv."}, {"naboulsi-radiation", "Al Naboulsi rad."}};
+    const std::vector<std::pair<wx::VisibilityFogModel, const char*>> models = {
+        {wx::VisibilityFogModel::kruse, "Kruse"},
+        {wx::VisibilityFogModel::kim, "Kim"},
+        {wx::VisibilityFogModel::naboulsi_advection, "Al Naboulsi adv."},
+        {wx::VisibilityFogModel::naboulsi_radiation, "Al Naboulsi rad."}};
     for (double l : {550.0, 1550.0})
       for (auto& m : models) t.header.push_back(std::string(m.second) + " " + format_number(l, 4) + " nm");
     const std::vector<double> vis = {0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50};
@@ -348,8 +340,7 @@ void charts(Context& ctx, Section& s) {
       int k = 0;
       for (double l : {550.0, 1550.0})
         for (auto& m : models) {
-          const double sv = dbkm(wx::sigma(wx::parse_condition(std::string("fog:") + m.first + ":" + format_number(v, 6) + "km"),
-                                           settings_at(l * 1e-9, wx::Convention::itu)).per_m);
+          const double sv = dbkm(wx::sigma(wx::FogFromVisibility{m.first, v * 1e3}, l * 1e-9, kItu).per_m);
           row.push_back(Cell(sv, 5));
           ys[k++].push_back(sv);
         }
@@ -378,14 +369,14 @@ void quadrature(Context& ctx, Section& s) {
     return;
   }
   ctx.step("weather", "quadrature error against run time");
-  const auto rows = wx::quadrature_tradeoff(550e-9, 1);
+  const auto rows = quadrature_tradeoff(550e-9, 1);
   Table t{"weather_quadrature_tradeoff",
           "Quadrature error against run time (fog presets and a narrow log-normal at 550 nm): reported vs actual error, one call",
           {"case", "rel. tolerance", "Gauss-Kronrod points", "tail fraction", "sigma [1/m]", "reported error",
            "actual error", "resonance term", "evaluations", "time [ms]"}, {},
           "Reference: the contour integral above the real axis (weather/contour_extinction.hpp) at tolerance 1e-12, "
           "tail 1e-16. 'contour' rows: what sigma() uses; 'real axis' rows: bulk_optics.hpp, whose resonance term "
-          "bounds what it cannot resolve (weather/quadrature_tradeoff.hpp)."};
+          "bounds what it cannot resolve (validation/quadrature_tradeoff.hpp)."};
   std::size_t bounded = 0;
   for (const auto& r : rows) {
     t.add_row({r.case_name, Cell(r.rel_tolerance, 2), r.kronrod_points, Cell(r.tail_fraction, 2), Cell(r.sigma_per_m, 10),
@@ -412,6 +403,5 @@ void section_weather(Context& ctx, Section& s, SeedConditions& seed) {
   charts(ctx, s);
   quadrature(ctx, s);
 }
-#endif
 
 }  // namespace attenuvis::validation::detail

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "attenuvis/validation/report.hpp"
+#include "attenuvis/weather/condition.hpp"
 #include "attenuvis/validation/reproduce.hpp"
 
 namespace attenuvis::validation::detail {
@@ -50,13 +51,12 @@ struct Context {
 // The σ values every visibility section uses, computed once by the weather
 // section (in both conventions) and read by the layout and city sections.
 struct SeedConditions {
-  bool available = false;
-  std::string why_missing;
   // Names in the seed's order: clear, rain 8 mm/h, heavy advection fog,
   // moderate radiation fog, dry snow 4 mm/h.
   struct Row {
     std::string name;        // e.g. "rain 8 mm/h"
-    std::string condition;   // the condition grammar string, e.g. "rain:8"
+    std::string condition;   // the condition as the grammar writes it, e.g. "rain:8" (labels, keys)
+    weather::Condition weather;  // the same condition as a value
     double seed_published;   // the seed paper's σ [1/m]
     std::string seed_where;  // where in the seed paper
     double itu = 0.0;        // σ [1/m], convention itu (power laws in dB/km)
@@ -83,12 +83,12 @@ struct VgCondition {
   std::string tag;     // e.g. "rain8_seed"
   std::string short_label;  // for figure panels, e.g. "rain 8, seed"
   std::string condition;  // grammar string, e.g. "rain:8"
-  std::string convention; // "itu", "seed", "both" (σ the same in both) or "published"
+  std::string convention; // "itu", "seed" or "both" (σ the same in both)
   double sigma = 0;       // 1/m
 };
 // The σ values of `condition` for the visibility sections: one entry when
-// both conventions give the same σ, two (itu, then seed) otherwise; the
-// seed's printed σ (labelled so) when the weather module is not in the build.
+// both conventions give the same σ, two (itu, then seed) otherwise.  Needs
+// the σ the weather section computed (throws std::logic_error before that).
 std::vector<VgCondition> vg_conditions(const SeedConditions& seed, const std::string& condition);
 
 // Numbers the city section measures for the performance section (the city

@@ -9,21 +9,28 @@
 
 namespace attenuvis::validation::detail {
 
+namespace {
+// Mie over a fog preset, water index from the settings (Hale & Querry by default).
+weather::Condition fog(weather::FogPreset preset) {
+  return weather::MieCondition{preset, weather::SettingsWaterTable{}, weather::AsGiven{}};
+}
+}  // namespace
+
 SeedConditions seed_published_conditions() {
   // Published σ of Schwartz, Vinnikov & Federici (SimAUD 2021); each with the
   // place in the paper where it is printed.
   const double nan = std::numeric_limits<double>::quiet_NaN();
   SeedConditions c;
   c.rows = {
-      {"clear", "clear", 0.00015, "seed paper, Sec. Results / Visibility Graph Case (clear weather sigma = 0.00015)",
+      {"clear", "clear", weather::ClearAir{}, 0.00015, "seed paper, Sec. Results / Visibility Graph Case (clear weather sigma = 0.00015)",
        nan, nan, nan, nan, ""},
-      {"rain 8 mm/h", "rain:8", 0.0045, "seed paper, Sec. Results, text of Fig. vg_weather (rain sigma = 0.0045)", nan,
+      {"rain 8 mm/h", "rain:8", weather::RainPowerLaw{8.0, weather::RainLaw::seed}, 0.0045, "seed paper, Sec. Results, text of Fig. vg_weather (rain sigma = 0.0045)", nan,
        nan, nan, nan, ""},
-      {"heavy advection fog", "fog:advection", 0.02874311,
+      {"heavy advection fog", "fog:advection", fog(weather::FogPreset::advection), 0.02874311,
        "seed paper, Sec. Methodology / Fog (sigma = 0.02874311 m^-1 at 550 nm)", nan, nan, nan, nan, ""},
-      {"moderate radiation fog", "fog:radiation", 0.00863808,
+      {"moderate radiation fog", "fog:radiation", fog(weather::FogPreset::radiation), 0.00863808,
        "seed paper, Sec. Methodology / Fog (sigma = 0.00863808 m^-1 at 550 nm)", nan, nan, nan, nan, ""},
-      {"dry snow 4 mm/h", "snow:dry:4", 0.0374, "seed paper, Sec. Results, text of Fig. vg_weather (snow sigma = 0.0374)",
+      {"dry snow 4 mm/h", "snow:dry:4", weather::Snow{weather::SnowType::dry, 4.0}, 0.0374, "seed paper, Sec. Results, text of Fig. vg_weather (snow sigma = 0.0374)",
        nan, nan, nan, nan, ""},
   };
   return c;
@@ -40,11 +47,6 @@ std::string tag_of(const std::string& condition) {
 
 std::vector<VgCondition> vg_conditions(const SeedConditions& seed, const std::string& condition) {
   const SeedConditions::Row* row = seed.find(condition);
-  SeedConditions published;
-  if (!row) {
-    published = seed_published_conditions();
-    row = published.find(condition);
-  }
   if (!row) throw std::logic_error("vg_conditions: no seed condition '" + condition + "'");
   const std::string tag = tag_of(condition);
   const std::string brief = condition == "clear" ? "clear"
@@ -53,10 +55,8 @@ std::vector<VgCondition> vg_conditions(const SeedConditions& seed, const std::st
                             : condition == "fog:radiation" ? "fog MR"
                             : condition == "snow:dry:4" ? "dry snow 4"
                                                           : condition;
-  if (!seed.available || !std::isfinite(row->itu) || !std::isfinite(row->seed)) {
-    return {{row->name + " (sigma as printed in the seed)", tag + "_published", brief + " (printed)", condition,
-             "published", row->seed_published}};
-  }
+  if (!std::isfinite(row->itu) || !std::isfinite(row->seed))
+    throw std::logic_error("vg_conditions: sigma of '" + condition + "' not computed yet (weather section)");
   if (row->itu == row->seed) return {{row->name, tag, brief, condition, "both", row->itu}};
   return {{row->name + " (itu convention)", tag + "_itu", brief + ", itu", condition, "itu", row->itu},
           {row->name + " (seed convention)", tag + "_seed", brief + ", seed", condition, "seed", row->seed}};

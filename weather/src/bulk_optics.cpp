@@ -9,18 +9,20 @@
 #include <stdexcept>
 #include <vector>
 
+#include <boost/math/constants/constants.hpp>
+
 #include <tbb/parallel_for.h>
 
-#include "attenuvis/mie.hpp"
 #include "attenuvis/weather/resonance.hpp"
+#include "extinction_tail.hpp"
 #include "gauss_kronrod_rule.hpp"
-#include "significant.hpp"
+#include "attenuvis/io/number_text.hpp"
 
 namespace attenuvis::weather {
-using detail::significant;
+using io::significant;
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = boost::math::constants::pi<double>();
 // Components integrated together: ext, sca, abs, g*sca, asymptotic-bound, and
 // the weight pi r^2 n(r) alone (the geometric cross-section of the panel).
 constexpr int kExt = 0, kSca = 1, kAbs = 2, kGSca = 3, kAsym = 4, kWeight = 5, kComponents = 6;
@@ -328,13 +330,7 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
     used_asymptotic = used_asymptotic || p.used_asymptotic;
   }
   out.scattering_computed = !used_asymptotic;
-  // Tail bound: |Q| <= max(4, 2 max sampled Q_ext) over the omitted radii.
-  // Q_ext of a sphere stays below 4 for the refractive indices of water and ice
-  // (its first maximum, near x (n-1) = 2, is ~3.2 for n = 1.33); the factor 2
-  // covers what the samples missed.  The tails hold tail_fraction of the r^2
-  // moment, 1e-3 of the tolerance by default, so this bound is never limiting.
-  double q_bound = std::max(4.0, 2 * qext_max);
-  double tail = q_bound * kPi * support.omitted_moment;
+  const double tail = detail::extinction_tail_bound(qext_max, support.omitted_moment);
 
   auto fill = [&](IntegralEstimate& e, int c) {
     e.value = value[c];
@@ -377,15 +373,6 @@ BulkOptics integrate_bulk_optics(const SizeDistribution& d, double wavelength_m,
   QuadratureSettings t = s;
   if (m.imag() >= resonance_free_k()) t.estimate_resonances = false;
   return integrate_bulk_optics_impl(d, wavelength_m, q, t, m);
-}
-
-EfficiencyFunction mie_efficiencies(std::complex<double> m) {
-  mie::Options options;
-  if (std::abs(m - 1.0) >= 0.01) options.extended_above = 3e4;  // Working::automatic: double-only up to there
-  return [m, options](double x) {
-    auto e = mie::sphere(x, m, options);
-    return Efficiency{e.qext, e.qsca, e.qabs, e.g};
-  };
 }
 
 }  // namespace attenuvis::weather

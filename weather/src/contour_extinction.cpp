@@ -9,17 +9,21 @@
 #include <variant>
 #include <vector>
 
+#include <boost/math/constants/constants.hpp>
+
 #include <tbb/parallel_for.h>
 
 #include "attenuvis/mie/forward_amplitude.hpp"
+#include "analytic_density.hpp"
+#include "extinction_tail.hpp"
 #include "gauss_kronrod_rule.hpp"
-#include "significant.hpp"
+#include "attenuvis/io/number_text.hpp"
 
 namespace attenuvis::weather {
-using detail::significant;
+using io::significant;
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = boost::math::constants::pi<double>();
 using Complex = std::complex<double>;
 
 // Largest arg(r) on the path for which the continued density stays as tame as
@@ -141,15 +145,8 @@ PanelResult evaluate_panel(const PathIntegrand& f, const detail::Rule& rule, dou
 }  // namespace
 
 std::optional<Complex> analytic_density(const SizeDistribution& d, Complex r) {
-  if (const auto* g = std::get_if<ModifiedGamma>(&d.form())) {
-    const Complex t = r / g->r0;
-    return g->a * std::exp(g->alpha * std::log(t) - g->b * std::pow(t, g->gamma));
-  }
-  if (const auto* l = std::get_if<LogNormal>(&d.form())) {
-    const double s = std::log(l->sigma_g);
-    const Complex z = (std::log(r) - std::log(l->median_radius_m)) / s;
-    return l->number_per_m3 / (std::sqrt(2 * kPi) * s * r) * std::exp(-0.5 * z * z);
-  }
+  if (const auto* g = std::get_if<ModifiedGamma>(&d.form())) return detail::modified_gamma_density(*g, r);
+  if (const auto* l = std::get_if<LogNormal>(&d.form())) return detail::log_normal_density(*l, r);
   return std::nullopt;
 }
 
@@ -304,8 +301,7 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
   out.extinction.value = fine.total.real();
   out.extinction.quadrature_error = fine.error;
   out.extinction.rounding_error = fine.rounding;
-  // Beyond x_max: |Q_ext| <= max(4, 2 max |Q| sampled), as in bulk_optics.
-  out.extinction.tail_error = std::max(4.0, 2 * fine.q_max) * kPi * support.omitted_moment;
+  out.extinction.tail_error = detail::extinction_tail_bound(fine.q_max, support.omitted_moment);
   out.evaluations = evaluations;
   out.max_size_parameter = x_max;
   out.height = s.height;

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "attenuvis/io/number_text.hpp"
+
 namespace attenuvis::weather {
 namespace {
 
@@ -98,11 +100,11 @@ SizeDistribution read_distribution_csv(std::istream& in, const std::string& sour
                                 std::to_string(cells.size()));
     std::vector<double> v;
     for (const auto& c : cells) {
-      std::size_t used = 0;
-      double x = 0;
-      try { x = std::stod(c, &used); } catch (const std::exception&) { used = 0; }
-      if (c.empty() || used != c.size() || !std::isfinite(x)) fail(source, line_no, "'" + c + "' is not a finite number");
-      v.push_back(x);
+      try {
+        v.push_back(io::parse_double(c, "value"));
+      } catch (const std::invalid_argument&) {
+        fail(source, line_no, "'" + c + "' is not a finite number");
+      }
     }
     if (kind == Kind::bins) {
       double lo = v[0] * r_scale, hi = v[1] * r2_scale, count = v[2] * n_scale;

@@ -7,20 +7,33 @@
 
 namespace attenuvis::weather {
 
-const std::vector<RainPowerLaw>& rain_power_laws() {
-  static const std::vector<RainPowerLaw> laws = {
-      {"seed", 1.17, 0.65, "seed paper (Schwartz et al. 2021), Sec. Rain: k=1.17, alpha=0.65"},
-      {"carbonneau", 1.076, 0.67, "ITU-R P.1817-1 (Carbonneau et al. 1998): k=1.076, alpha=0.67"},
-      {"p1814", 1.2924, 0.6436, "ITU-R P.1814-1 (mu=0): k=1.2924, alpha=0.6436"},
+const std::vector<RainLawCoefficients>& rain_power_laws() {
+  static const std::vector<RainLawCoefficients> laws = {
+      {RainLaw::seed, "seed", 1.17, 0.65, "seed paper (Schwartz et al. 2021), Sec. Rain: k=1.17, alpha=0.65"},
+      {RainLaw::carbonneau, "carbonneau", 1.076, 0.67, "ITU-R P.1817-1 (Carbonneau et al. 1998): k=1.076, alpha=0.67"},
+      {RainLaw::p1814, "p1814", 1.2924, 0.6436, "ITU-R P.1814-1 (mu=0): k=1.2924, alpha=0.6436"},
   };
   return laws;
 }
 
-const RainPowerLaw& rain_power_law(const std::string& name) {
+const RainLawCoefficients& rain_power_law(RainLaw law) {
   for (const auto& l : rain_power_laws())
-    if (l.name == name) return l;
-  throw std::invalid_argument("unknown rain model '" + name + "' (seed, carbonneau, p1814 or mie)");
+    if (l.law == law) return l;
+  throw std::logic_error("rain law without coefficients");
 }
+
+const RainLawCoefficients& rain_power_law(const std::string& name) {
+  std::string names;
+  for (const auto& l : rain_power_laws()) {
+    if (l.name == name) return l;
+    names += (names.empty() ? "" : ", ") + l.name;
+  }
+  throw std::invalid_argument("unknown rain law '" + name + "' (" + names + ")");
+}
+
+std::string to_string(RainLaw law) { return rain_power_law(law).name; }
+
+std::string to_string(SnowType type) { return type == SnowType::wet ? "wet" : "dry"; }
 
 SnowCoefficients snow_coefficients(SnowType type, double wavelength_m) {
   double nm = wavelength_m * 1e9;

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "attenuvis/weather/units.hpp"
+#include "attenuvis/io/number_text.hpp"
 
 #ifndef ATTENUVIS_DATA_DIR
 #define ATTENUVIS_DATA_DIR "data"
@@ -48,8 +48,8 @@ RefractiveIndexTable RefractiveIndexTable::read(const std::string& path, const s
     std::getline(ss, b, ',');
     std::getline(ss, c, ',');
     std::string where = path + ":" + std::to_string(line_no);
-    double w = parse_number(a, where + " wavelength") * 1e-6;
-    double n = parse_number(b, where + " n"), k = parse_number(c, where + " k");
+    double w = io::parse_double(a, where + " wavelength") * 1e-6;
+    double n = io::parse_double(b, where + " n"), k = io::parse_double(c, where + " k");
     if (!t.wavelength_m_.empty() && !(w > t.wavelength_m_.back()))
       throw std::runtime_error(where + ": wavelengths must increase");
     if (!(n > 0) || k < 0) throw std::runtime_error(where + ": need n > 0 and k >= 0");

@@ -1,40 +1,148 @@
-// sigma for every kind of condition.
+// sigma for every kind of condition: a visit over the typed condition.
 #include "attenuvis/weather/sigma.hpp"
 
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
+#include "attenuvis/io/number_text.hpp"
 #include "attenuvis/weather/contour_extinction.hpp"
 #include "attenuvis/weather/distribution_file.hpp"
 #include "attenuvis/weather/refractive_index.hpp"
 #include "attenuvis/weather/visibility.hpp"
-#include "significant.hpp"
 
 namespace attenuvis::weather {
 namespace {
-std::string g4(double v) { return detail::significant(v, 4); }
+
+std::string g4(double v) { return io::significant(v, 4); }
+
+bool is_rain(const MieCondition& c) { return std::holds_alternative<MarshallPalmerRain>(c.drops); }
+
+// The real-axis quadrature of a Mie condition, over a distribution and index
+// the caller already has (sigma() needs them for the contour first).
+BulkOptics bulk_optics_of(const MieCondition& c, double wavelength_m, const Settings& s, const SizeDistribution& d,
+                          std::complex<double> m) {
+  QuadratureSettings q;
+  q.rel_tolerance = s.rel_tolerance;
+  if (is_rain(c)) {
+    // Rain's error is dominated by the large-x bound (~5e-3 relative), so the
+    // resonances need not be refined below 1e-3 of sigma.
+    q.asymptotic_x = s.rain_asymptotic_x;
+    q.resonance_tolerance = 1e-3;
+    q.max_evaluations = 1000000;
+  }
+  return integrate_bulk_optics(d, wavelength_m, mie_efficiencies(m), q, m);
+}
+
+// What a Mie result depends on: the condition's value, the wavelength and
+// the settings that enter the integral.  Conditions read from a file have no
+// key (the file may change between calls).
+using MieKey = std::tuple<std::size_t, double, std::size_t, std::size_t, double, double, std::string, std::size_t,
+                          double, double, double, std::string, double>;
+std::optional<MieKey> cache_key(const MieCondition& c, double wavelength_m, const Settings& s) {
+  if (std::holds_alternative<DistributionFile>(c.drops)) return std::nullopt;
+  const double rate = is_rain(c) ? std::get<MarshallPalmerRain>(c.drops).rate_mm_h : 0.0;
+  const std::size_t preset = is_rain(c) ? 0 : static_cast<std::size_t>(std::get<FogPreset>(c.drops));
+  double n = 0, k = 0;
+  std::string table;
+  if (const auto* m = std::get_if<ConstantIndex>(&c.index)) n = m->m.real(), k = m->m.imag();
+  else if (const auto* t = std::get_if<WaterTable>(&c.index)) table = to_string(*t);
+  else table = s.water_table;
+  double scale = 0;
+  if (const auto* v = std::get_if<NumberDensity>(&c.rescaling)) scale = v->per_cm3;
+  if (const auto* v = std::get_if<LiquidWaterContent>(&c.rescaling)) scale = v->g_per_m3;
+  return MieKey{c.drops.index(), rate, preset, c.index.index(), n, k, table, c.rescaling.index(), scale,
+                wavelength_m, s.rel_tolerance, s.water_table, s.rain_asymptotic_x};
+}
+
+Sigma mie_sigma(const MieCondition& c, double wavelength_m, const Settings& s) {
+  Sigma out;
+  out.convention = "n/a";
+  std::string index_source;
+  const std::complex<double> m = condition_refractive_index(c, wavelength_m, s, &index_source);
+  const SizeDistribution d = condition_distribution(c);
+  out.model = "Mie over " + d.describe();
+  std::ostringstream note;
+  note.precision(3);
+  // Analytic distributions within reach: integrate above the real axis,
+  // where Q_ext's resonances are smooth (contour_extinction.hpp); else on
+  // the real axis with the resonances as an error term (bulk_optics.hpp).
+  ContourSettings cs;
+  cs.rel_tolerance = s.rel_tolerance;
+  if (const auto ce = contour_extinction(d, wavelength_m, m, cs)) {
+    out.per_m = ce->extinction.value;
+    out.error_per_m = ce->extinction.error();
+    note << index_source << "; " << ce->method << "; error = quadrature " << ce->extinction.quadrature_error
+         << " + tails " << ce->extinction.tail_error << " + rounding " << ce->extinction.rounding_error;
+  } else {
+    const BulkOptics b = bulk_optics_of(c, wavelength_m, s, d, m);
+    out.per_m = b.extinction.value;
+    out.error_per_m = b.extinction.error();
+    note << index_source << "; " << b.method << "; error = quadrature " << b.extinction.quadrature_error
+         << " + tails " << b.extinction.tail_error << " + unresolved resonances " << b.extinction.resonance_error;
+    if (b.extinction.asymptotic_error > 0) note << " + large-x expansion " << b.extinction.asymptotic_error;
+  }
+  note << " 1/m";
+  out.note = note.str();
+  return out;
+}
+
+// Mie integrals of near-lossless drops take seconds; a process asking for
+// the same condition twice (an app, a table with repeated rows) reuses it.
+Sigma cached_mie_sigma(const MieCondition& c, double wavelength_m, const Settings& s) {
+  static std::mutex cache_mutex;
+  static std::map<MieKey, Sigma> cache;
+  const auto key = cache_key(c, wavelength_m, s);
+  if (key) {
+    std::lock_guard<std::mutex> lock(cache_mutex);
+    if (auto it = cache.find(*key); it != cache.end()) return it->second;
+  }
+  Sigma out = mie_sigma(c, wavelength_m, s);
+  if (key) {
+    std::lock_guard<std::mutex> lock(cache_mutex);
+    cache[*key] = out;
+  }
+  return out;
+}
+
+std::string koschmieder_words(double visibility_m, const Settings& s) {
+  return g4(visibility_m) + " m (Koschmieder, threshold " + g4(s.contrast_threshold) + ")";
+}
+
+std::string power_law_words(double published, const Settings& s) {
+  return g4(published) + (s.convention == Convention::itu ? " dB/km" : " 1/km (seed reading)");
+}
+
 }  // namespace
 
-SizeDistribution condition_distribution(const Condition& c) {
-  if (!c.needs_mie()) throw std::invalid_argument("condition '" + c.text + "' has no size distribution");
-  SizeDistribution d = c.kind == ConditionKind::rain_mie ? SizeDistribution::marshall_palmer(c.value)
-                       : c.model.rfind("file=", 0) == 0  ? read_distribution_csv(c.model.substr(5))
-                                                         : preset_distribution(c.model);
-  if (c.number_per_cm3 > 0) d = normalised_to_number(d, c.number_per_cm3 * 1e6);
-  if (c.lwc_g_m3 > 0) d = normalised_to_water_content(d, c.lwc_g_m3 * 1e-3);
+SizeDistribution condition_distribution(const MieCondition& c) {
+  SizeDistribution d = std::visit(
+      [](const auto& drops) -> SizeDistribution {
+        using T = std::decay_t<decltype(drops)>;
+        if constexpr (std::is_same_v<T, MarshallPalmerRain>) return SizeDistribution::marshall_palmer(drops.rate_mm_h);
+        else if constexpr (std::is_same_v<T, FogPreset>) return preset_distribution(to_string(drops));
+        else return read_distribution_csv(drops.path);
+      },
+      c.drops);
+  if (const auto* n = std::get_if<NumberDensity>(&c.rescaling)) d = normalised_to_number(d, n->per_cm3 * 1e6);
+  if (const auto* w = std::get_if<LiquidWaterContent>(&c.rescaling))
+    d = normalised_to_water_content(d, w->g_per_m3 * 1e-3);
   return d;
 }
 
-std::complex<double> condition_refractive_index(const Condition& c, const Settings& s, std::string* source) {
-  if (c.refractive_index) {
-    if (source) *source = "constant m = " + g4(c.refractive_index->real()) + "+" + g4(c.refractive_index->imag()) + "i";
-    return *c.refractive_index;
+std::complex<double> condition_refractive_index(const MieCondition& c, double wavelength_m, const Settings& s,
+                                                std::string* source) {
+  if (const auto* constant = std::get_if<ConstantIndex>(&c.index)) {
+    if (source) *source = "constant m = " + g4(constant->m.real()) + "+" + g4(constant->m.imag()) + "i";
+    return constant->m;
   }
-  const auto& table = refractive_index_table(c.water_table.empty() ? s.water_table : c.water_table);
-  auto m = table.at(s.wavelength_m);
+  const auto* named = std::get_if<WaterTable>(&c.index);
+  const auto& table = refractive_index_table(named ? to_string(*named) : s.water_table);
+  const auto m = table.at(wavelength_m);
   if (source) {
     std::ostringstream o;
     o.precision(7);
@@ -45,125 +153,73 @@ std::complex<double> condition_refractive_index(const Condition& c, const Settin
   return m;
 }
 
-namespace {
-// The real-axis quadrature of a Mie condition, over a distribution and index
-// the caller already has (sigma() needs them for the contour first).
-BulkOptics bulk_optics_of(const Condition& c, const Settings& s, const SizeDistribution& d,
-                          std::complex<double> m) {
-  QuadratureSettings q;
-  q.rel_tolerance = s.rel_tolerance;
-  if (c.kind == ConditionKind::rain_mie) {
-    // Rain's error is dominated by the large-x bound (~5e-3 relative), so the
-    // resonances need not be refined below 1e-3 of sigma.
-    q.asymptotic_x = s.rain_asymptotic_x;
-    q.resonance_tolerance = 1e-3;
-    q.max_evaluations = 1000000;
-  }
-  return integrate_bulk_optics(d, s.wavelength_m, mie_efficiencies(m), q, m);
-}
-}  // namespace
-
-BulkOptics condition_bulk_optics(const Condition& c, const Settings& s) {
-  return bulk_optics_of(c, s, condition_distribution(c), condition_refractive_index(c, s));
+BulkOptics condition_bulk_optics(const MieCondition& c, double wavelength_m, const Settings& s) {
+  return bulk_optics_of(c, wavelength_m, s, condition_distribution(c),
+                        condition_refractive_index(c, wavelength_m, s));
 }
 
-Sigma sigma(const Condition& c, const Settings& s) {
-  Sigma out;
-  out.convention = "n/a";
-  switch (c.kind) {
-    case ConditionKind::clear:
-      if (c.value > 0) {
-        out.per_m = sigma_from_visibility_per_m(c.value, s.contrast_threshold);
-        out.model = "clear air from visibility " + g4(c.value) + " m (Koschmieder, threshold " +
-                    g4(s.contrast_threshold) + ")";
+Sigma sigma(const Condition& condition, double wavelength_m, const Settings& s) {
+  struct Visitor {
+    double wavelength_m;
+    const Settings& s;
+
+    Sigma operator()(const ClearAir& c) const {
+      Sigma out;
+      out.convention = "n/a";
+      if (c.visibility_m) {
+        out.per_m = sigma_from_visibility_per_m(*c.visibility_m, s.contrast_threshold);
+        out.model = "clear air from visibility " + koschmieder_words(*c.visibility_m, s);
       } else {
         out.per_m = kSeedClearSigmaPerM;
         out.model = "clear air, seed paper value 0.00015 1/m";
       }
-      break;
-    case ConditionKind::visibility:
-      out.per_m = sigma_from_visibility_per_m(c.value, s.contrast_threshold);
-      out.model = "visibility " + g4(c.value) + " m (Koschmieder, threshold " + g4(s.contrast_threshold) + ")";
-      break;
-    case ConditionKind::sigma:
-      out.per_m = c.value;
+      return out;
+    }
+    Sigma operator()(const Visibility& c) const {
+      Sigma out;
+      out.convention = "n/a";
+      out.per_m = sigma_from_visibility_per_m(c.visibility_m, s.contrast_threshold);
+      out.model = "visibility " + koschmieder_words(c.visibility_m, s);
+      return out;
+    }
+    Sigma operator()(const GivenSigma& c) const {
+      Sigma out;
+      out.convention = "n/a";
+      out.per_m = c.per_m;
       out.model = "given sigma";
-      break;
-    case ConditionKind::rain_power_law: {
-      const auto& law = rain_power_law(c.model);
-      double published = law.k * std::pow(c.value, law.alpha);
+      return out;
+    }
+    Sigma operator()(const RainPowerLaw& c) const {
+      const auto& law = rain_power_law(c.law);
+      const double published = law.k * std::pow(c.rate_mm_h, law.alpha);
+      Sigma out;
       out.per_m = power_law_sigma_per_m(published, s.convention);
       out.convention = to_string(s.convention);
-      out.model = "rain " + g4(c.value) + " mm/h, power law " + law.source + " = " + g4(published) +
-                  (s.convention == Convention::itu ? " dB/km" : " 1/km (seed reading)");
-      break;
+      out.model = "rain " + g4(c.rate_mm_h) + " mm/h, power law " + law.source + " = " + power_law_words(published, s);
+      return out;
     }
-    case ConditionKind::snow: {
-      auto co = snow_coefficients(c.snow, s.wavelength_m);
-      double published = co.a * std::pow(c.value, co.b);
+    Sigma operator()(const Snow& c) const {
+      const auto co = snow_coefficients(c.type, wavelength_m);
+      const double published = co.a * std::pow(c.rate_mm_h, co.b);
+      Sigma out;
       out.per_m = power_law_sigma_per_m(published, s.convention);
       out.convention = to_string(s.convention);
-      out.model = std::string(c.snow == SnowType::wet ? "wet" : "dry") + " snow " + g4(c.value) +
-                  " mm/h, P.1817-1 a S^b with a=" + g4(co.a) + " b=" + g4(co.b) + " = " + g4(published) +
-                  (s.convention == Convention::itu ? " dB/km" : " 1/km (seed reading)");
-      break;
+      out.model = to_string(c.type) + " snow " + g4(c.rate_mm_h) + " mm/h, P.1817-1 a S^b with a=" + g4(co.a) +
+                  " b=" + g4(co.b) + " = " + power_law_words(published, s);
+      return out;
     }
-    case ConditionKind::fog_visibility: {
-      auto r = fog_from_visibility(c.fog_model, c.value, s.wavelength_m);
+    Sigma operator()(const FogFromVisibility& c) const {
+      const auto r = fog_from_visibility(c.model, c.visibility_m, wavelength_m);
+      Sigma out;
+      out.convention = "n/a";
       out.per_m = r.sigma_per_m;
-      out.model = r.model + ", V=" + g4(c.value) + " m";
+      out.model = r.model + ", V=" + g4(c.visibility_m) + " m";
       out.note = r.warning;
-      break;
+      return out;
     }
-    case ConditionKind::rain_mie:
-    case ConditionKind::fog_mie: {
-      // Mie integrals of near-lossless drops take seconds; a process asking for
-      // the same condition twice (an app, a table with repeated rows) reuses it.
-      // The key holds everything the result depends on (file contents aside).
-      static std::mutex cache_mutex;
-      static std::map<std::string, Sigma> cache;
-      std::ostringstream key;
-      key.precision(17);
-      key << c.text << "|" << s.wavelength_m << "|" << s.rel_tolerance << "|" << s.water_table << "|"
-          << s.rain_asymptotic_x;
-      if (c.model.rfind("file=", 0) != 0) {
-        std::lock_guard<std::mutex> lock(cache_mutex);
-        if (auto it = cache.find(key.str()); it != cache.end()) return it->second;
-      }
-      std::string index_source;
-      const std::complex<double> m = condition_refractive_index(c, s, &index_source);
-      const SizeDistribution d = condition_distribution(c);
-      out.model = "Mie over " + d.describe();
-      std::ostringstream note;
-      note.precision(3);
-      // Analytic distributions within reach: integrate above the real axis,
-      // where Q_ext's resonances are smooth (contour_extinction.hpp); else on
-      // the real axis with the resonances as an error term (bulk_optics.hpp).
-      ContourSettings cs;
-      cs.rel_tolerance = s.rel_tolerance;
-      if (const auto ce = contour_extinction(d, s.wavelength_m, m, cs)) {
-        out.per_m = ce->extinction.value;
-        out.error_per_m = ce->extinction.error();
-        note << index_source << "; " << ce->method << "; error = quadrature " << ce->extinction.quadrature_error
-             << " + tails " << ce->extinction.tail_error << " + rounding " << ce->extinction.rounding_error;
-      } else {
-        const BulkOptics b = bulk_optics_of(c, s, d, m);
-        out.per_m = b.extinction.value;
-        out.error_per_m = b.extinction.error();
-        note << index_source << "; " << b.method << "; error = quadrature " << b.extinction.quadrature_error
-             << " + tails " << b.extinction.tail_error << " + unresolved resonances " << b.extinction.resonance_error;
-        if (b.extinction.asymptotic_error > 0) note << " + large-x expansion " << b.extinction.asymptotic_error;
-      }
-      note << " 1/m";
-      out.note = note.str();
-      if (c.model.rfind("file=", 0) != 0) {
-        std::lock_guard<std::mutex> lock(cache_mutex);
-        cache[key.str()] = out;
-      }
-      break;
-    }
-  }
-  return out;
+    Sigma operator()(const MieCondition& c) const { return cached_mie_sigma(c, wavelength_m, s); }
+  };
+  return std::visit(Visitor{wavelength_m, s}, condition);
 }
 
 }  // namespace attenuvis::weather

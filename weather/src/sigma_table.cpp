@@ -3,15 +3,14 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
 
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
-#include <unistd.h>
 
+#include "attenuvis/io/staged_file.hpp"
 #include "attenuvis/weather/units.hpp"
 #include "attenuvis/weather/visibility.hpp"
 
@@ -51,7 +50,7 @@ std::vector<double> parse_wavelength_list(const std::string& text) {
   return out;
 }
 
-SigmaTable sigma_table(const std::vector<Condition>& conditions, const std::vector<double>& wavelengths,
+SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const std::vector<double>& wavelengths,
                        const Settings& settings, int threads) {
   SigmaTable t;
   t.wavelengths_m = wavelengths;
@@ -63,14 +62,12 @@ SigmaTable sigma_table(const std::vector<Condition>& conditions, const std::vect
   auto work = [&] {
     tbb::parallel_for(std::size_t(0), t.cells.size(), [&](std::size_t i) {
       std::size_t w = i / conditions.size(), c = i % conditions.size();
-      Settings s = settings;
-      s.wavelength_m = wavelengths[w];
       try {
-        t.cells[i] = sigma(conditions[c], s);
+        t.cells[i] = sigma(conditions[c].condition, wavelengths[w], settings);
       } catch (const std::exception& e) {
         std::lock_guard<std::mutex> lock(error_mutex);
         std::ostringstream msg;
-        msg << "condition '" << conditions[c].text << "' at " << wavelengths[w] * 1e9 << " nm: " << e.what();
+        msg << "condition '" << conditions[c].label << "' at " << wavelengths[w] * 1e9 << " nm: " << e.what();
         if (first_error.empty()) first_error = msg.str();
       }
     });
@@ -131,7 +128,7 @@ std::string format_sigma_table(const SigmaTable& t, TableFormat format, SigmaUni
       for (std::size_t c = 0; c < t.conditions.size(); ++c) {
         const Sigma& s = t.at(w, c);
         double vis = s.per_m > 0 ? koschmieder_visibility_m(s.per_m, t.settings.contrast_threshold) : INFINITY;
-        o << t.wavelengths_m[w] * 1e9 << "," << csv_quote(t.conditions[c].text) << ","
+        o << t.wavelengths_m[w] * 1e9 << "," << csv_quote(t.conditions[c].label) << ","
           << convert_from_per_m(s.per_m, unit) << "," << convert_from_per_m(s.error_per_m, unit) << "," << vis << ","
           << s.convention << "," << csv_quote(s.model) << "," << csv_quote(s.note) << "\n";
       }
@@ -143,7 +140,7 @@ std::string format_sigma_table(const SigmaTable& t, TableFormat format, SigmaUni
       for (std::size_t c = 0; c < t.conditions.size(); ++c) {
         const Sigma& s = t.at(w, c);
         o << (first ? "" : ",\n") << "    {\"wavelength_nm\": " << t.wavelengths_m[w] * 1e9 << ", \"condition\": \""
-          << json_escape(t.conditions[c].text) << "\", \"sigma\": " << convert_from_per_m(s.per_m, unit)
+          << json_escape(t.conditions[c].label) << "\", \"sigma\": " << convert_from_per_m(s.per_m, unit)
           << ", \"error\": " << convert_from_per_m(s.error_per_m, unit);
         if (s.per_m > 0) o << ", \"visibility_m\": " << koschmieder_visibility_m(s.per_m, t.settings.contrast_threshold);
         o << ", \"convention\": \"" << s.convention << "\", \"model\": \"" << json_escape(s.model)
@@ -155,26 +152,8 @@ std::string format_sigma_table(const SigmaTable& t, TableFormat format, SigmaUni
   return o.str();
 }
 
-void write_file_atomically(const std::string& path, const std::string& contents) {
-  std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write '" + tmp + "' (does the directory exist?)");
-    out << contents;
-    out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw std::runtime_error("write to '" + tmp + "' failed");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error("cannot rename '" + tmp + "' to '" + path + "'");
-  }
-}
-
 void write_sigma_table(const SigmaTable& t, const std::string& path, TableFormat format, SigmaUnit unit) {
-  write_file_atomically(path, format_sigma_table(t, format, unit));
+  io::write_file_atomically(path, format_sigma_table(t, format, unit));
 }
 
 }  // namespace attenuvis::weather

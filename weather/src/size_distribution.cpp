@@ -6,11 +6,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <boost/math/constants/constants.hpp>
 #include <boost/math/quadrature/gauss.hpp>
 #include <boost/math/special_functions/erf.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 
-#include "attenuvis/weather/units.hpp"
+#include "analytic_density.hpp"
+#include "attenuvis/io/number_text.hpp"
 
 namespace attenuvis::weather {
 namespace {
@@ -20,7 +22,7 @@ struct Overloaded : Ts... { using Ts::operator()...; };
 template <class... Ts>
 Overloaded(Ts...) -> Overloaded<Ts...>;
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = boost::math::constants::pi<double>();
 
 void require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
@@ -128,15 +130,8 @@ double SizeDistribution::density(double r) const {
   if (!(r > 0)) return 0;
   return std::visit(
       Overloaded{
-          [&](const ModifiedGamma& g) {
-            // In log form so that t^alpha exp(-b t^gamma) -> 0 instead of inf * 0 at huge r.
-            double t = r / g.r0;
-            return g.a * std::exp(g.alpha * std::log(t) - g.b * std::pow(t, g.gamma));
-          },
-          [&](const LogNormal& l) {
-            double s = std::log(l.sigma_g), z = (std::log(r) - std::log(l.median_radius_m)) / s;
-            return l.number_per_m3 / (std::sqrt(2 * kPi) * s * r) * std::exp(-0.5 * z * z);
-          },
+          [&](const ModifiedGamma& g) { return detail::modified_gamma_density(g, r); },
+          [&](const LogNormal& l) { return detail::log_normal_density(l, r); },
           [&](const PowerLaw& p) { return (r < p.r_min_m || r > p.r_max_m) ? 0.0 : p.c * std::pow(r, -p.nu); },
           [&](const Tabulated& t) {
             for (const auto& s : t.segments)
@@ -242,7 +237,7 @@ SizeDistribution preset_distribution(const std::string& name) {
     auto d = SizeDistribution::modified_gamma_um(607.5, 6, 3);
     return SizeDistribution(d.form(), "moderate radiation fog (P.1817-1: alpha=6, a=607.5, b=3; r um, n cm^-3 um^-1)");
   }
-  auto rate_of = [&](std::size_t prefix) { return parse_number(name.substr(prefix), "rate in '" + name + "'"); };
+  auto rate_of = [&](std::size_t prefix) { return io::parse_double(name.substr(prefix), "rate in '" + name + "'"); };
   if (name.rfind("marshall-palmer:", 0) == 0) return SizeDistribution::marshall_palmer(rate_of(16));
   if (name.rfind("gunn-marshall:", 0) == 0) return SizeDistribution::gunn_marshall(rate_of(14));
   throw std::invalid_argument("unknown size distribution preset '" + name + "'; presets: " + kPresetList);
@@ -265,10 +260,15 @@ Moments moments(const SizeDistribution& d, double rho) {
                  },
                  [&](const PowerLaw& p) { return p.nu > 0 ? p.r_min_m : p.r_max_m; },
                  [&](const Tabulated& t) {
+                   // The largest density; on a flat segment (a bin, or a plateau
+                   // between two equal points) the mode is its middle.
                    double best = -1, at = 0;
                    for (const auto& s : t.segments) {
-                     if (s.n0 > best) { best = s.n0; at = s.n1 > s.r0 && s.n0 == s.n1 ? 0.5 * (s.r0 + s.r1) : s.r0; }
-                     if (s.n1 > best) { best = s.n1; at = s.n0 == s.n1 ? 0.5 * (s.r0 + s.r1) : s.r1; }
+                     const bool flat = s.n0 == s.n1;
+                     const double middle = 0.5 * (s.r0 + s.r1);
+                     if (s.n0 > best) { best = s.n0; at = flat ? middle : s.r0; }
+                     else if (flat && s.n0 == best && at == s.r0) at = middle;  // the peak continues as a plateau
+                     if (s.n1 > best) { best = s.n1; at = s.r1; }
                    }
                    return at;
                  }},

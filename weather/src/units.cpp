@@ -2,8 +2,11 @@
 #include "attenuvis/weather/units.hpp"
 
 #include <cctype>
+#include <iterator>
 #include <cmath>
 #include <stdexcept>
+
+#include "attenuvis/io/number_text.hpp"
 
 namespace attenuvis::weather {
 
@@ -50,20 +53,15 @@ double convert_to_per_m(double v, SigmaUnit from) {
   return v;
 }
 
-double parse_number(const std::string& text, const std::string& what) {
-  std::size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    throw std::invalid_argument(what + ": '" + text + "' is not a number");
-  }
-  if (used != text.size() || !std::isfinite(v))
-    throw std::invalid_argument(what + ": '" + text + "' is not a finite number");
-  return v;
-}
-
 namespace {
+// The one list of distance units: parse_distance, its messages and the
+// condition grammar's help all read it.
+struct DistanceUnit {
+  const char* name;
+  double metres;
+};
+constexpr DistanceUnit kDistanceUnits[] = {{"m", 1.0}, {"km", 1e3}, {"mi", 1609.344}};
+
 // Splits "12.5km" into the number and the unit suffix (spaces allowed between).
 std::pair<std::string, std::string> split_number_unit(const std::string& text) {
   std::size_t i = 0;
@@ -83,7 +81,7 @@ double parse_wavelength(const std::string& text) {
   auto [num, unit] = split_number_unit(text);
   if (unit.empty())
     throw std::invalid_argument("wavelength '" + text + "' needs a unit (nm, um or m), e.g. 550nm");
-  double v = parse_number(num, "wavelength");
+  double v = io::parse_double(num, "wavelength");
   double scale = 0;
   if (unit == "nm") scale = 1e-9;
   else if (unit == "um" || unit == "µm" || unit == "micron") scale = 1e-6;
@@ -94,14 +92,32 @@ double parse_wavelength(const std::string& text) {
   return v * scale;
 }
 
+const std::string& distance_units() {
+  static const std::string list = [] {
+    std::string out;
+    const std::size_t n = std::size(kDistanceUnits);
+    for (std::size_t i = 0; i < n; ++i) out += std::string(i == 0 ? "" : i + 1 == n ? " or " : ", ") + kDistanceUnits[i].name;
+    return out;
+  }();
+  return list;
+}
+
+double distance_unit_m(const std::string& unit) {
+  if (unit.empty()) return 1.0;
+  for (const auto& u : kDistanceUnits)
+    if (unit == u.name) return u.metres;
+  throw std::invalid_argument("unknown distance unit '" + unit + "' (" + distance_units() + ")");
+}
+
 double parse_distance(const std::string& text) {
   auto [num, unit] = split_number_unit(text);
-  double v = parse_number(num, "distance");
+  double v = io::parse_double(num, "distance");
   double scale = 0;
-  if (unit.empty() || unit == "m") scale = 1;
-  else if (unit == "km") scale = 1e3;
-  else if (unit == "mi") scale = 1609.344;
-  else throw std::invalid_argument("distance '" + text + "': unknown unit '" + unit + "' (m or km)");
+  try {
+    scale = distance_unit_m(unit);
+  } catch (const std::invalid_argument&) {
+    throw std::invalid_argument("distance '" + text + "': unknown unit '" + unit + "' (" + distance_units() + ")");
+  }
   if (!(v > 0)) throw std::invalid_argument("distance '" + text + "' must be positive");
   return v * scale;
 }

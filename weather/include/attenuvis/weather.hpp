@@ -1,18 +1,18 @@
 // attenuvis::weather: size distributions, refractive-index tables, ITU-R
-// P.1817-1 weather models, units, the condition grammar and sigma tables.
-// Typical use (what the visibility-graph app does):
+// P.1817-1 weather models, units, typed conditions and their grammar, sigma
+// tables.  Typical use (what the visibility-graph app does):
 //
-//   auto c = attenuvis::weather::parse_condition("rain:8");
-//   auto s = attenuvis::weather::sigma(c, {});          // s.per_m, s.error_per_m, s.convention
+//   auto c = attenuvis::weather::parse_condition("rain:8");   // or RainPowerLaw{8, RainLaw::seed}
+//   auto s = attenuvis::weather::sigma(c, 550e-9, {});        // s.per_m, s.error_per_m, s.convention
 //
 #pragma once
 
 #include "attenuvis/weather/bulk_optics.hpp"
 #include "attenuvis/weather/condition.hpp"
+#include "attenuvis/weather/condition_grammar.hpp"
 #include "attenuvis/weather/contour_extinction.hpp"
 #include "attenuvis/weather/distribution_file.hpp"
 #include "attenuvis/weather/empirical_models.hpp"
-#include "attenuvis/weather/quadrature_tradeoff.hpp"
 #include "attenuvis/weather/refractive_index.hpp"
 #include "attenuvis/weather/settings.hpp"
 #include "attenuvis/weather/sigma.hpp"

@@ -93,7 +93,7 @@ BulkOptics integrate_bulk_optics(const SizeDistribution& d, double wavelength_m,
 // (log-uniform) for m = 1.333+1.96e-9i, 1.178+0.0715i, 1.33+0.01i and 1.01 gave
 // |Q_ext, Q_sca| differences from the default <= 1.8e-11 relative and |g| <=
 // 1e-13, far below any rel_tolerance accepted here; mie.hpp's double-precision
-// traps (Q_back, m = 1 + 1e-7) do not enter.  Otherwise mie's default.
+// limits (Q_back, m = 1 + 1e-7) do not enter.  Otherwise mie's default.
 EfficiencyFunction mie_efficiencies(std::complex<double> m);
 
 // With Lorenz-Mie efficiencies (attenuvis::mie::sphere) of a homogeneous sphere

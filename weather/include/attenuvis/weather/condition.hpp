@@ -1,62 +1,107 @@
-// Weather conditions as text, and their extinction coefficient.
+// A weather condition as a typed value: one of a closed set of kinds, each
+// with its parameters as numbers and enums.  Text enters only through the
+// grammar (condition_grammar.hpp: parse_condition, expand_conditions); code
+// that needs a condition builds it directly:
 //
-// CONDITION GRAMMAR (also printed by every parse error):
+//   Condition rain = RainPowerLaw{8.0, RainLaw::seed};
+//   Condition fog  = MieCondition{FogPreset::advection, ConstantIndex{{1.33, 0.0}}, {}};
 //
-//   clear                        clear air, sigma = 0.00015 1/m (seed paper, Sec. Results)
-//   clear:DIST                   clear air with visibility DIST (Koschmieder at Settings::contrast_threshold)
-//   visibility:DIST              any atmosphere with visibility DIST (Koschmieder)
-//   sigma:VALUE[UNIT]            a given sigma; UNIT /m (default), /km or dB/km  (sigma:0.002, sigma:3dB/km)
-//   rain:RATE[:MODEL]            RATE in mm/h; MODEL = seed (default; k=1.17, alpha=0.65) | carbonneau |
-//                                p1814 (power laws, read per Settings::convention) | mie (Mie over
-//                                Marshall-Palmer drops)
-//   snow:wet:RATE | snow:dry:RATE   P.1817-1 a(lambda) S^b, RATE in mm/h (read per Settings::convention)
-//   fog:advection | fog:radiation   Mie over the P.1817-1 / seed modified-gamma presets
-//   fog:file=PATH                Mie over a size-distribution CSV (distribution_file.hpp)
-//   fog:kruse:DIST | fog:kim:DIST | fog:naboulsi-advection:DIST | fog:naboulsi-radiation:DIST
-//                                empirical fog from a visibility DIST
-//
-//   Options after a Mie condition (fog:..., rain:RATE:mie), any order:
-//     :m=N+Ki        constant refractive index instead of the water table (e.g. m=1.33+0.001i)
-//     :water=NAME    water table: hale-querry (default) | segelstein
-//     :N=VALUE       rescale to VALUE particles per cm^3;  :lwc=VALUE  rescale to VALUE g/m^3
-//   DIST is a number with unit m or km (bare number: m): 500m, 2km.
-//   In tables (expand_conditions), a RATE or DIST may be a sweep A..B (step 1) or A..B/STEP:
-//   rain:1..100, snow:dry:0.5..4/0.5, fog:kim:200..1000/200m.
+// sigma.hpp computes the extinction coefficient of any of them.
 #pragma once
 
 #include <complex>
 #include <optional>
 #include <string>
-#include <vector>
+#include <variant>
 
 #include "attenuvis/weather/empirical_models.hpp"
 
 namespace attenuvis::weather {
 
-enum class ConditionKind { clear, visibility, sigma, rain_power_law, rain_mie, snow, fog_mie, fog_visibility };
-
-struct Condition {
-  std::string text;
-  ConditionKind kind = ConditionKind::clear;
-  double value = 0;  // rate (mm/h), visibility (m) or sigma (1/m); 0 for the seed's clear air
-  std::string model;  // rain preset, fog preset, or the file path of fog:file=
-  SnowType snow = SnowType::dry;
-  VisibilityFogModel fog_model = VisibilityFogModel::kim;
-  std::optional<std::complex<double>> refractive_index;  // :m=
-  std::string water_table;                               // :water= (empty: Settings)
-  double number_per_cm3 = 0, lwc_g_m3 = 0;               // :N=, :lwc= (0: as given)
-
-  bool needs_mie() const { return kind == ConditionKind::rain_mie || kind == ConditionKind::fog_mie; }
+// Clear air: the seed paper's sigma = 0.00015 1/m (Sec. Results), or
+// Koschmieder at Settings::contrast_threshold from a visibility.
+struct ClearAir {
+  std::optional<double> visibility_m;
+};
+// Any atmosphere of a given visibility (Koschmieder).
+struct Visibility {
+  double visibility_m = 0;
+};
+// A sigma given by the user, in 1/m.
+struct GivenSigma {
+  double per_m = 0;
+};
+// P.1817-1-style rain power law, read per Settings::convention.
+struct RainPowerLaw {
+  double rate_mm_h = 0;
+  RainLaw law = RainLaw::seed;
+};
+// P.1817-1 snow a(lambda) S^b, read per Settings::convention.
+struct Snow {
+  SnowType type = SnowType::dry;
+  double rate_mm_h = 0;
+};
+// Empirical fog models from a visibility (Kruse, Kim, Al Naboulsi).
+struct FogFromVisibility {
+  VisibilityFogModel model = VisibilityFogModel::kim;
+  double visibility_m = 0;
 };
 
-// The grammar above, for messages and --help.
-const char* condition_grammar();
+// ---- Mie over a size distribution -------------------------------------------
+// The drops: Marshall-Palmer rain, a P.1817-1 / seed fog preset, or a file
+// (distribution_file.hpp).
+struct MarshallPalmerRain {
+  double rate_mm_h = 0;
+};
+enum class FogPreset { advection, radiation };
+struct DistributionFile {
+  std::string path;
+};
+using Drops = std::variant<MarshallPalmerRain, FogPreset, DistributionFile>;
 
-// Throws std::invalid_argument whose message names the problem and shows the grammar.
-// A sweep (A..B) is an error here: use expand_conditions.
-Condition parse_condition(const std::string& text);
+// The refractive index: Settings::water_table, a named water table, or a constant.
+struct SettingsWaterTable {};
+enum class WaterTable { hale_querry, segelstein };
+struct ConstantIndex {
+  std::complex<double> m;  // n + i k, k >= 0
+};
+using IndexSource = std::variant<SettingsWaterTable, WaterTable, ConstantIndex>;
 
-// Like parse_condition but expands sweeps into one condition per value.
-std::vector<Condition> expand_conditions(const std::string& text);
+// Rescaling of the drops before integrating: as given, to a number density,
+// or to a liquid water content.
+struct AsGiven {};
+struct NumberDensity {
+  double per_cm3 = 0;
+};
+struct LiquidWaterContent {
+  double g_per_m3 = 0;
+};
+using Rescaling = std::variant<AsGiven, NumberDensity, LiquidWaterContent>;
+
+struct MieCondition {
+  Drops drops;
+  IndexSource index;
+  Rescaling rescaling;
+};
+
+using Condition = std::variant<ClearAir, Visibility, GivenSigma, RainPowerLaw, Snow, FogFromVisibility, MieCondition>;
+
+// A condition with the text it was written as (CSV columns and labels echo it).
+struct LabelledCondition {
+  std::string label;
+  Condition condition;
+};
+
+bool needs_mie(const Condition& c);
+// True for the power laws, whose sigma depends on Settings::convention.
+bool depends_on_convention(const Condition& c);
+
+std::string to_string(FogPreset p);   // "advection" | "radiation"
+std::string to_string(WaterTable t);  // "hale-querry" | "segelstein"
+
+// Grammar text (condition_grammar.hpp) that parses back to the same
+// condition, numbers in shortest round-trip form: for echoing conditions
+// built in code.
+std::string to_text(const Condition& c);
 
 }  // namespace attenuvis::weather

@@ -13,19 +13,25 @@
 
 namespace attenuvis::weather {
 
-// gamma = k R^alpha, R in mm/h.
-struct RainPowerLaw {
-  std::string name;
+// The rain power laws gamma = k R^alpha (R in mm/h):
+//   seed        k=1.17,   alpha=0.65    seed paper Sec. Rain
+//   carbonneau  k=1.076,  alpha=0.67    ITU-R P.1817-1, after Carbonneau et al. (1998)
+//   p1814       k=1.2924, alpha=0.6436  ITU-R P.1814-1 with mu = 0
+enum class RainLaw { seed, carbonneau, p1814 };
+struct RainLawCoefficients {
+  RainLaw law;
+  std::string name;  // as the condition grammar spells it
   double k, alpha;
   std::string source;
 };
-// Presets: "seed" (k=1.17, alpha=0.65; seed paper Sec. Rain), "carbonneau"
-// (k=1.076, alpha=0.67; ITU-R P.1817-1, after Carbonneau et al. 1998),
-// "p1814" (k=1.2924, alpha=0.6436; ITU-R P.1814-1 with mu = 0).
-const std::vector<RainPowerLaw>& rain_power_laws();
-const RainPowerLaw& rain_power_law(const std::string& name);  // throws listing the presets
+const std::vector<RainLawCoefficients>& rain_power_laws();
+const RainLawCoefficients& rain_power_law(RainLaw law);
+// By grammar name; throws std::invalid_argument listing the names.
+const RainLawCoefficients& rain_power_law(const std::string& name);
+std::string to_string(RainLaw law);
 
 enum class SnowType { wet, dry };
+std::string to_string(SnowType type);  // "wet" | "dry"
 // a(lambda) S^b, S in mm/h (P.1817-1; seed Table "Wet and Dry Snow"):
 //   wet a = 0.0001023 lambda_nm + 3.7855466, b = 0.72
 //   dry a = 0.0000542 lambda_nm + 5.4958776, b = 1.38

@@ -1,4 +1,5 @@
-// What a sigma computation needs besides the condition itself.
+// What a sigma computation needs besides the condition and the wavelength
+// (both arguments of sigma(), sigma.hpp).
 #pragma once
 
 #include <string>
@@ -8,7 +9,6 @@
 namespace attenuvis::weather {
 
 struct Settings {
-  double wavelength_m = 550e-9;
   Convention convention = Convention::itu;  // how P.1817 power laws are read (units.hpp)
   double contrast_threshold = 0.02;         // Koschmieder epsilon: 0.02 (3.912) or 0.05 (2.996)
   double rel_tolerance = 1e-9;              // Mie integrals: quadrature + tails, relative to sigma_ext

@@ -1,6 +1,7 @@
 // The extinction coefficient of a condition at one wavelength.
 #pragma once
 
+#include <complex>
 #include <string>
 
 #include "attenuvis/weather/bulk_optics.hpp"
@@ -17,14 +18,17 @@ struct Sigma {
   std::string note;        // warnings, error breakdown, refractive index used
 };
 
-// Does Mie work only if the condition needs it (fog Mie, rain:R:mie).
-Sigma sigma(const Condition& c, const Settings& s);
+// Does Mie work only for a MieCondition.  Mie results are cached per process,
+// keyed on the condition's value, the wavelength and the settings they depend
+// on (conditions read from a file are not cached: the file may change).
+Sigma sigma(const Condition& c, double wavelength_m, const Settings& s);
 
 // The size distribution a Mie condition integrates over (after N=/lwc= rescaling).
-SizeDistribution condition_distribution(const Condition& c);
-// The refractive index a Mie condition uses at the settings' wavelength, and where it came from.
-std::complex<double> condition_refractive_index(const Condition& c, const Settings& s, std::string* source = nullptr);
-// Full Mie result (sigma_ext, sigma_sca, sigma_abs, albedo, g with errors) for a Mie condition.
-BulkOptics condition_bulk_optics(const Condition& c, const Settings& s);
+SizeDistribution condition_distribution(const MieCondition& c);
+// The refractive index a Mie condition uses at `wavelength_m`, and where it came from.
+std::complex<double> condition_refractive_index(const MieCondition& c, double wavelength_m, const Settings& s,
+                                                std::string* source = nullptr);
+// Full Mie result (sigma_ext, sigma_sca, sigma_abs, albedo, g with errors) on the real axis.
+BulkOptics condition_bulk_optics(const MieCondition& c, double wavelength_m, const Settings& s);
 
 }  // namespace attenuvis::weather

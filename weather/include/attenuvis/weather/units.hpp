@@ -43,9 +43,12 @@ double convert_to_per_m(double value, SigmaUnit from);
 // "550nm", "0.55um", "0.55µm", "5.5e-7m", "10.6um".  A bare number is an error
 // (a wavelength without a unit is ambiguous).  Returns metres.
 double parse_wavelength(const std::string& text);
-// "500m", "2km", "2.5 km".  A bare number means metres.  Returns metres.
+// "500m", "2km", "2.5 km", "1mi".  A bare number means metres.  Returns metres.
 double parse_distance(const std::string& text);
-// Strict full-string number parse; throws std::invalid_argument naming `what`.
-double parse_number(const std::string& text, const std::string& what);
+// Metres per distance unit: "" or "m" (1), "km", "mi" (international mile);
+// throws std::invalid_argument listing the units for any other.
+double distance_unit_m(const std::string& unit);
+// The distance units as a list for messages and help: "m, km or mi".
+const std::string& distance_units();
 
 }  // namespace attenuvis::weather

@@ -1,12 +1,13 @@
-// Error against run time for the quadrature settings (tolerance, Gauss-Kronrod
-// order, tail cut), for the reproduction report and the benchmark.
+// Error against run time for the weather module's quadrature settings
+// (tolerance, Gauss-Kronrod order, tail cut), for the reproduction report and
+// the benchmark.
 #pragma once
 
 #include <cstddef>
 #include <string>
 #include <vector>
 
-namespace attenuvis::weather {
+namespace attenuvis::validation {
 
 struct QuadratureTradeoffRow {
   std::string case_name;      // e.g. "fog:advection @ 550 nm"
@@ -33,4 +34,4 @@ struct QuadratureTradeoffRow {
 std::vector<QuadratureTradeoffRow> quadrature_tradeoff(double wavelength_m = 550e-9, int repeats = 3);
 std::string quadrature_tradeoff_csv(const std::vector<QuadratureTradeoffRow>& rows);
 
-}  // namespace attenuvis::weather
+}  // namespace attenuvis::validation

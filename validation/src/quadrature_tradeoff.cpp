@@ -1,5 +1,5 @@
 // Error vs. run time of the bulk-optics quadrature settings.
-#include "attenuvis/weather/quadrature_tradeoff.hpp"
+#include "attenuvis/validation/quadrature_tradeoff.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -12,7 +12,9 @@
 #include "attenuvis/weather/contour_extinction.hpp"
 #include "attenuvis/weather/refractive_index.hpp"
 
-namespace attenuvis::weather {
+namespace attenuvis::validation {
+
+using namespace attenuvis::weather;
 
 std::vector<QuadratureTradeoffRow> quadrature_tradeoff(double wavelength_m, int repeats) {
   std::vector<QuadratureTradeoffRow> rows;
@@ -123,4 +125,4 @@ std::string quadrature_tradeoff_csv(const std::vector<QuadratureTradeoffRow>& ro
   return o.str();
 }
 
-}  // namespace attenuvis::weather
+}  // namespace attenuvis::validation

@@ -1,0 +1,36 @@
+// The weather options shared by every subcommand that computes sigma (sigma,
+// table, vg): each option means the same in all of them, and all build their
+// weather::Settings here.
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "attenuvis/weather/settings.hpp"
+
+namespace attenuvis::cli {
+
+struct WeatherOptions {
+  std::string wavelength = "550nm";
+  std::string convention = "itu";
+  double threshold = 0.02;
+  double tolerance = 1e-9;
+  std::string water = "hale-querry";
+};
+
+// Which of the shared options a subcommand takes.
+struct WeatherOptionSet {
+  bool wavelength = true;  // --wavelength (table has --wavelengths instead)
+  bool tolerance = true;   // --tolerance, the Mie tolerance (vg keeps the name for its deprecated prune alias)
+};
+
+// Adds --convention, --threshold, --water and, per `which`, --wavelength and --tolerance.
+void add_weather_options(CLI::App* cmd, WeatherOptions& o, WeatherOptionSet which = {});
+
+// Settings from the options; throws std::invalid_argument naming a bad value.
+weather::Settings weather_settings(const WeatherOptions& o);
+// The --wavelength value in metres.
+double wavelength_m(const WeatherOptions& o);
+
+}  // namespace attenuvis::cli

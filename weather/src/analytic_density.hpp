@@ -1,0 +1,31 @@
+// The densities of the analytic families (size_distribution.hpp), written once
+// for real radii (SizeDistribution::density) and for complex radii (their
+// continuation, which contour_extinction.cpp integrates along).
+#pragma once
+
+#include <cmath>
+#include <complex>
+
+#include <boost/math/constants/constants.hpp>
+
+#include "attenuvis/weather/size_distribution.hpp"
+
+namespace attenuvis::weather::detail {
+
+// n = a t^alpha exp(-b t^gamma), t = r / r0; in log form so that it tends to
+// 0 instead of inf * 0 at huge r.
+template <class Radius>
+Radius modified_gamma_density(const ModifiedGamma& g, Radius r) {
+  const Radius t = r / g.r0;
+  return g.a * std::exp(g.alpha * std::log(t) - g.b * std::pow(t, g.gamma));
+}
+
+// n = N / (sqrt(2 pi) ln(sg) r) exp(-(ln r - ln rg)^2 / (2 ln^2 sg)).
+template <class Radius>
+Radius log_normal_density(const LogNormal& l, Radius r) {
+  const double s = std::log(l.sigma_g);
+  const Radius z = (std::log(r) - std::log(l.median_radius_m)) / s;
+  return l.number_per_m3 / (std::sqrt(2 * boost::math::constants::pi<double>()) * s * r) * std::exp(-0.5 * z * z);
+}
+
+}  // namespace attenuvis::weather::detail

@@ -1,0 +1,430 @@
+// The condition grammar (condition_grammar.hpp): one table of kinds, each
+// with its keyword, grammar line, help text and parser; the help and every
+// error message are generated from it.
+#include "attenuvis/weather/condition_grammar.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <iterator>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "attenuvis/io/number_text.hpp"
+#include "attenuvis/weather/units.hpp"
+
+namespace attenuvis::weather {
+namespace {
+
+[[noreturn]] void bad(const std::string& text, const std::string& why) {
+  throw std::invalid_argument("bad condition '" + text + "': " + why + "\n" + condition_grammar());
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char c : s) {
+    if (c == sep) {
+      out.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  out.push_back(cur);
+  return out;
+}
+
+// One value of a sweep A..B[/STEP][UNIT]: the field it replaces, the number
+// (in the sweep's unit) and that unit.
+struct SweptValue {
+  std::size_t field = 0;
+  double value = 0;
+  std::string unit;
+};
+
+// The ':'-separated fields of one condition (fields[0] is the keyword) and
+// the readers of its numbers.  A swept field yields its number directly.
+class Fields {
+ public:
+  Fields(std::string text, std::vector<std::string> fields, std::optional<SweptValue> swept)
+      : text_(std::move(text)), fields_(std::move(fields)), swept_(std::move(swept)) {}
+
+  const std::string& text() const { return text_; }
+  std::size_t size() const { return fields_.size(); }
+  const std::string& operator[](std::size_t i) const { return fields_[i]; }
+  [[noreturn]] void fail(const std::string& why) const { bad(text_, why); }
+  void require(std::size_t n) const {
+    if (fields_.size() < n) fail("missing field after '" + fields_.back() + "'");
+  }
+  void at_most(std::size_t n, const std::string& why) const {
+    if (fields_.size() > n) fail(why);
+  }
+  bool swept_field_read() const { return !swept_ || swept_read_; }
+
+  // Rate in mm/h, > 0.
+  double rate(std::size_t i) const {
+    double r = 0;
+    if (const auto v = swept(i)) {
+      if (!swept_->unit.empty()) fail("a rate is in mm/h and takes no unit ('" + swept_->unit + "')");
+      r = *v;
+    } else {
+      r = number(i, "rate (mm/h)");
+    }
+    if (!(r > 0)) fail("rate must be > 0 mm/h");
+    return r;
+  }
+  // Distance in metres, > 0 (units.hpp: parse_distance).
+  double distance(std::size_t i) const {
+    try {
+      if (const auto v = swept(i)) {
+        if (!(*v > 0)) throw std::invalid_argument("distance must be positive");
+        return *v * distance_unit_m(swept_->unit);
+      }
+      return parse_distance(fields_[i]);
+    } catch (const std::invalid_argument& e) {
+      fail(e.what());
+    }
+  }
+  // sigma in 1/m, >= 0, from VALUE[/m|/km|dB/km].
+  double sigma(std::size_t i) const {
+    if (const auto v = swept(i)) {
+      if (!swept_->unit.empty()) fail("a swept sigma is in 1/m and takes no unit");
+      if (*v < 0) fail("sigma must be >= 0");
+      return *v;
+    }
+    std::string v = fields_[i];
+    SigmaUnit unit = SigmaUnit::per_m;
+    for (auto [suffix, u] : {std::pair<const char*, SigmaUnit>{"dB/km", SigmaUnit::dB_per_km},
+                             {"/km", SigmaUnit::per_km},
+                             {"/m", SigmaUnit::per_m}}) {
+      const std::string s = suffix;
+      if (v.size() > s.size() && v.compare(v.size() - s.size(), s.size(), s) == 0) {
+        unit = u;
+        v = v.substr(0, v.size() - s.size());
+        break;
+      }
+    }
+    const double x = number(v, "sigma");
+    if (x < 0) fail("sigma must be >= 0");
+    return convert_to_per_m(x, unit);
+  }
+  double number(const std::string& text, const std::string& what) const {
+    try {
+      return io::parse_double(text, what);
+    } catch (const std::invalid_argument& e) {
+      fail(e.what());
+    }
+  }
+
+ private:
+  double number(std::size_t i, const std::string& what) const { return number(fields_[i], what); }
+  std::optional<double> swept(std::size_t i) const {
+    if (!swept_ || swept_->field != i) return std::nullopt;
+    swept_read_ = true;
+    return swept_->value;
+  }
+
+  std::string text_;
+  std::vector<std::string> fields_;
+  std::optional<SweptValue> swept_;
+  mutable bool swept_read_ = false;
+};
+
+// ---- Mie options ------------------------------------------------------------
+
+// "1.33+1e-8i", "1.33-0i", "1.5" -> n + i k; k must be >= 0 (absorbing).
+std::complex<double> parse_index(const std::string& text, const Fields& f) {
+  std::string s = text;
+  if (!s.empty() && (s.back() == 'i' || s.back() == 'j')) {
+    s.pop_back();
+    std::size_t split_at = std::string::npos;
+    for (std::size_t i = 1; i < s.size(); ++i)
+      if ((s[i] == '+' || s[i] == '-') && s[i - 1] != 'e' && s[i - 1] != 'E') split_at = i;
+    if (split_at == std::string::npos) f.fail("refractive index '" + text + "' should look like 1.33+1e-8i");
+    const double n = f.number(s.substr(0, split_at), "refractive index real part");
+    const double k = f.number(s.substr(split_at), "refractive index imaginary part");
+    if (k < 0) f.fail("refractive index imaginary part must be >= 0 (absorbing; m = n + ik)");
+    if (!(n > 0)) f.fail("refractive index real part must be > 0");
+    return {n, k};
+  }
+  const double n = f.number(s, "refractive index");
+  if (!(n > 0)) f.fail("refractive index real part must be > 0");
+  return {n, 0.0};
+}
+
+struct MieOption {
+  const char* key;  // "m=" ...
+  const char* grammar;
+  const char* help;
+  void (*apply)(MieCondition& c, const std::string& value, const Fields& f);
+};
+
+void set_rescaling(MieCondition& c, Rescaling r, const Fields& f) {
+  if (!std::holds_alternative<AsGiven>(c.rescaling) && c.rescaling.index() != r.index())
+    f.fail("give N= or lwc=, not both");
+  c.rescaling = r;
+}
+
+const MieOption kMieOptions[] = {
+    {"m=", ":m=N+Ki", "constant refractive index instead of the water table (e.g. m=1.33+0.001i)",
+     [](MieCondition& c, const std::string& v, const Fields& f) { c.index = ConstantIndex{parse_index(v, f)}; }},
+    {"water=", ":water=hale-querry|segelstein", "water refractive-index table (default: the --water setting)",
+     [](MieCondition& c, const std::string& v, const Fields& f) {
+       if (v == "hale-querry" || v == "water") c.index = WaterTable::hale_querry;
+       else if (v == "segelstein") c.index = WaterTable::segelstein;
+       else f.fail("water table '" + v + "' is not hale-querry or segelstein");
+     }},
+    {"N=", ":N=PER_CM3", "rescale the drops to this many particles per cm^3",
+     [](MieCondition& c, const std::string& v, const Fields& f) {
+       const double n = f.number(v, "N");
+       if (!(n > 0)) f.fail("N must be > 0 (per cm^3)");
+       set_rescaling(c, NumberDensity{n}, f);
+     }},
+    {"lwc=", ":lwc=G_PER_M3", "rescale the drops to this liquid water content (g/m^3)",
+     [](MieCondition& c, const std::string& v, const Fields& f) {
+       const double w = f.number(v, "lwc");
+       if (!(w > 0)) f.fail("lwc must be > 0 (g/m^3)");
+       set_rescaling(c, LiquidWaterContent{w}, f);
+     }},
+};
+
+const MieOption* find_option(const std::string& field) {
+  for (const auto& o : kMieOptions)
+    if (field.rfind(o.key, 0) == 0) return &o;
+  return nullptr;
+}
+
+MieCondition with_options(Drops drops, const Fields& f, std::size_t from) {
+  MieCondition c{std::move(drops), SettingsWaterTable{}, AsGiven{}};
+  for (std::size_t i = from; i < f.size(); ++i) {
+    const MieOption* o = find_option(f[i]);
+    if (!o) f.fail("unexpected field '" + f[i] + "'");
+    o->apply(c, f[i].substr(std::string(o->key).size()), f);
+  }
+  return c;
+}
+
+// ---- The kinds --------------------------------------------------------------
+
+struct Kind {
+  const char* keyword;
+  const char* grammar;  // the grammar line
+  const char* help;
+  bool (*matches)(const Fields& f);  // among the kinds that share a keyword
+  Condition (*parse)(const Fields& f);
+};
+
+bool always(const Fields&) { return true; }
+
+bool is_empirical_fog(const std::string& name) {
+  return name == "kruse" || name == "kim" || name == "naboulsi-advection" || name == "naboulsi-radiation";
+}
+
+const Kind kKinds[] = {
+    {"clear", "clear | clear:DIST",
+     "clear air: sigma = 0.00015 1/m (seed paper, Sec. Results), or Koschmieder from visibility DIST", always,
+     [](const Fields& f) -> Condition {
+       f.at_most(2, "clear takes at most a visibility");
+       if (f.size() == 2) return ClearAir{f.distance(1)};
+       return ClearAir{};
+     }},
+    {"visibility", "visibility:DIST", "any atmosphere of visibility DIST (Koschmieder), e.g. visibility:2km", always,
+     [](const Fields& f) -> Condition {
+       f.require(2);
+       f.at_most(2, "visibility takes one distance");
+       return Visibility{f.distance(1)};
+     }},
+    {"sigma", "sigma:VALUE[/m|/km|dB/km]", "a given sigma (default 1/m), e.g. sigma:0.002, sigma:3dB/km", always,
+     [](const Fields& f) -> Condition {
+       f.require(2);
+       f.at_most(2, "sigma takes one value");
+       return GivenSigma{f.sigma(1)};
+     }},
+    {"rain", "rain:RATE:mie[:OPTIONS]", "Mie over Marshall-Palmer drops, RATE mm/h, e.g. rain:8:mie",
+     [](const Fields& f) { return f.size() >= 3 && f[2] == "mie"; },
+     [](const Fields& f) -> Condition { return with_options(MarshallPalmerRain{f.rate(1)}, f, 3); }},
+    {"rain", "rain:RATE[:seed|carbonneau|p1814]",
+     "power law, RATE mm/h, read per --convention; seed (default): k=1.17, alpha=0.65; e.g. rain:8", always,
+     [](const Fields& f) -> Condition {
+       f.require(2);
+       const double rate = f.rate(1);
+       if (f.size() < 3) return RainPowerLaw{rate, RainLaw::seed};
+       f.at_most(3, "options (m=, N=...) apply only to rain:RATE:mie");
+       try {
+         return RainPowerLaw{rate, rain_power_law(f[2]).law};
+       } catch (const std::invalid_argument&) {
+         std::string names;
+         for (const auto& l : rain_power_laws()) names += l.name + ", ";
+         f.fail("unknown rain model '" + f[2] + "' (" + names + "or mie)");
+       }
+     }},
+    {"snow", "snow:wet:RATE | snow:dry:RATE", "P.1817-1 a(lambda) S^b, RATE mm/h, read per --convention", always,
+     [](const Fields& f) -> Condition {
+       f.require(3);
+       SnowType type = SnowType::dry;
+       if (f[1] == "wet") type = SnowType::wet;
+       else if (f[1] != "dry") f.fail("snow type must be wet or dry");
+       f.at_most(3, "snow takes a type and a rate");
+       return Snow{type, f.rate(2)};
+     }},
+    {"fog", "fog:advection | fog:radiation | fog:file=PATH  [:OPTIONS]",
+     "Mie over the P.1817-1 / seed modified-gamma presets or a size-distribution CSV",
+     [](const Fields& f) {
+       return f.size() >= 2 && (f[1] == "advection" || f[1] == "radiation" || f[1].rfind("file=", 0) == 0);
+     },
+     [](const Fields& f) -> Condition {
+       if (f[1] == "advection") return with_options(FogPreset::advection, f, 2);
+       if (f[1] == "radiation") return with_options(FogPreset::radiation, f, 2);
+       // A path may itself contain ':'; it runs up to the first option field.
+       std::string path = f[1].substr(5);
+       std::size_t i = 2;
+       while (i < f.size() && !find_option(f[i])) path += ":" + f[i++];
+       if (path.empty()) f.fail("fog:file= needs a path");
+       return with_options(DistributionFile{path}, f, i);
+     }},
+    {"fog", "fog:kruse|kim|naboulsi-advection|naboulsi-radiation:DIST", "empirical fog from visibility DIST",
+     [](const Fields& f) { return f.size() >= 2 && is_empirical_fog(f[1]); },
+     [](const Fields& f) -> Condition {
+       f.require(3);
+       f.at_most(3, "empirical fog takes one visibility");
+       const VisibilityFogModel model = f[1] == "kruse"                ? VisibilityFogModel::kruse
+                                        : f[1] == "kim"                ? VisibilityFogModel::kim
+                                        : f[1] == "naboulsi-advection" ? VisibilityFogModel::naboulsi_advection
+                                                                       : VisibilityFogModel::naboulsi_radiation;
+       return FogFromVisibility{model, f.distance(2)};
+     }},
+};
+
+std::string generate_grammar() {
+  std::size_t width = 0;
+  for (const auto& k : kKinds) width = std::max(width, std::string(k.grammar).size());
+  for (const auto& o : kMieOptions) width = std::max(width, std::string(o.grammar).size() + 2);
+  std::ostringstream out;
+  const auto line = [&](const std::string& left, const std::string& right) {
+    out << "  " << left << std::string(width + 2 - left.size(), ' ') << right << "\n";
+  };
+  out << "conditions:\n";
+  for (const auto& k : kKinds) line(k.grammar, k.help);
+  out << "  OPTIONS after a Mie condition (fog:..., rain:RATE:mie), any order:\n";
+  for (const auto& o : kMieOptions) line(std::string("  ") + o.grammar, o.help);
+  out << "  RATE in mm/h; DIST a number with unit " << distance_units() << " (bare number: m), e.g. 500m, 2km\n"
+      << "  in tables a RATE, DIST or VALUE may sweep: A..B or A..B/STEP (rain:1..100, fog:kim:200..1000/200m)";
+  return out.str();
+}
+
+Condition parse_fields(const Fields& f) {
+  if (f.text().empty()) f.fail("empty condition");
+  bool keyword_known = false;
+  for (const auto& k : kKinds) {
+    if (f[0] != k.keyword) continue;
+    keyword_known = true;
+    if (!k.matches(f)) continue;
+    Condition c = k.parse(f);
+    if (!f.swept_field_read()) f.fail("a sweep A..B applies only to a RATE, DIST or VALUE");
+    return c;
+  }
+  if (keyword_known) {
+    f.require(2);
+    f.fail("unknown " + f[0] + " '" + f[1] + "'");
+  }
+  f.fail("unknown weather '" + f[0] + "'");
+}
+
+// The one field of `fields` that holds a sweep A..B[/STEP][unit].
+std::optional<std::size_t> find_sweep(const std::vector<std::string>& fields) {
+  for (std::size_t i = 0; i < fields.size(); ++i)
+    if (fields[i].find("..") != std::string::npos && fields[i].rfind("file=", 0) != 0) return i;
+  return std::nullopt;
+}
+
+}  // namespace
+
+const std::string& condition_grammar() {
+  static const std::string grammar = generate_grammar();
+  return grammar;
+}
+
+Condition parse_condition(const std::string& text) {
+  auto fields = split(text, ':');
+  if (find_sweep(fields)) bad(text, "a sweep (A..B) is only allowed in tables");
+  return parse_fields(Fields(text, std::move(fields), std::nullopt));
+}
+
+std::vector<LabelledCondition> expand_conditions(const std::string& text) {
+  const auto fields = split(text, ':');
+  const auto at = find_sweep(fields);
+  if (!at) return {{text, parse_condition(text)}};
+  const std::string& field = fields[*at];
+  const auto dots = field.find("..");
+  std::string lo_text = field.substr(0, dots), rest = field.substr(dots + 2), step_text = "1", unit;
+  // Optional unit suffix (m, km) after the upper bound or the step.
+  while (!rest.empty() && std::isalpha(static_cast<unsigned char>(rest.back()))) {
+    unit.insert(unit.begin(), rest.back());
+    rest.pop_back();
+  }
+  const auto slash = rest.find('/');
+  const std::string hi_text = rest.substr(0, slash);
+  if (slash != std::string::npos) step_text = rest.substr(slash + 1);
+  double lo = 0, hi = 0, step = 0;
+  try {
+    lo = io::parse_double(lo_text, "sweep start");
+    hi = io::parse_double(hi_text, "sweep end");
+    step = io::parse_double(step_text, "sweep step");
+  } catch (const std::invalid_argument& e) {
+    bad(text, e.what());
+  }
+  if (!(step > 0) || !(hi >= lo)) bad(text, "sweep A..B/STEP needs A <= B and STEP > 0");
+  const double count = std::floor((hi - lo) / step + 1e-9) + 1;
+  if (count > 10000) bad(text, "sweep has more than 10000 values");
+  std::vector<LabelledCondition> out;
+  for (int i = 0; i < static_cast<int>(count); ++i) {
+    const double value = lo + i * step;
+    // The label: the text as written with the sweep replaced by its value.
+    std::ostringstream v;
+    v.precision(12);
+    v << value << unit;
+    auto labelled = fields;
+    labelled[*at] = v.str();
+    std::string label = labelled[0];
+    for (std::size_t j = 1; j < labelled.size(); ++j) label += ":" + labelled[j];
+    out.push_back({label, parse_fields(Fields(label, fields, SweptValue{*at, value, unit}))});
+  }
+  return out;
+}
+
+// ---- Back to text -------------------------------------------------------------
+
+std::string to_text(const Condition& condition) {
+  using io::shortest;
+  struct Visitor {
+    std::string operator()(const ClearAir& c) const {
+      return c.visibility_m ? "clear:" + shortest(*c.visibility_m) + "m" : "clear";
+    }
+    std::string operator()(const Visibility& c) const { return "visibility:" + shortest(c.visibility_m) + "m"; }
+    std::string operator()(const GivenSigma& c) const { return "sigma:" + shortest(c.per_m); }
+    std::string operator()(const RainPowerLaw& c) const {
+      return "rain:" + shortest(c.rate_mm_h) + ":" + to_string(c.law);
+    }
+    std::string operator()(const Snow& c) const { return "snow:" + to_string(c.type) + ":" + shortest(c.rate_mm_h); }
+    std::string operator()(const FogFromVisibility& c) const {
+      return "fog:" + to_string(c.model) + ":" + shortest(c.visibility_m) + "m";
+    }
+    std::string operator()(const MieCondition& c) const {
+      std::string out;
+      if (const auto* r = std::get_if<MarshallPalmerRain>(&c.drops)) out = "rain:" + shortest(r->rate_mm_h) + ":mie";
+      else if (const auto* p = std::get_if<FogPreset>(&c.drops)) out = "fog:" + to_string(*p);
+      else out = "fog:file=" + std::get<DistributionFile>(c.drops).path;
+      if (const auto* t = std::get_if<WaterTable>(&c.index)) out += ":water=" + to_string(*t);
+      if (const auto* m = std::get_if<ConstantIndex>(&c.index))
+        out += ":m=" + shortest(m->m.real()) + "+" + shortest(m->m.imag()) + "i";
+      if (const auto* n = std::get_if<NumberDensity>(&c.rescaling)) out += ":N=" + shortest(n->per_cm3);
+      if (const auto* w = std::get_if<LiquidWaterContent>(&c.rescaling)) out += ":lwc=" + shortest(w->g_per_m3);
+      return out;
+    }
+  };
+  return std::visit(Visitor{}, condition);
+}
+
+}  // namespace attenuvis::weather
