@@ -3,6 +3,8 @@
 // nodes and targets, and bad input (non-zero exit, a message naming the
 // problem, no output file).  Scene: classic layout 2, one 10 m block over
 // [25,35] x [15,25] on a 50 x 50 m floor (visgraph/layouts.hpp).
+#include "cli_test_support.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <nlohmann/json.hpp>
@@ -24,77 +26,7 @@ namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 
 namespace {
-
-struct Run {
-  int status;
-  std::string output;  // stdout + stderr
-};
-
-Run run(const std::string& args) {
-  const std::string command = std::string(ATTENUVIS_CLI) + " " + args + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-  std::string out;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe.get())) out += buffer.data();
-  const int raw = pclose(pipe.release());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
-}
-
-// A fresh empty directory, removed at scope exit.
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() / ("attenuvis-vg-cli-" + std::to_string(::getpid()) + "-" + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-  // Names of the files in the directory (to prove nothing was left behind).
-  std::vector<std::string> files() const {
-    std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(path)) names.push_back(entry.path().filename().string());
-    return names;
-  }
-};
-
-std::vector<std::string> split(const std::string& line, char separator) {
-  std::vector<std::string> parts;
-  std::stringstream in(line);
-  std::string part;
-  while (std::getline(in, part, separator)) parts.push_back(part);
-  return parts;
-}
-
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::vector<double>> rows;
-  std::size_t column(const std::string& name) const {
-    for (std::size_t c = 0; c < header.size(); ++c)
-      if (header[c] == name) return c;
-    FAIL("no column " << name);
-    return 0;
-  }
-};
-
-Csv read_csv(const std::string& path) {
-  std::ifstream in(path);
-  REQUIRE(in);
-  Csv csv;
-  std::string line;
-  REQUIRE(std::getline(in, line));
-  csv.header = split(line, ',');
-  while (std::getline(in, line)) {
-    std::vector<double> row;
-    for (const std::string& cell : split(line, ',')) row.push_back(std::stod(cell));
-    REQUIRE(row.size() == csv.header.size());
-    csv.rows.push_back(row);
-  }
-  return csv;
-}
+using namespace clitest;
 
 std::string data(const std::string& name) { return std::string(ATTENUVIS_TEST_DATA_DIR) + "/visgraph/" + name; }
 

@@ -76,51 +76,70 @@ def main() -> int:
     n = len(values)
     cols = min(n, 2)
     panel_rows = math.ceil(n / cols)
-    fig, axes = plt.subplots(panel_rows, cols, figsize=(6.5 * cols, 5.5 * panel_rows), dpi=150, squeeze=False)
+    fig, axes = plt.subplots(panel_rows, cols, figsize=(6.5 * cols, 5.5 * panel_rows), dpi=150, squeeze=False,
+                             constrained_layout=True)
     # Coordinates relative to the lower-left corner keep tick labels short
     # (UTM-sized numbers otherwise); the offset is in the axis label.
     x0, y0 = float(np.floor(all_x.min())), float(np.floor(all_y.min()))
     unit = "m" + (f", {args.crs}" if args.crs else "")
+    # Grid nodes (the usual case) are drawn as an image of cells, one pixel
+    # per cell; scattered nodes (--nodes) as dots.
+    gx0, gy0 = all_x.min(), all_y.min()
+    ix = np.rint((x - gx0) / pitch).astype(int)
+    iy = np.rint((y - gy0) / pitch).astype(int)
+    on_grid = np.allclose(x, gx0 + ix * pitch, atol=1e-3 * pitch) and np.allclose(y, gy0 + iy * pitch, atol=1e-3 * pitch)
+    nx = int(np.rint((all_x.max() - gx0) / pitch)) + 1
+    ny = int(np.rint((all_y.max() - gy0) / pitch)) + 1
+    extent = (gx0 - x0 - pitch / 2, gx0 - x0 + (nx - 0.5) * pitch, gy0 - y0 - pitch / 2, gy0 - y0 + (ny - 0.5) * pitch)
     mappable = None
     for k, (name, v) in enumerate(zip(args.columns, values)):
         ax = axes[k // cols][k % cols]
-        ax.set_xlim(all_x.min() - x0 - pitch, all_x.max() - x0 + pitch)
-        ax.set_ylim(all_y.min() - y0 - pitch, all_y.max() - y0 + pitch)
-        ax.set_aspect("equal")
-        fig.canvas.draw()
-        bbox = ax.get_window_extent()
-        span = max(float(np.ptp(all_x)), float(np.ptp(all_y)), pitch) + 2 * pitch
-        size = (pitch * min(bbox.width, bbox.height) / fig.dpi * 72 / span) ** 2  # points^2 per cell
-        if len(covered):
-            ax.scatter(covered[:, 0] - x0, covered[:, 1] - y0, s=size, marker="s", c="0.25", linewidths=0,
-                       label="covered (buildings)")
         blind = (degree == 0) if degree is not None else (v == 0)
         nan = ~np.isfinite(v) & ~blind
         shown = np.isfinite(v) & ~blind
-        if nan.any():
-            ax.scatter(x[nan] - x0, y[nan] - y0, s=size, marker="s", c="0.85", linewidths=0, label="no value")
-        mappable = ax.scatter(x[shown] - x0, y[shown] - y0, s=size, marker="s", c=v[shown], cmap="viridis",
-                              vmin=lo, vmax=hi, linewidths=0)
+        if on_grid:
+            # Background: white = no node; dark grey = covered; light grey = no value.
+            rgb = np.ones((ny, nx, 3))
+            if len(covered):
+                cx = np.rint((covered[:, 0] - gx0) / pitch).astype(int)
+                cy = np.rint((covered[:, 1] - gy0) / pitch).astype(int)
+                ok = (cx >= 0) & (cx < nx) & (cy >= 0) & (cy < ny)
+                rgb[cy[ok], cx[ok]] = 0.3
+            rgb[iy[nan], ix[nan]] = 0.85
+            ax.imshow(rgb, origin="lower", extent=extent, interpolation="nearest")
+            image = np.full((ny, nx), np.nan)
+            image[iy[shown], ix[shown]] = v[shown]
+            mappable = ax.imshow(np.ma.masked_invalid(image), origin="lower", extent=extent, cmap="viridis",
+                                 vmin=lo, vmax=hi, interpolation="nearest")
+        else:
+            if len(covered):
+                ax.scatter(covered[:, 0] - x0, covered[:, 1] - y0, s=4, marker="s", c="0.3", linewidths=0)
+            ax.scatter(x[nan] - x0, y[nan] - y0, s=6, c="0.85", linewidths=0)
+            mappable = ax.scatter(x[shown] - x0, y[shown] - y0, s=6, c=v[shown], cmap="viridis", vmin=lo, vmax=hi,
+                                  linewidths=0)
         if blind.any():
-            ax.scatter(x[blind] - x0, y[blind] - y0, s=max(size, 4), marker="x", c="red", linewidths=0.6,
+            ax.scatter(x[blind] - x0, y[blind] - y0, s=12, marker="x", c="red", linewidths=0.8,
                        label=f"sees no node ({int(blind.sum())})")
+        if len(covered):
+            ax.scatter([], [], s=20, marker="s", c="0.3", label="covered (buildings)")
+        ax.set_aspect("equal")
         ax.set_xlabel(f"x - {x0:.0f} ({unit})")
         ax.set_ylabel(f"y - {y0:.0f} ({unit})")
         ax.set_title(name)
-        if len(covered) or blind.any() or nan.any():
-            ax.legend(loc="upper right", fontsize=7, markerscale=1.0, framealpha=0.8)
+        if len(covered) or blind.any():
+            ax.legend(loc="upper right", fontsize=7, framealpha=0.8)
     for k in range(n, panel_rows * cols):
         axes[k // cols][k % cols].axis("off")
     first = args.columns[0]
     if all(c.startswith("sum:") for c in args.columns):
-        label = "sum score S_S = sum of exp(-sigma d) over the nodes seen"
+        label = "sum score $S_S = \\sum \\exp(-\\sigma d)$ over the nodes seen"
     elif all(c.startswith("avg:") for c in args.columns):
-        label = "average score S_A = S_S / degree"
+        label = "average score $S_A = S_S$ / degree"
     elif first == "degree":
         label = "degree (nodes seen)"
     else:
         label = first
-    fig.colorbar(mappable, ax=axes.ravel().tolist(), label=label, shrink=0.9)
+    fig.colorbar(mappable, ax=axes.ravel().tolist(), label=label, shrink=0.8)
     if args.title:
         fig.suptitle(args.title)
     fig.savefig(args.out, format="png", bbox_inches="tight")

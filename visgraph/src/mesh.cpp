@@ -95,11 +95,16 @@ MeshStats mesh_stats(const Mesh& mesh) {
   if (mesh.triangle_class.size() == mesh.triangles.size()) {
     stats.classes.resize(mesh.classes.size());
     for (std::size_t c = 0; c < mesh.classes.size(); ++c) stats.classes[c].name = mesh.classes[c];
+    std::vector<std::vector<char>> has(mesh.groups.size(), std::vector<char>(mesh.classes.size(), 0));
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
       auto& cls = stats.classes[mesh.triangle_class[t]];
       ++cls.triangles;
       cls.projected_area += projected_area(mesh, t);
+      has[mesh.triangle_group[t]][mesh.triangle_class[t]] = 1;
     }
+    for (std::size_t g = 0; g < mesh.groups.size(); ++g)
+      for (std::size_t c = 0; c < mesh.classes.size(); ++c)
+        if (has[g][c]) stats.groups[g].classes.push_back(mesh.classes[c]);
   }
   return stats;
 }

@@ -240,6 +240,15 @@ NodeSet generate_nodes(const Scene& scene, const NodeGridOptions& options) {
   return set;
 }
 
+bool found_ground(const Scene& scene, const NodeSet& grid) {
+  if (scene.classes().empty()) return grid.eyes.size() > grid.no_surface;
+  const std::vector<std::string> ground = default_walkable_classes();
+  for (const GroupInfo& c : scene.classes())
+    if (c.triangles > 0 && c.name != "GroundSurface" && std::find(ground.begin(), ground.end(), c.name) != ground.end())
+      return true;
+  return false;
+}
+
 std::vector<Eigen::Vector3d> read_nodes_csv(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot read node file '" + path + "'");

@@ -61,6 +61,7 @@ struct MeshStats {
     std::string name;
     std::size_t triangles = 0;
     double projected_area = 0.0;  // m^2, as walkable_area
+    std::vector<std::string> classes;  // groups only: the classes of its triangles, in mesh order
   };
   std::size_t vertices = 0, triangles = 0;
   Eigen::Vector3d lower, upper;   // bounding box of the vertices used by triangles

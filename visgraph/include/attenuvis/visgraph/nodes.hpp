@@ -73,6 +73,13 @@ struct NodeSet {
 // height, or a walkable name that is neither a group nor a class of the scene.
 NodeSet generate_nodes(const Scene& scene, const NodeGridOptions& options);
 
+// True when the grid stood on the scene's own ground.  In a scene with classes:
+// some triangle has a walkable class other than GroundSurface (a building's
+// floor lies under its roof: no ground to stand on).  Otherwise: more cells
+// got a node than found no surface at all.  False for a model of buildings
+// without terrain: add_ground_plane (mesh.hpp) gives it one.
+bool found_ground(const Scene& scene, const NodeSet& grid);
+
 // Reads eye positions from a CSV file: one `x,y,z` per line (world frame,
 // metres), optional header line, '#' comments.  Throws naming file and line
 // for malformed or non-finite values, or a file with no nodes.
