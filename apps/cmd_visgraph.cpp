@@ -4,10 +4,12 @@
 #include "commands.hpp"
 #include "weather_options.hpp"
 
+#include <attenuvis/io/number_text.hpp>
 #include <attenuvis/visgraph.hpp>
 #include <attenuvis/weather.hpp>
 
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -34,8 +36,9 @@ struct VgArguments {
   double max_distance = std::numeric_limits<double>::infinity();
   int threads = 0;
   bool distances = false;
-  std::string out, ply, heatmap, summary, edges, color_by;
+  std::string out, ply, heatmap, summary, edges, color_by, geojson;
   bool quiet = false;
+  std::string up_axis = "z", lod, ground_plane = "auto";
 };
 
 std::vector<std::string> split(const std::string& text, char separator) {
@@ -70,6 +73,85 @@ std::vector<vg::ConditionInfo> conditions_to_sigma(const VgArguments& a, double&
   return out;
 }
 
+struct SceneInput {
+  vg::Mesh mesh;
+  std::string format;
+  std::vector<std::string> warnings;
+};
+
+void warn(SceneInput& input, const std::string& text, bool quiet) {
+  input.warnings.push_back(text);
+  if (!quiet) std::cerr << "warning: " << text << "\n";
+}
+
+SceneInput read_scene(const VgArguments& a) {
+  SceneInput input;
+  if (vg::is_scene_spec(a.scene)) {
+    input.mesh = vg::scene_from_spec(a.scene);
+    return input;
+  }
+  vg::SceneFileOptions options;
+  options.obj_up_axis = vg::parse_up_axis(a.up_axis);
+  options.lod = a.lod;
+  vg::SceneFile file = vg::load_scene_file(a.scene, options);
+  input.mesh = std::move(file.mesh);
+  input.format = file.format;
+  for (const std::string& w : file.warnings) warn(input, a.scene + ": " + w, a.quiet);
+  return input;
+}
+
+std::vector<Eigen::Vector3d> read_node_file(const std::string& path, SceneInput& input, bool quiet) {
+  std::string crs;
+  std::vector<Eigen::Vector3d> points = vg::read_nodes(path, &crs);
+  if (!crs.empty() && !input.mesh.crs.empty() && vg::short_crs_name(crs) != vg::short_crs_name(input.mesh.crs))
+    warn(input, path + " is in " + crs + " but the scene in " + input.mesh.crs + ": the points are used as they are",
+         quiet);
+  return points;
+}
+
+// The node grid; adds the ground plane to a model without ground (--ground-plane).
+vg::NodeSet place_nodes(const VgArguments& a, SceneInput& input, std::unique_ptr<vg::Scene>& scene) {
+  if (a.ground_plane != "auto" && a.ground_plane != "yes" && a.ground_plane != "no")
+    throw std::invalid_argument("--ground-plane: expected auto, yes or no, got '" + a.ground_plane + "'");
+  vg::NodeGridOptions options;
+  options.spacing = a.spacing;
+  options.eye_height = a.eye_height;
+  options.max_slope_deg = a.max_slope;
+  options.walkable = a.walkable.empty() ? vg::default_walkable_groups(a.scene) : split(a.walkable, ',');
+  const auto add_plane = [&] {
+    vg::add_ground_plane(input.mesh);
+    scene = std::make_unique<vg::Scene>(input.mesh);
+    if (!options.walkable.empty()) options.walkable.push_back(vg::kGroundPlaneGroup);
+  };
+  if (a.ground_plane == "yes") add_plane();
+  vg::NodeSet grid = vg::generate_nodes(*scene, options);
+  const bool no_ground = !vg::found_ground(*scene, grid);
+  if (no_ground && a.ground_plane == "auto") {
+    warn(input, "the scene has no ground (buildings only?): nodes stand on a horizontal ground plane at its "
+                "lowest z (--ground-plane yes says so, --ground-plane no refuses)", a.quiet);
+    add_plane();
+    grid = vg::generate_nodes(*scene, options);
+  }
+  if (!a.quiet) {
+    std::vector<std::string> where;
+    for (const vg::SurfaceCount& s : grid.by_surface) where.push_back(s.name + " " + std::to_string(s.nodes));
+    std::cerr << "nodes: " << grid.eyes.size() << " of " << grid.cells << " grid cells (dropped: " << grid.covered
+              << " covered, " << grid.too_steep << " too steep, " << grid.no_headroom << " without headroom, "
+              << grid.no_surface << " over no surface)\n  placed by: " << grid.rule << "\n  on: "
+              << vg::preview_names(where, 8, "(--summary lists the 20 largest)") << "\n";
+  }
+  if (grid.elevated > 0)
+    warn(input, std::to_string(grid.elevated) + " nodes stand more than " + io::shortest(options.elevated_height) +
+                    " m above the lowest surface under them (up to " + io::significant(grid.max_elevation, 3) +
+                    " m): roofs or decks? --walkable chooses the surfaces", a.quiet);
+  if (grid.eyes.empty())
+    throw std::runtime_error(no_ground && a.ground_plane == "no"
+                                 ? "no ground under the node grid (buildings only?): --ground-plane yes stands nodes "
+                                   "on a plane at the scene's lowest z"
+                                 : "no walkable surface under the node grid: no nodes (--walkable chooses surfaces)");
+  return grid;
+}
+
 void run_vg(const VgArguments& a) {
   const auto start = std::chrono::steady_clock::now();
   if (!a.targets_file.empty() && !a.target_point.empty())
@@ -77,30 +159,20 @@ void run_vg(const VgArguments& a) {
   double wavelength_m = 0;
   const std::vector<vg::ConditionInfo> conditions = conditions_to_sigma(a, wavelength_m);
 
-  const vg::Mesh mesh = vg::is_scene_spec(a.scene) ? vg::scene_from_spec(a.scene) : vg::load_obj(a.scene);
-  const vg::Scene scene(mesh);
-  if (!a.quiet) std::cerr << "scene " << a.scene << ": " << vg::describe(scene) << "\n";
+  SceneInput input = read_scene(a);
+  std::unique_ptr<vg::Scene> scene = std::make_unique<vg::Scene>(input.mesh);
+  if (!a.quiet) std::cerr << "scene " << a.scene << ": " << vg::describe(*scene) << "\n";
 
   std::unique_ptr<vg::NodeSet> grid;
   std::vector<Eigen::Vector3d> eyes;
   if (!a.nodes_file.empty()) {
-    eyes = vg::read_nodes_csv(a.nodes_file);
+    eyes = read_node_file(a.nodes_file, input, a.quiet);
   } else {
-    vg::NodeGridOptions options;
-    options.spacing = a.spacing;
-    options.eye_height = a.eye_height;
-    options.max_slope_deg = a.max_slope;
-    options.walkable = a.walkable.empty() ? vg::default_walkable_groups(a.scene) : split(a.walkable, ',');
-    grid = std::make_unique<vg::NodeSet>(vg::generate_nodes(scene, options));
+    grid = std::make_unique<vg::NodeSet>(place_nodes(a, input, scene));
     eyes = grid->eyes;
-    if (!a.quiet)
-      std::cerr << "nodes: " << eyes.size() << " of " << grid->cells << " grid cells (dropped: " << grid->covered
-                << " covered, " << grid->too_steep << " too steep, " << grid->no_headroom << " without headroom, "
-                << grid->no_surface << " over no surface)\n";
-    if (eyes.empty()) throw std::runtime_error("no walkable surface under the node grid: no nodes");
   }
   std::vector<Eigen::Vector3d> targets;
-  if (!a.targets_file.empty()) targets = vg::read_nodes_csv(a.targets_file);
+  if (!a.targets_file.empty()) targets = read_node_file(a.targets_file, input, a.quiet);
   if (!a.target_point.empty()) targets.push_back(vg::parse_point(a.target_point));
 
   vg::VisibilityOptions options;
@@ -113,7 +185,7 @@ void run_vg(const VgArguments& a) {
 
   vg::VisibilityResult result;
   auto run = [&] {
-    result = targets.empty() ? vg::all_to_all(scene, eyes, options) : vg::to_targets(scene, eyes, targets, options);
+    result = targets.empty() ? vg::all_to_all(*scene, eyes, options) : vg::to_targets(*scene, eyes, targets, options);
   };
   if (a.edges.empty()) {
     run();
@@ -132,16 +204,29 @@ void run_vg(const VgArguments& a) {
   table.eyes = &eyes;
   table.result = &result;
   for (const vg::ConditionInfo& c : conditions) table.labels.push_back(c.label);
-  const std::string color_by =
-      !a.color_by.empty() ? a.color_by : result.degree_exact ? "avg:" + table.labels[0] : "sum:" + table.labels[0];
-  if (!a.ply.empty() || !a.heatmap.empty()) vg::score_values(table, color_by);  // check the name before writing
+  // The sum score by default: the average is highest in closed courtyards
+  // and lowest in open streets, the opposite of a visibility map's reading.
+  const std::vector<std::string> panels =
+      a.color_by.empty() ? vg::default_heatmap_columns(table) : std::vector<std::string>{a.color_by};
+  if (!a.ply.empty() || !a.heatmap.empty()) vg::score_values(table, panels.front());  // check the name before writing
   vg::write_csv(a.out, table);
-  if (!a.ply.empty()) vg::write_ply(a.ply, table, color_by);
-  if (!a.heatmap.empty()) vg::write_heatmap(a.heatmap, a.out, color_by, a.scene + ": " + color_by);
+  if (!a.geojson.empty()) vg::write_geojson(a.geojson, table, input.mesh.crs);
+  if (!a.ply.empty()) vg::write_ply(a.ply, table, panels.front());
+  if (!a.heatmap.empty()) {
+    vg::HeatmapOptions heatmap;
+    heatmap.columns = panels;
+    heatmap.title = std::filesystem::path(a.scene).filename().string();
+    if (grid) heatmap.covered_cells = grid->covered_cells;
+    heatmap.crs = vg::short_crs_name(input.mesh.crs);
+    vg::write_heatmap(a.heatmap, a.out, heatmap);
+  }
   if (!a.summary.empty()) {
     vg::RunInfo info;
     info.scene = a.scene;
-    info.scene_report = vg::describe(scene);
+    info.scene_report = vg::describe(*scene);
+    info.scene_format = input.format;
+    info.crs = input.mesh.crs;
+    info.warnings = input.warnings;
     info.mode = targets.empty() ? "all-to-all" : "to-targets";
     info.targets = targets.size();
     info.grid = grid.get();
@@ -163,14 +248,25 @@ void run_vg(const VgArguments& a) {
 void register_visgraph(CLI::App& app) {
   auto args = std::make_shared<VgArguments>();
   CLI::App* vgc = app.add_subcommand("vg", "Visibility graph weighted by contrast ratio C = exp(-sigma d)");
-  vgc->add_option("scene", args->scene, "OBJ file, or layout:0..4, city, city:SEED")->required();
+  vgc->add_option("scene", args->scene,
+                  "scene file (CityJSON .json/.city.json/.jsonl, glTF .gltf/.glb, OBJ; recognised by content), "
+                  "or layout:0..4, city, city:SEED")
+      ->required();
+  vgc->add_option("--up-axis", args->up_axis, "up axis of an OBJ file: z or y")->capture_default_str();
+  vgc->add_option("--lod", args->lod, "CityJSON level of detail to read, e.g. 2.2 (default: each object's highest)");
+  vgc->add_option("--ground-plane", args->ground_plane,
+                  "auto | yes | no: a horizontal plane at the scene's lowest z to stand on (auto: when the grid "
+                  "finds no ground)")
+      ->capture_default_str();
   vgc->add_option("--spacing", args->spacing, "node grid spacing (m)")->capture_default_str();
   vgc->add_option("--eye-height", args->eye_height, "eye height above the walkable surface (m)")->capture_default_str();
   vgc->add_option("--walkable", args->walkable,
-                  "walkable OBJ groups, comma-separated (default: all; floor for layouts; sidewalk,crosswalk for city)");
+                  "walkable groups or classes (CityJSON semantics/types), comma-separated; * = every surface "
+                  "(default: the data decide, never roofs; floor for layouts; sidewalk,crosswalk for city)");
   vgc->add_option("--max-slope", args->max_slope, "steepest walkable surface (degrees)")->capture_default_str();
-  vgc->add_option("--nodes", args->nodes_file, "CSV x,y,z of eye positions instead of the grid");
-  vgc->add_option("--targets", args->targets_file, "CSV x,y,z of targets: nodes -> targets instead of all pairs");
+  vgc->add_option("--nodes", args->nodes_file, "eye positions instead of the grid: CSV x,y,z or GeoJSON points");
+  vgc->add_option("--targets", args->targets_file,
+                  "targets (CSV x,y,z or GeoJSON points): nodes -> targets instead of all pairs");
   vgc->add_option("--target-point", args->target_point, "one target x,y,z");
   vgc->add_option("--conditions", args->conditions,
                   "comma-separated conditions, e.g. clear,rain:8,fog:advection,snow:dry:4,sigma:0.01")
@@ -188,8 +284,10 @@ void register_visgraph(CLI::App& app) {
   vgc->add_flag("--distances", args->distances, "add mean_distance and max_distance columns");
   vgc->add_option("--out", args->out, "CSV of per-node scores")->required();
   vgc->add_option("--ply", args->ply, "PLY point cloud coloured by --color-by");
-  vgc->add_option("--heatmap", args->heatmap, "PNG top-view heatmap of --color-by");
-  vgc->add_option("--color-by", args->color_by, "score column for --ply/--heatmap (default avg:FIRST)");
+  vgc->add_option("--geojson", args->geojson, "GeoJSON point layer of the nodes, every score a property, in the scene's CRS");
+  vgc->add_option("--heatmap", args->heatmap,
+                  "PNG top-view heatmap (default: sum score, one panel per condition on one scale)");
+  vgc->add_option("--color-by", args->color_by, "one score column for --ply/--heatmap (default sum:FIRST)");
   vgc->add_option("--summary", args->summary, "JSON summary");
   vgc->add_option("--edges", args->edges, "CSV edge list i,j,distance (O(edges) output)");
   vgc->add_flag("--quiet", args->quiet, "no report or progress on stderr");
