@@ -191,7 +191,7 @@ int run(const Args& a) {
   // 3. Memory first, while the process is small (the peak is reset anyway).
   {
     const vg::Scene scene(vg::classic_layout(2));
-    const auto eyes = grid_nodes(scene, 0.5, {"floor"});
+    const auto eyes = grid_nodes(scene, 0.5, vg::classic_layout_walkable_groups());
     val::AllocationCounter counter;
     counter.live_bytes = [] { return g_live.load(); };
     counter.reset_peak = [] { g_peak.store(g_live.load()); };
@@ -214,7 +214,7 @@ int run(const Args& a) {
   for (int k = 0; k < vg::kClassicLayoutCount; ++k) {
     const vg::Scene scene(vg::classic_layout(k));
     for (double h : spacings) {
-      const auto eyes = grid_nodes(scene, h, {"floor"});
+      const auto eyes = grid_nodes(scene, h, vg::classic_layout_walkable_groups());
       for (int th : a.threads) {
         val::ThroughputOptions o;
         o.threads = th;
@@ -235,7 +235,7 @@ int run(const Args& a) {
   vg::CityOptions copt;
   copt.rings = a.city_rings;
   const vg::Scene city(vg::synthetic_city(copt));
-  const auto eyes = grid_nodes(city, 1.0, {"sidewalk", "crosswalk"});
+  const auto eyes = grid_nodes(city, 1.0, vg::city_walkable_groups());
   std::printf("\ncity: make_city seed %llu, %d rings, %zu triangles, %zu nodes at 1 m on sidewalk+crosswalk\n",
               static_cast<unsigned long long>(copt.seed), copt.rings, city.triangle_count(), eyes.size());
   const int th_max = *std::max_element(a.threads.begin(), a.threads.end());
