@@ -12,6 +12,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -21,6 +22,7 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include "section_scenes.hpp"
 #include "sections.hpp"
 
 namespace fs = std::filesystem;
@@ -129,6 +131,27 @@ void draw_figures(const Report& report, const std::string& dir, detail::Progress
   fs::remove_all(fs::path(dir) / ".mpl");
 }
 
+// The terms every section uses, for a reader who has only the seed paper.
+std::vector<Paragraph> reading_guide() {
+  return {
+      {"text",
+       "The seed paper is Schwartz, Vinnikov & Federici, 'Adding Visibility to Visibility Graphs: Weighting Visibility Analysis with Attenuation Coefficients' (SimAUD 2021). It weights "
+       "each line of sight of a visibility graph by its contrast ratio C = exp(-sigma d), d the distance in metres "
+       "and sigma the extinction coefficient of the weather in 1/m. Per node: the degree is the number of nodes it "
+       "sees; S_S is the sum of C over them (equal to the degree when sigma = 0); S_A is S_S divided by a node "
+       "count (the seed's equation divides by the degree; the city section shows which divisor its numbers use). "
+       "A single-point map shows C from every node to one chosen node, 0 where that node is not in sight."},
+      {"text",
+       "Two readings of the units. ITU-R P.1817-1 gives rain and snow attenuation as power "
+       "laws in dB/km; read that way, they give the 'itu' convention. The seed reads the same numbers as 1/km "
+       "('seed' convention), which makes every rain and snow sigma 10 / ln 10 = 4.34 times larger; its printed "
+       "sigma values (0.0045 1/m for rain of 8 mm/h, 0.0374 1/m for dry snow of 4 mm/h, Sec. Results) follow that "
+       "reading. Where the two differ, the "
+       "visibility sections are computed with both. Fog sigma comes from Mie theory and clear weather is a fixed "
+       "value, so the conventions do not touch them."},
+  };
+}
+
 std::string machine_line(int threads) {
   std::string cpu = "unknown CPU";
   std::ifstream f("/proc/cpuinfo");
@@ -185,25 +208,37 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
 
   detail::SeedConditions seed;
   detail::CityPerformance city_perf;
+  // Sections run in the order their inputs need (the sigma values first: the
+  // visibility sections use them) and are shown in the seed paper's order:
+  // its scenes, the five layouts, the city, then the sigma values behind
+  // them, then what the seed does not have (Mie validation, performance).
   struct Step {
     const char* id;
     const char* title;
+    int shown_at;
     std::function<void(Section&)> run;
   };
   const std::vector<Step> steps = {
-      {"mie", "1. Mie validation", [&](Section& s) { detail::section_mie(ctx, s); }},
-      {"weather", "2. Size distributions and weather", [&](Section& s) { detail::section_weather(ctx, s, seed); }},
-      {"layouts", "3. Visibility graphs: the seed's five layouts",
+      {"weather", "Extinction coefficients: the seed's sigma values and the models behind them", 3,
+       [&](Section& s) { detail::section_weather(ctx, s, seed); }},
+      {"scenes", "The scenes: five classic layouts and a city", 0, [&](Section& s) { detail::section_scenes(ctx, s); }},
+      {"layouts", "The five layouts: degree, S_S in clear weather and in weather, single-point maps", 1,
        [&](Section& s) { detail::section_layouts(ctx, s, seed); }},
-      {"city", "4. The city", [&](Section& s) { detail::section_city(ctx, s, seed, city_perf); }},
-      {"performance", "5. Visibility-graph performance", [&](Section& s) { detail::section_performance(ctx, s, city_perf); }},
+      {"city", "The city: S_S, P1, P2, P3 and the seed's conclusion", 2,
+       [&](Section& s) { detail::section_city(ctx, s, seed, city_perf); }},
+      {"mie", "Mie validation: published tables and a 50-digit reference", 4,
+       [&](Section& s) { detail::section_mie(ctx, s); }},
+      {"performance", "Visibility-graph performance", 5,
+       [&](Section& s) { detail::section_performance(ctx, s, city_perf); }},
   };
+  std::vector<std::pair<int, Section>> computed;
   for (const auto& step : steps) {
     Section s;
     s.id = step.id;
-    s.title = step.title;
+    s.title = std::to_string(step.shown_at + 1) + ". " + step.title;
     ctx.step(step.id, "starting");
     const auto ts = std::chrono::steady_clock::now();
+    const std::size_t verdicts_before = report.closing.size();
     try {
       step.run(s);
     } catch (const std::exception& e) {
@@ -212,11 +247,22 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
     }
     s.seconds = detail::seconds_since(ts);
     report.key["time." + std::string(step.id) + "_s"] = s.seconds;
-    report.sections.push_back(std::move(s));
+    // Each verdict links to the section that made it.
+    for (std::size_t i = verdicts_before; i < report.closing.size(); ++i) report.closing[i].section = s.id;
+    computed.emplace_back(step.shown_at, std::move(s));
   }
+  std::stable_sort(computed.begin(), computed.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  // The verdicts in the page's order too.
+  std::map<std::string, int> shown_at;
+  for (const auto& step : steps) shown_at[step.id] = step.shown_at;
+  std::stable_sort(report.closing.begin(), report.closing.end(), [&](const Paragraph& a, const Paragraph& b) {
+    return shown_at[a.section] < shown_at[b.section];
+  });
+  for (auto& [at, s] : computed) report.sections.push_back(std::move(s));
 
-  // The closing note opens with the count of what reproduces and what does
-  // not; the lines themselves (with the reasons) come from the sections.
+  // The verdicts open the page: first their count, then one row each (the
+  // lines themselves, with the reasons, come from the sections).
   {
     std::size_t agree = 0, disagree = 0, missing = 0;
     for (const auto& p : report.closing) {
@@ -225,14 +271,18 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
       else if (p.kind == "missing") ++missing;
     }
     report.closing.insert(report.closing.begin(),
-                          Paragraph{"text", "Of the " + std::to_string(agree + disagree + missing) +
-                                                " checks below, " + std::to_string(agree) + " agree, " +
-                                                std::to_string(disagree) + " differ (each with its reason) and " +
-                                                std::to_string(missing) + " could not be made in this build."});
+                          Paragraph{"text", "Of the " + std::to_string(agree + disagree + missing) + " checks, " +
+                                                std::to_string(agree) + " agree and " + std::to_string(disagree) +
+                                                " differ, each with its reason" +
+                                                (missing ? "; " + std::to_string(missing) +
+                                                               " could not be made in this build"
+                                                         : std::string()) +
+                                                "."});
     report.key["closing.agree"] = static_cast<double>(agree);
     report.key["closing.differ"] = static_cast<double>(disagree);
     report.key["closing.missing"] = static_cast<double>(missing);
   }
+  report.guide = reading_guide();
 
   if (options.figures) draw_figures(report, staging.string(), &progress);
 
@@ -258,7 +308,7 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
                              format_number(s.seconds, 3) + " s)");
     for (const auto& line : s.summary) result.summary.push_back("  " + line);
   }
-  result.summary.push_back("closing note: " + report.closing.front().text);
+  result.summary.push_back("verdict: " + report.closing.front().text);
 
   write_key_json(report, (staging / "key.json").string());
   if (options.figures) write_report_html(report, (staging / "report.html").string());
