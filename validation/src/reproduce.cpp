@@ -16,12 +16,15 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+#include <condition_variable>
+#include <mutex>
 
 #include <unistd.h>
 
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include "heartbeat.hpp"
 #include "section_scenes.hpp"
 #include "sections.hpp"
 
@@ -30,24 +33,93 @@ namespace fs = std::filesystem;
 namespace attenuvis::validation {
 namespace detail {
 
+namespace {
+
+// What the progress line last said and when, shared by the steps and the
+// ticker that repeats it while a step runs long (Progress's own members are
+// per object; there is one job and one line).
+struct LineState {
+  std::mutex mutex;
+  std::string section, what;
+  std::string repeat;  // the ticker's repetition of `what`, not a new step
+  std::chrono::steady_clock::time_point since, last_print;
+};
+LineState& line_state() {
+  static LineState state;
+  return state;
+}
+
+}  // namespace
+
 Progress::Progress(std::ostream* os, bool tty) : os_(os), tty_(tty), start_(std::chrono::steady_clock::now()) {}
 
 double Progress::elapsed() const { return seconds_since(start_); }
 
 void Progress::step(const std::string& section, const std::string& what) {
   if (!os_) return;
+  LineState& line = line_state();
+  std::lock_guard<std::mutex> lock(line.mutex);
   char t[32];
   std::snprintf(t, sizeof t, "%6.1f s", elapsed());
   if (tty_) *os_ << "\r\033[K";
   *os_ << "reproduce [" << t << "] " << section << ": " << what;
   if (!tty_) *os_ << "\n";
   os_->flush();
+  line.last_print = std::chrono::steady_clock::now();
+  if (what == line.repeat) return;
+  if (section != line.section || what != line.what) line.since = line.last_print;
+  line.section = section;
+  line.what = what;
 }
 
 void Progress::done() {
   if (os_ && tty_) *os_ << "\r\033[K";
   if (os_) os_->flush();
 }
+
+// While a step runs longer than a few seconds without saying anything (a
+// sigma integral, a quadrature study), repeats its line with the time spent
+// in it, so the user always sees what the job is doing.  Quiet while a
+// library prints its own progress line (ExternalProgress).
+class StallTicker {
+ public:
+  StallTicker(Progress& progress, bool enabled) : progress_(progress) {
+    if (enabled) thread_ = std::thread([this] { run(); });
+  }
+  ~StallTicker() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+
+ private:
+  void run() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!wake_.wait_for(lock, std::chrono::seconds(1), [this] { return stop_; })) {
+      std::string section, what;
+      double in_step = 0;
+      {
+        LineState& line = line_state();
+        std::lock_guard<std::mutex> l(line.mutex);
+        if (line.section.empty() || seconds_since(line.last_print) < 3.0 || external_progress_active()) continue;
+        section = line.section, what = line.what, in_step = seconds_since(line.since);
+        char t[48];
+        std::snprintf(t, sizeof t, " (working, %.0f s in this step)", in_step);
+        line.repeat = what + t;
+        what = line.repeat;
+      }
+      progress_.step(section, what);
+    }
+  }
+  Progress& progress_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::thread thread_;
+};
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -196,6 +268,7 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
 
   detail::Progress progress(options.progress, options.progress == &std::cerr && ::isatty(2));
+  detail::StallTicker ticker(progress, options.progress != nullptr);
   Report report;
   report.title = "attenuvis: reproduction of Schwartz, Vinnikov & Federici (SimAUD 2021) and Mie validation";
   Context ctx;

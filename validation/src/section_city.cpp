@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "heartbeat.hpp"
 #include "section_scenes.hpp"
 #include "sections.hpp"
 
@@ -89,7 +90,10 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
   vopt.sigmas = sigmas;
   vopt.threads = ctx.threads;
   vopt.progress = ctx.options.progress != nullptr;  // pairs done, rate and time left, once a second
-  const vg::VisibilityResult all = vg::all_to_all(scene, eyes, vopt);
+  const vg::VisibilityResult all = [&] {
+    const ExternalProgress pairs_line;  // visgraph reports pairs done, rate and time left
+    return vg::all_to_all(scene, eyes, vopt);
+  }();
   perf.city_nodes = n;
   perf.city_pairs = all.pairs_total;
   perf.city_exact_seconds = all.seconds;
@@ -333,7 +337,10 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
     popt.progress = ctx.options.progress != nullptr;
     const double radius = std::log(1 / eps) / sigmas[snow_k];
     ctx.step("city", "pruning study, eps = " + format_number(eps, 2) + " (radius " + format_number(radius, 4) + " m)");
-    const vg::VisibilityResult pr = vg::all_to_all(scene, eyes, popt);
+    const vg::VisibilityResult pr = [&] {
+      const ExternalProgress pairs_line;
+      return vg::all_to_all(scene, eyes, popt);
+    }();
     CityPerformance::PruneRow row;
     row.tolerance = eps;
     row.radius_m = pr.pruning_radius;
