@@ -13,7 +13,8 @@ kinds
   node_maps  panels=[{title, csv, value, markers=[{x, y, label?, marker?}]?, boxes=[{x:[x0,x1], y:[y0,y1], label?}]?,
              xlim?, ylim?}], ncols?, common_scale?, vmin?, vmax?, cmap?, colorbar?, log?, zero?
              -- top-view heatmaps of node scores
-  matrix     x[], ylabels[], z[[...]] (null = not computed), xlabel, ylabel, colorbar, zlog?, xlog?
+  matrix     x[], ylabels[], z[[...]] (null = not computed), xlabel, ylabel, colorbar, zlog?, xlog?,
+             threshold?, threshold_label? (a requirement, marked on the colour bar)
   scene3d    panels=[{obj, title}], ncols?, panel_size?, legend?, elev?, azim?
              -- triangle meshes (OBJ files beside the report) in an oblique 3D view
 
@@ -253,6 +254,18 @@ def annotate_markers(ax, markers):
                     arrowprops=dict(arrowstyle="-", color="black", lw=1.0))
 
 
+def pool_max(img, k):
+    """k x k blocks of a node image reduced to their largest value, so that thin rows of nodes
+    (a sidewalk in a whole-city view) stay visible when the panel has fewer pixels than nodes."""
+    ny, nx = img.shape
+    pad = np.full((math.ceil(ny / k) * k, math.ceil(nx / k) * k), np.nan)
+    pad[:ny, :nx] = img
+    blocks = pad.reshape(pad.shape[0] // k, k, pad.shape[1] // k, k)
+    with np.errstate(all="ignore"), np.testing.suppress_warnings() as sup:
+        sup.filter(RuntimeWarning)
+        return np.nanmax(np.nanmax(blocks, axis=3), axis=1)
+
+
 def draw_node_maps(fig_spec, base, path):
     panels = fig_spec["panels"]
     ncols = min(fig_spec.get("ncols", len(panels)), len(panels))
@@ -284,11 +297,22 @@ def draw_node_maps(fig_spec, base, path):
             hi = lo + (abs(lo) if lo else 1.0) * 1e-9 + 1e-300
         norm = LogNorm(vmin=max(lo, 1e-300), vmax=hi) if log else Normalize(vmin=lo, vmax=hi)
         g = grid_image(x, y, shown)
+        title = p.get("title", "")
         if g is not None:
             img, extent = g
-            if hidden.any():
-                gh = grid_image(x, y, np.where(hidden, 1.0, np.nan))
-                ax.imshow(gh[0], origin="lower", extent=gh[1], cmap=ListedColormap([NOT_VISIBLE]),
+            # Panel about 400 px wide: a window of many more nodes is max-pooled (and says so).
+            cell = (extent[1] - extent[0]) / img.shape[1]
+            window = max(np.ptp(p.get("xlim", extent[:2])), np.ptp(p.get("ylim", extent[2:]))) / cell
+            pool = int(window // 450)
+            hidden_img = grid_image(x, y, np.where(hidden, 1.0, np.nan))[0] if hidden.any() else None
+            if pool >= 2:
+                img = pool_max(img, pool)
+                hidden_img = pool_max(hidden_img, pool) if hidden_img is not None else None
+                size_m = pool * cell
+                extent = (extent[0], extent[0] + img.shape[1] * size_m, extent[2], extent[2] + img.shape[0] * size_m)
+                title += f"\n(each pixel: highest of {size_m:g} x {size_m:g} m)"
+            if hidden_img is not None:
+                ax.imshow(hidden_img, origin="lower", extent=extent, cmap=ListedColormap([NOT_VISIBLE]),
                           interpolation="nearest")
             last = ax.imshow(img, origin="lower", extent=extent, cmap=cmap, norm=norm, interpolation="nearest")
         else:
@@ -308,7 +332,7 @@ def draw_node_maps(fig_spec, base, path):
         if "ylim" in p:
             ax.set_ylim(*p["ylim"])
         ax.set_aspect("equal")
-        ax.set_title(p.get("title", ""))
+        ax.set_title(title)
         ax.tick_params(labelsize=7)
         ax.locator_params(nbins=4)
         if k // ncols == nrows - 1 or k + ncols >= len(panels):
@@ -373,7 +397,11 @@ def draw_matrix(fig_spec, path):
     ax.set_xlabel(fig_spec.get("xlabel", ""))
     ax.set_ylabel(fig_spec.get("ylabel", ""))
     cb = fig.colorbar(im, ax=ax)
-    cb.set_label(fig_spec.get("colorbar", ""))
+    label = fig_spec.get("colorbar", "")
+    if "threshold" in fig_spec:   # the requirement, marked on the colour scale
+        cb.ax.axhline(fig_spec["threshold"], color="cyan", linewidth=2.5)
+        label += f"\ncyan line: {fig_spec.get('threshold_label', 'threshold')} {fig_spec['threshold']:g}"
+    cb.set_label(label)
     if len(missing):
         ax.legend(handles=[Patch(facecolor="#e4e4e4", edgecolor="#888888", hatch="////", label="not computed")],
                   loc="upper left", bbox_to_anchor=(0.0, -0.16), frameon=False)
@@ -444,8 +472,12 @@ def draw_scene(ax, path, elev, azim):
     colours = np.clip(base * shade[:, None], 0, 1)
     xy = np.stack([p @ right, p @ up], axis=-1)    # (n, 3, 2)
     ax.add_collection(PolyCollection(xy[order], facecolors=colours[order], edgecolors=colours[order], linewidths=0.15))
-    ax.set_xlim(xy[..., 0].min(), xy[..., 0].max())
-    ax.set_ylim(xy[..., 1].min(), xy[..., 1].max())
+    # Frame the built area: the natural terrain around it only fills the corners.
+    built = np.array([g != "terrain" for g in groups])
+    fx, fy = xy[built][..., 0], xy[built][..., 1]
+    pad = 0.03 * max(fx.max() - fx.min(), fy.max() - fy.min())
+    ax.set_xlim(fx.min() - pad, fx.max() + pad)
+    ax.set_ylim(fy.min() - pad, fy.max() + pad)
     ax.set_aspect("equal")
     ax.axis("off")
     return sorted(set(groups))

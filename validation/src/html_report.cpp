@@ -60,11 +60,13 @@ struct Counters {
 
 void write_paragraph(std::ostringstream& os, const Paragraph& p) {
   if (p.kind == "data") {
+    // "FILE|description", or "FILE FILE ...|description" for a set of files.
     const auto bar = p.text.find('|');
-    const std::string file = p.text.substr(0, bar);
+    std::istringstream files(p.text.substr(0, bar));
     const std::string what = bar == std::string::npos ? "" : p.text.substr(bar + 1);
-    os << "<p class=\"source\"><b>Data:</b> <a href=\"" << escape(file) << "\">" << escape(file) << "</a> "
-       << escape(what) << "</p>\n";
+    os << "<p class=\"source\"><b>Data:</b>";
+    for (std::string file; files >> file;) os << " <a href=\"" << escape(file) << "\">" << escape(file) << "</a>";
+    os << " " << escape(what) << "</p>\n";
     return;
   }
   os << "<p class=\"" << escape(p.kind) << "\">";
@@ -110,9 +112,10 @@ void write_table(std::ostringstream& os, const Table& t, Counters& n) {
 
 void write_figure(std::ostringstream& os, const Figure& f, Counters& n) {
   const std::string label = "Figure " + std::to_string(++n.figure) + ". ";
-  os << "<figure id=\"fig-" << escape(f.id) << "\"><img src=\"" << escape(f.id) << ".png\" alt=\""
-     << escape(f.caption) << "\" loading=\"lazy\"><figcaption><b>" << escape(label) << "</b>" << escape(f.caption)
-     << "</figcaption></figure>\n";
+  // The image links to itself: on a narrow screen a reader opens it at full size.
+  os << "<figure id=\"fig-" << escape(f.id) << "\"><a href=\"" << escape(f.id) << ".png\"><img src=\"" << escape(f.id)
+     << ".png\" alt=\"" << escape(f.caption) << "\" loading=\"lazy\"></a><figcaption><b>" << escape(label) << "</b>"
+     << escape(f.caption) << "</figcaption></figure>\n";
 }
 
 const Section* find_section(const Report& report, const std::string& id) {

@@ -49,11 +49,11 @@ void section_scenes(Context& ctx, Section& s) {
             {{"kind", "scene3d"},
              {"panels", {{{"obj", "city.obj"}, {"title", ""}}}},
              {"ncols", 1},
-             {"panel_size", 8.0},
+             {"panel_size", 6.5},
              {"legend", true}}});
-  for (int k = 0; k < vg::kClassicLayoutCount; ++k)
-    s.data("layout" + std::to_string(k) + ".obj", "layout " + std::to_string(k) + " (" +
-                                                       vg::classic_layout_name(k) + "), triangles in metres");
+  std::string layout_files;
+  for (int k = 0; k < vg::kClassicLayoutCount; ++k) layout_files += "layout" + std::to_string(k) + ".obj ";
+  s.data(layout_files, "the five layouts (0-4), triangles in metres");
   s.data("city.obj", "the city, triangles in metres, one group per surface kind (building, road, sidewalk, "
                      "crosswalk, ground, terrain)");
   s.summary.push_back("5 layouts and a city of " + std::to_string(city.blocks.size()) + " blocks (" +

@@ -55,7 +55,8 @@ struct Figure {
 // A paragraph of plain text (HTML-escaped when written).  `kind` styles it:
 // "text", "source" (where a published value comes from), "agree",
 // "disagree" (with the reason), "missing" (not available in this build),
-// "data" (a data file beside the report: `text` is "FILE|description").
+// "data" (data files beside the report: `text` is "FILE|description" or
+// "FILE FILE ...|description").
 //
 // The report's verdicts (Report::closing) are paragraphs of kind "agree",
 // "disagree" or "missing" and open the page as a table, one row each.  A
