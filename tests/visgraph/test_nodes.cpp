@@ -42,7 +42,7 @@ TEST_CASE("obstacle tops are covered cells unless they are walkable", "[visgraph
   const vg::NodeSet n = vg::generate_nodes(scene, o);
   CHECK(n.eyes.size() == 94);
   CHECK(n.covered == 6);
-  o.walkable.clear();  // every surface walkable: roof nodes at 3 + 1.7 m
+  o.walkable = {"*"};  // every surface walkable: roof nodes at 3 + 1.7 m
   const vg::NodeSet all = vg::generate_nodes(scene, o);
   CHECK(all.eyes.size() == 100);
   std::size_t on_roof = 0;

@@ -1,14 +1,22 @@
 #!/usr/bin/python3
-"""Top-view heatmap of one score column of an `attenuvis vg` CSV.
+"""Top-view heatmap of score columns of an `attenuvis vg` CSV.
 
-usage: vg_heatmap.py NODES.csv COLUMN OUT.png [--title TEXT]
+usage: vg_heatmap.py NODES.csv OUT.png COLUMN [COLUMN ...] [--title TEXT]
+                     [--footprints CELLS.csv] [--crs NAME]
 
-Each node is drawn as a square of the grid pitch (estimated from the nodes'
-x spacing) at its (x, y), coloured by COLUMN (viridis); nodes whose value is
-nan are grey.  Needs Debian's /usr/bin/python3 with python3-matplotlib.
+One panel per COLUMN (e.g. sum:clear, sum:fog:advection), all on one colour
+scale (viridis, one labelled colour bar), so that panels compare directly.
+Each node is a square of the grid pitch (estimated from the nodes' x
+spacing) at its (x, y).  Nodes that see no other node (degree 0, or a sum of
+exactly 0 when the degree is not in the file) are drawn as red crosses, so
+they are not mistaken for nodes whose lines of sight are all long (C near 0).
+Nodes whose value is nan are light grey.  --footprints draws the grid cells
+covered by buildings (x,y of their centres) in dark grey.  Needs Debian's
+/usr/bin/python3 with python3-matplotlib.
 """
 import argparse
 import csv
+import math
 import sys
 
 import matplotlib
@@ -18,46 +26,103 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 
+def read_csv(path):
+    with open(path, newline="") as f:
+        reader = csv.reader(f)
+        header = next(reader)
+        rows = [r for r in reader if r]
+    return header, rows
+
+
+def column(header, rows, name):
+    i = header.index(name)
+    return np.array([float(r[i]) for r in rows])
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("csv")
-    parser.add_argument("column")
     parser.add_argument("out")
+    parser.add_argument("columns", nargs="+")
     parser.add_argument("--title", default="")
+    parser.add_argument("--footprints", default="")
+    parser.add_argument("--crs", default="")
     args = parser.parse_args()
-    with open(args.csv, newline="") as f:
-        reader = csv.reader(f)
-        header = next(reader)
-        if args.column not in header:
-            sys.stderr.write(f"vg_heatmap: no column '{args.column}' in {args.csv} (have {', '.join(header)})\n")
+    header, rows = read_csv(args.csv)
+    for name in args.columns:
+        if name not in header:
+            sys.stderr.write(f"vg_heatmap: no column '{name}' in {args.csv} (have {', '.join(header)})\n")
             return 2
-        ix, iy, ic = header.index("x"), header.index("y"), header.index(args.column)
-        rows = [(float(r[ix]), float(r[iy]), float(r[ic])) for r in reader if r]
     if not rows:
         sys.stderr.write(f"vg_heatmap: {args.csv} has no nodes\n")
         return 2
-    data = np.array(rows)
-    x, y, v = data[:, 0], data[:, 1], data[:, 2]
+    x, y = column(header, rows, "x"), column(header, rows, "y")
+    values = [column(header, rows, name) for name in args.columns]
+    degree = column(header, rows, "degree") if "degree" in header else None
+    covered = np.empty((0, 2))
+    if args.footprints:
+        _, cells = read_csv(args.footprints)
+        if cells:
+            covered = np.array([[float(r[0]), float(r[1])] for r in cells])
+
     xs = np.unique(np.round(x, 6))
     pitch = float(np.min(np.diff(xs))) if len(xs) > 1 else 1.0
-    span = max(float(np.ptp(x)), float(np.ptp(y)), pitch)
-    fig, ax = plt.subplots(figsize=(7, 6), dpi=150)
-    # Marker size in points^2 so that one square covers one grid cell.
-    ax.set_xlim(x.min() - pitch, x.max() + pitch)
-    ax.set_ylim(y.min() - pitch, y.max() + pitch)
-    ax.set_aspect("equal")
-    fig.canvas.draw()
-    bbox = ax.get_window_extent()
-    points_per_metre = bbox.width / fig.dpi * 72 / (span + 2 * pitch)
-    size = (pitch * points_per_metre) ** 2
-    finite = np.isfinite(v)
-    if (~finite).any():
-        ax.scatter(x[~finite], y[~finite], s=size, marker="s", c="0.7", linewidths=0)
-    sc = ax.scatter(x[finite], y[finite], s=size, marker="s", c=v[finite], cmap="viridis", linewidths=0)
-    fig.colorbar(sc, ax=ax, label=args.column)
-    ax.set_xlabel("x (m)")
-    ax.set_ylabel("y (m)")
-    ax.set_title(args.title or args.column)
+    all_x = np.concatenate([x, covered[:, 0]]) if len(covered) else x
+    all_y = np.concatenate([y, covered[:, 1]]) if len(covered) else y
+    finite = np.concatenate([v[np.isfinite(v)] for v in values])
+    lo, hi = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 1.0)
+    if hi <= lo:
+        hi = lo + 1.0
+    n = len(values)
+    cols = min(n, 2)
+    panel_rows = math.ceil(n / cols)
+    fig, axes = plt.subplots(panel_rows, cols, figsize=(6.5 * cols, 5.5 * panel_rows), dpi=150, squeeze=False)
+    # Coordinates relative to the lower-left corner keep tick labels short
+    # (UTM-sized numbers otherwise); the offset is in the axis label.
+    x0, y0 = float(np.floor(all_x.min())), float(np.floor(all_y.min()))
+    unit = "m" + (f", {args.crs}" if args.crs else "")
+    mappable = None
+    for k, (name, v) in enumerate(zip(args.columns, values)):
+        ax = axes[k // cols][k % cols]
+        ax.set_xlim(all_x.min() - x0 - pitch, all_x.max() - x0 + pitch)
+        ax.set_ylim(all_y.min() - y0 - pitch, all_y.max() - y0 + pitch)
+        ax.set_aspect("equal")
+        fig.canvas.draw()
+        bbox = ax.get_window_extent()
+        span = max(float(np.ptp(all_x)), float(np.ptp(all_y)), pitch) + 2 * pitch
+        size = (pitch * min(bbox.width, bbox.height) / fig.dpi * 72 / span) ** 2  # points^2 per cell
+        if len(covered):
+            ax.scatter(covered[:, 0] - x0, covered[:, 1] - y0, s=size, marker="s", c="0.25", linewidths=0,
+                       label="covered (buildings)")
+        blind = (degree == 0) if degree is not None else (v == 0)
+        nan = ~np.isfinite(v) & ~blind
+        shown = np.isfinite(v) & ~blind
+        if nan.any():
+            ax.scatter(x[nan] - x0, y[nan] - y0, s=size, marker="s", c="0.85", linewidths=0, label="no value")
+        mappable = ax.scatter(x[shown] - x0, y[shown] - y0, s=size, marker="s", c=v[shown], cmap="viridis",
+                              vmin=lo, vmax=hi, linewidths=0)
+        if blind.any():
+            ax.scatter(x[blind] - x0, y[blind] - y0, s=max(size, 4), marker="x", c="red", linewidths=0.6,
+                       label=f"sees no node ({int(blind.sum())})")
+        ax.set_xlabel(f"x - {x0:.0f} ({unit})")
+        ax.set_ylabel(f"y - {y0:.0f} ({unit})")
+        ax.set_title(name)
+        if len(covered) or blind.any() or nan.any():
+            ax.legend(loc="upper right", fontsize=7, markerscale=1.0, framealpha=0.8)
+    for k in range(n, panel_rows * cols):
+        axes[k // cols][k % cols].axis("off")
+    first = args.columns[0]
+    if all(c.startswith("sum:") for c in args.columns):
+        label = "sum score S_S = sum of exp(-sigma d) over the nodes seen"
+    elif all(c.startswith("avg:") for c in args.columns):
+        label = "average score S_A = S_S / degree"
+    elif first == "degree":
+        label = "degree (nodes seen)"
+    else:
+        label = first
+    fig.colorbar(mappable, ax=axes.ravel().tolist(), label=label, shrink=0.9)
+    if args.title:
+        fig.suptitle(args.title)
     fig.savefig(args.out, format="png", bbox_inches="tight")
     return 0
 

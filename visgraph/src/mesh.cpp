@@ -28,6 +28,40 @@ std::size_t Mesh::add_group(const std::string& name) {
   return groups.size() - 1;
 }
 
+std::size_t Mesh::add_class(const std::string& name) {
+  for (std::size_t i = 0; i < classes.size(); ++i)
+    if (classes[i] == name) return i;
+  classes.push_back(name);
+  return classes.size() - 1;
+}
+
+void add_ground_plane(Mesh& mesh, double margin) {
+  if (mesh.triangles.empty()) return;
+  const MeshStats stats = mesh_stats(mesh);
+  const double x0 = stats.lower.x() - margin, x1 = stats.upper.x() + margin;
+  const double y0 = stats.lower.y() - margin, y1 = stats.upper.y() + margin, z = stats.lower.z();
+  const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+  mesh.vertices.insert(mesh.vertices.end(), {{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}});
+  mesh.triangles.push_back({base, base + 1, base + 2});  // counter-clockwise from above: normal +z
+  mesh.triangles.push_back({base, base + 2, base + 3});
+  const auto group = static_cast<std::uint32_t>(mesh.add_group(kGroundPlaneGroup));
+  mesh.triangle_group.insert(mesh.triangle_group.end(), 2, group);
+  if (!mesh.classes.empty()) {
+    const auto cls = static_cast<std::uint32_t>(mesh.add_class(kGroundPlaneClass));
+    mesh.triangle_class.insert(mesh.triangle_class.end(), 2, cls);
+  }
+}
+
+std::string preview_names(const std::vector<std::string>& names, std::size_t shown, const std::string& more_hint) {
+  std::string out;
+  for (std::size_t i = 0; i < names.size() && i < shown; ++i) out += (i ? ", " : "") + names[i];
+  if (names.size() > shown) {
+    out += " ... and " + std::to_string(names.size() - shown) + " more";
+    if (!more_hint.empty()) out += " " + more_hint;
+  }
+  return out;
+}
+
 double walkable_area(const Mesh& mesh, const std::vector<std::string>& groups) {
   std::vector<char> wanted(mesh.groups.size(), 0);
   for (std::size_t g = 0; g < mesh.groups.size(); ++g)
@@ -57,6 +91,15 @@ MeshStats mesh_stats(const Mesh& mesh) {
     auto& group = stats.groups[mesh.triangle_group[t]];
     ++group.triangles;
     group.projected_area += projected_area(mesh, t);
+  }
+  if (mesh.triangle_class.size() == mesh.triangles.size()) {
+    stats.classes.resize(mesh.classes.size());
+    for (std::size_t c = 0; c < mesh.classes.size(); ++c) stats.classes[c].name = mesh.classes[c];
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      auto& cls = stats.classes[mesh.triangle_class[t]];
+      ++cls.triangles;
+      cls.projected_area += projected_area(mesh, t);
+    }
   }
   return stats;
 }

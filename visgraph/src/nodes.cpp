@@ -1,5 +1,7 @@
 // Node generation on walkable surfaces and node files.
 #include <attenuvis/visgraph/nodes.hpp>
+#include <attenuvis/visgraph/geojson.hpp>
+#include <attenuvis/visgraph/mesh.hpp>
 
 #include <attenuvis/io/number_text.hpp>
 
@@ -39,25 +41,153 @@ std::vector<std::string> split_commas(const std::string& line) {
 }
 }  // namespace
 
-NodeSet generate_nodes(const Scene& scene, const NodeGridOptions& options) {
+std::vector<std::string> default_walkable_classes() {
+  return {"TINRelief", "Road", "TransportSquare", "Square", "LandUse", "TrafficArea", "AuxiliaryTrafficArea",
+          "GroundSurface", kGroundPlaneClass};
+}
+
+namespace {
+
+// Which surfaces count as walkable, and by which rule (nodes.hpp).
+struct Walkable {
+  bool lowest_surface = false;  // the rule for scenes without classes
+  std::vector<char> group, cls;  // first-surface rule: walkable groups / classes
+  std::string rule;
+};
+
+Walkable resolve_walkable(const Scene& scene, const std::vector<std::string>& names) {
+  const auto& groups = scene.groups();
+  const auto& classes = scene.classes();
+  Walkable w;
+  w.group.assign(groups.size(), 0);
+  w.cls.assign(classes.size(), 0);
+  if (names.empty() && classes.empty()) {
+    w.lowest_surface = true;
+    w.rule = "lowest surface under each cell, outside closed solids (the scene has no surface classes)";
+    return w;
+  }
+  const bool by_default = names.empty();
+  const std::vector<std::string> wanted = by_default ? default_walkable_classes() : names;
+  std::vector<std::string> found;
+  for (const std::string& name : wanted) {
+    bool known = false;
+    if (name == "*") {
+      std::fill(w.group.begin(), w.group.end(), 1);
+      known = true;
+    }
+    for (std::size_t g = 0; g < groups.size(); ++g)
+      if (groups[g].name == name) w.group[g] = 1, known = true;
+    for (std::size_t c = 0; c < classes.size(); ++c)
+      if (classes[c].name == name) w.cls[c] = 1, known = true;
+    if (known) found.push_back(name);
+    if (!known && !by_default) {
+      std::vector<std::string> group_names, class_names;
+      for (const GroupInfo& g : groups) group_names.push_back(g.name);
+      for (const GroupInfo& c : classes) class_names.push_back(c.name);
+      throw std::invalid_argument(
+          "node grid: walkable '" + name + "' is neither a group nor a class of the scene (" +
+          std::to_string(groups.size()) + " groups: " +
+          preview_names(group_names, 5, "(`attenuvis scene info SCENE --groups` lists them)") +
+          (classes.empty() ? std::string() : "; classes: " + preview_names(class_names, 20)) + ")");
+    }
+  }
+  w.rule = std::string(by_default ? "default walkable classes present: " : "walkable: ") + preview_names(found, 12) +
+           "; first surface under each cell";
+  return w;
+}
+
+// Every surface the vertical through a cell centre meets, top down.
+struct Crossing {
+  double z;  // local frame
+  Eigen::Vector3d normal;
+  std::uint32_t triangle;
+};
+
+std::vector<Crossing> crossings(const Scene& scene, const Eigen::Vector3d& start, double depth) {
+  std::vector<Crossing> out;
+  double t = 0.0;
+  // Steps of 1 mm past each hit: coincident surfaces (a building's floor on
+  // the ground) are met once, which is all the parity test needs.
+  for (int k = 0; k < 256; ++k) {
+    const Scene::Hit hit = scene.intersect(start, Eigen::Vector3d(0, 0, -1), t, depth);
+    if (!hit.found) break;
+    out.push_back({start.z() - hit.t, hit.normal, hit.triangle});
+    t = hit.t + 1e-3;
+  }
+  return out;
+}
+
+enum class Outcome { node, no_surface, covered, too_steep, no_headroom };
+
+struct Cell {
+  Outcome outcome = Outcome::no_surface;
+  Eigen::Vector2d cell_xy{0, 0};  // world
+  Eigen::Vector3d eye;
+  std::uint32_t triangle = 0;
+  double elevation = 0;  // standing surface above the lowest surface
+};
+
+// The surface index (into `c`) people stand on, or -1 if the cell is covered.
+std::ptrdiff_t standing_surface(const Walkable& w, const Scene& scene, const std::vector<Crossing>& c,
+                                double eye_height) {
+  if (!w.lowest_surface) {
+    const std::uint32_t t = c.front().triangle;
+    const std::uint32_t cls = scene.triangle_class(t);
+    const bool ok = w.group[scene.triangle_group(t)] || (cls != Scene::kNoClass && w.cls[cls]);
+    return ok ? 0 : -1;
+  }
+  // Lowest surface, then up through surfaces stacked within 0.5 m of it.
+  std::size_t s = c.size() - 1;
+  while (s > 0 && c[s - 1].z - c[s].z <= 0.5) --s;
+  const double eye_z = c[s].z + eye_height;
+  std::size_t above = 0;
+  for (const Crossing& x : c) above += x.z > eye_z;
+  return above % 2 == 0 ? static_cast<std::ptrdiff_t>(s) : -1;
+}
+
+Cell place(const Scene& scene, const Walkable& w, const NodeGridOptions& o, const Eigen::Vector3d& start,
+           double depth, double cos_max_slope) {
+  Cell cell;
+  const std::vector<Crossing> c = crossings(scene, start, depth);
+  if (c.empty()) return cell;
+  const std::ptrdiff_t s = standing_surface(w, scene, c, o.eye_height);
+  if (s < 0) {
+    cell.outcome = Outcome::covered;
+    return cell;
+  }
+  const Crossing& surface = c[static_cast<std::size_t>(s)];
+  if (std::abs(surface.normal.z()) < cos_max_slope - 1e-12) {
+    cell.outcome = Outcome::too_steep;
+    return cell;
+  }
+  const Eigen::Vector3d ground(start.x(), start.y(), surface.z);
+  const Eigen::Vector3d eye = ground + Eigen::Vector3d(0, 0, o.eye_height);
+  // Headroom: nothing between 1 mm above the surface and the eye.
+  if (o.eye_height > 2e-3 && scene.occluded(ground, eye, 1e-3)) {
+    cell.outcome = Outcome::no_headroom;
+    return cell;
+  }
+  cell.outcome = Outcome::node;
+  cell.eye = scene.to_world(eye);
+  cell.triangle = surface.triangle;
+  cell.elevation = surface.z - c.back().z;
+  return cell;
+}
+
+void check_grid_options(const NodeGridOptions& options) {
   if (!(options.spacing > 0) || !std::isfinite(options.spacing))
     throw std::invalid_argument("node grid: spacing must be a positive number of metres");
   if (!(options.eye_height >= 0) || !std::isfinite(options.eye_height))
     throw std::invalid_argument("node grid: eye height must be a non-negative number of metres");
-  const auto& groups = scene.groups();
-  std::vector<char> walkable(groups.size(), options.walkable.empty() ? 1 : 0);
-  for (const std::string& name : options.walkable) {
-    auto it = std::find_if(groups.begin(), groups.end(), [&](const GroupInfo& g) { return g.name == name; });
-    if (it == groups.end()) {
-      std::string known;
-      for (const GroupInfo& g : groups) known += (known.empty() ? "" : ", ") + g.name;
-      throw std::invalid_argument("node grid: walkable group '" + name + "' is not in the scene (groups: " + known +
-                                  ")");
-    }
-    walkable[static_cast<std::size_t>(it - groups.begin())] = 1;
-  }
-  const double cos_max_slope = std::cos(std::min(options.max_slope_deg, 90.0) * boost::math::constants::pi<double>() / 180.0);
+}
 
+}  // namespace
+
+NodeSet generate_nodes(const Scene& scene, const NodeGridOptions& options) {
+  check_grid_options(options);
+  const Walkable walkable = resolve_walkable(scene, options.walkable);
+  const double cos_max_slope =
+      std::cos(std::min(options.max_slope_deg, 90.0) * boost::math::constants::pi<double>() / 180.0);
   const BoundingBox& box = scene.bounds();
   const Eigen::Vector3d extent = box.extent();
   // Cells of pitch `spacing` covering the footprint; the tiny allowance keeps
@@ -68,51 +198,45 @@ NodeSet generate_nodes(const Scene& scene, const NodeGridOptions& options) {
   const long nx = cells_along(extent.x()), ny = cells_along(extent.y());
   const double top = scene.to_local(box.max).z() + 1.0;
   const double depth = extent.z() + 2.0;
-
-  struct Row {
-    std::vector<Eigen::Vector3d> eyes;
-    std::size_t no_surface = 0, covered = 0, too_steep = 0, no_headroom = 0;
-  };
-  std::vector<Row> rows(static_cast<std::size_t>(ny));
+  std::vector<std::vector<Cell>> rows(static_cast<std::size_t>(ny));
   tbb::parallel_for(0L, ny, [&](long iy) {
-    Row& row = rows[static_cast<std::size_t>(iy)];
+    auto& row = rows[static_cast<std::size_t>(iy)];
     for (long ix = 0; ix < nx; ++ix) {
-      const Eigen::Vector3d cell_world(box.min.x() + (ix + 0.5) * options.spacing,
-                                       box.min.y() + (iy + 0.5) * options.spacing, 0.0);
-      Eigen::Vector3d start = scene.to_local(cell_world);
+      Eigen::Vector3d start = scene.to_local(Eigen::Vector3d(box.min.x() + (ix + 0.5) * options.spacing,
+                                                             box.min.y() + (iy + 0.5) * options.spacing, 0.0));
       start.z() = top;
-      const Scene::Hit hit = scene.intersect(start, Eigen::Vector3d(0, 0, -1), 0.0, depth);
-      if (!hit.found) {
-        ++row.no_surface;
-        continue;
-      }
-      if (!walkable[scene.triangle_group(hit.triangle)]) {
-        ++row.covered;
-        continue;
-      }
-      if (std::abs(hit.normal.z()) < cos_max_slope - 1e-12) {
-        ++row.too_steep;
-        continue;
-      }
-      const Eigen::Vector3d surface = start - Eigen::Vector3d(0, 0, hit.t);
-      const Eigen::Vector3d eye = surface + Eigen::Vector3d(0, 0, options.eye_height);
-      // Headroom: nothing between 1 mm above the surface and the eye.
-      if (options.eye_height > 2e-3 && scene.occluded(surface, eye, 1e-3)) {
-        ++row.no_headroom;
-        continue;
-      }
-      row.eyes.push_back(scene.to_world(eye));
+      row.push_back(place(scene, walkable, options, start, depth, cos_max_slope));
+      row.back().cell_xy = scene.to_world(start).head<2>();
     }
   });
   NodeSet set;
   set.cells = static_cast<std::size_t>(nx * ny);
-  for (const Row& row : rows) {
-    set.eyes.insert(set.eyes.end(), row.eyes.begin(), row.eyes.end());
-    set.no_surface += row.no_surface;
-    set.covered += row.covered;
-    set.too_steep += row.too_steep;
-    set.no_headroom += row.no_headroom;
-  }
+  set.rule = walkable.rule;
+  const bool by_class = !scene.classes().empty();
+  std::vector<std::size_t> per(by_class ? scene.classes().size() : scene.groups().size(), 0);
+  for (const auto& row : rows)
+    for (const Cell& c : row) {
+      switch (c.outcome) {
+        case Outcome::no_surface: ++set.no_surface; break;
+        case Outcome::covered:
+          ++set.covered;
+          set.covered_cells.push_back(c.cell_xy);
+          break;
+        case Outcome::too_steep: ++set.too_steep; break;
+        case Outcome::no_headroom: ++set.no_headroom; break;
+        case Outcome::node:
+          set.eyes.push_back(c.eye);
+          ++per[by_class ? scene.triangle_class(c.triangle) : scene.triangle_group(c.triangle)];
+          if (c.elevation > options.elevated_height) ++set.elevated;
+          set.max_elevation = std::max(set.max_elevation, c.elevation);
+          break;
+      }
+    }
+  const auto& names = by_class ? scene.classes() : scene.groups();
+  for (std::size_t k = 0; k < per.size(); ++k)
+    if (per[k]) set.by_surface.push_back({names[k].name, per[k]});
+  std::stable_sort(set.by_surface.begin(), set.by_surface.end(),
+                   [](const SurfaceCount& a, const SurfaceCount& b) { return a.nodes > b.nodes; });
   return set;
 }
 
@@ -140,6 +264,19 @@ std::vector<Eigen::Vector3d> read_nodes_csv(const std::string& path) {
   }
   if (nodes.empty()) throw std::runtime_error("node file '" + path + "' holds no x,y,z rows");
   return nodes;
+}
+
+std::vector<Eigen::Vector3d> read_nodes(const std::string& path, std::string* crs) {
+  if (crs) crs->clear();
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read node file '" + path + "'");
+  char first = ' ';
+  while (in.get(first) && std::isspace(static_cast<unsigned char>(first))) {
+  }
+  if (first != '{') return read_nodes_csv(path);
+  GeoJsonPoints points = read_geojson_points(path);
+  if (crs) *crs = points.crs;
+  return std::move(points.points);
 }
 
 Eigen::Vector3d parse_point(const std::string& text) {

@@ -1,6 +1,7 @@
 // CSV, PLY, heatmap and JSON outputs of a visibility pass.
 #include <attenuvis/visgraph/outputs.hpp>
 
+#include <attenuvis/io/number_text.hpp>
 #include <attenuvis/io/shell.hpp>
 #include <attenuvis/io/staged_file.hpp>
 
@@ -12,6 +13,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -140,18 +142,44 @@ void write_ply(const std::string& path, const ScoreTable& table, const std::stri
   });
 }
 
-void write_heatmap(const std::string& png_path, const std::string& csv_path, const std::string& column,
-                   const std::string& title) {
+void write_heatmap(const std::string& png_path, const std::string& csv_path, const HeatmapOptions& options) {
+  if (options.columns.empty()) throw std::invalid_argument("heatmap: no column to draw");
   // The script writes the staged temporary; commit() renames it into place,
   // and a failure leaves neither a partial PNG nor the temporary behind.
   io::StagedFile png(png_path);
-  const std::string command = io::shell_quote(ATTENUVIS_PYTHON) + " " + io::shell_quote(ATTENUVIS_VG_HEATMAP_SCRIPT) +
-                              " " + io::shell_quote(csv_path) + " " + io::shell_quote(column) + " " +
-                              io::shell_quote(png.temporary_path()) + " --title " + io::shell_quote(title);
+  std::string command = io::shell_quote(ATTENUVIS_PYTHON) + " " + io::shell_quote(ATTENUVIS_VG_HEATMAP_SCRIPT) + " " +
+                        io::shell_quote(csv_path) + " " + io::shell_quote(png.temporary_path());
+  for (const std::string& c : options.columns) command += " " + io::shell_quote(c);
+  if (!options.title.empty()) command += " --title " + io::shell_quote(options.title);
+  if (!options.crs.empty()) command += " --crs " + io::shell_quote(options.crs);
+  std::unique_ptr<io::StagedFile> cells;
+  if (!options.covered_cells.empty()) {
+    // A scratch file beside the PNG, removed with its StagedFile (never committed).
+    cells = std::make_unique<io::StagedFile>(png_path + ".covered.csv");
+    std::string text = "x,y\n";
+    for (const Eigen::Vector2d& c : options.covered_cells) text += io::shortest(c.x()) + "," + io::shortest(c.y()) + "\n";
+    cells->write(text);
+    command += " --footprints " + io::shell_quote(cells->temporary_path());
+  }
   const int status = std::system(command.c_str());
   if (status != 0)
     throw std::runtime_error("heatmap: '" + command + "' failed (status " + std::to_string(status) + ")");
   png.commit();
+}
+
+void write_heatmap(const std::string& png_path, const std::string& csv_path, const std::string& column,
+                   const std::string& title) {
+  HeatmapOptions options;
+  options.columns = {column};
+  options.title = title;
+  write_heatmap(png_path, csv_path, options);
+}
+
+std::vector<std::string> default_heatmap_columns(const ScoreTable& table) {
+  std::vector<std::string> columns;
+  for (const std::string& label : table.labels) columns.push_back("sum:" + label);
+  if (columns.empty()) columns.push_back("degree");
+  return columns;
 }
 
 std::string summary_json(const ScoreTable& table, const RunInfo& info) {
@@ -159,6 +187,9 @@ std::string summary_json(const ScoreTable& table, const RunInfo& info) {
   const VisibilityResult& r = *table.result;
   json j;
   j["scene"] = {{"source", info.scene}, {"report", info.scene_report}};
+  if (!info.scene_format.empty()) j["scene"]["format"] = info.scene_format;
+  if (!info.crs.empty()) j["scene"]["crs"] = info.crs;
+  if (!info.warnings.empty()) j["warnings"] = info.warnings;
   j["mode"] = info.mode;
   if (info.mode == "to-targets") j["targets"] = info.targets;
   j["nodes"] = r.nodes;
@@ -166,6 +197,20 @@ std::string summary_json(const ScoreTable& table, const RunInfo& info) {
     j["node_grid"] = {{"cells", info.grid->cells},           {"nodes", info.grid->eyes.size()},
                       {"dropped_no_surface", info.grid->no_surface}, {"dropped_covered", info.grid->covered},
                       {"dropped_too_steep", info.grid->too_steep},   {"dropped_no_headroom", info.grid->no_headroom}};
+  if (info.grid) {
+    // Nodes per class or group: the 20 largest, the rest summed.
+    json surfaces = json::object();
+    std::size_t other = 0;
+    for (std::size_t k = 0; k < info.grid->by_surface.size(); ++k) {
+      if (k < 20) surfaces[info.grid->by_surface[k].name] = info.grid->by_surface[k].nodes;
+      else other += info.grid->by_surface[k].nodes;
+    }
+    if (other) surfaces["(" + std::to_string(info.grid->by_surface.size() - 20) + " others)"] = other;
+    j["node_grid"]["rule"] = info.grid->rule;
+    j["node_grid"]["nodes_by_surface"] = surfaces;
+    j["node_grid"]["elevated_nodes"] = info.grid->elevated;
+    j["node_grid"]["max_elevation_m"] = info.grid->max_elevation;
+  }
   j["pairs"] = {{"considered", r.pairs_total},
                 {"cast", r.pairs_cast},
                 {"visible", r.pairs_visible},

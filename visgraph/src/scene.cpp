@@ -68,8 +68,8 @@ struct Scene::Impl {
   std::size_t triangles = 0;
   BoundingBox bounds;
   Eigen::Vector3d origin{0, 0, 0};
-  std::vector<GroupInfo> groups;
-  std::vector<std::uint32_t> triangle_group;
+  std::vector<GroupInfo> groups, classes;
+  std::vector<std::uint32_t> triangle_group, triangle_class;
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
   }
@@ -102,9 +102,20 @@ Scene::Scene(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
     if (g >= impl_->groups.size()) g = 0;
     ++impl_->groups[g].triangles;
   }
+  if (mesh.triangle_class.size() == mesh.triangles.size() && !mesh.classes.empty()) {
+    impl_->triangle_class = mesh.triangle_class;
+    impl_->classes.resize(mesh.classes.size());
+    for (std::size_t c = 0; c < mesh.classes.size(); ++c) impl_->classes[c].name = mesh.classes[c];
+    for (std::uint32_t& c : impl_->triangle_class) {
+      if (c >= impl_->classes.size())
+        throw std::invalid_argument("scene: a triangle's class index is out of range");
+      ++impl_->classes[c].triangles;
+    }
+  }
 
   impl_->device = shared_device();
   RTCDevice device = impl_->device.get();
+  rtcGetDeviceError(device);  // clears an error left on this thread by an earlier failure
   impl_->scene = rtcNewScene(device);
   if (!impl_->scene) throw std::runtime_error("scene: Embree could not create a scene: " + last_embree_message());
   // ROBUST: a segment grazing the shared edge of two wall triangles must not
@@ -145,6 +156,10 @@ const BoundingBox& Scene::bounds() const { return impl_->bounds; }
 const Eigen::Vector3d& Scene::origin() const { return impl_->origin; }
 const std::vector<GroupInfo>& Scene::groups() const { return impl_->groups; }
 std::uint32_t Scene::triangle_group(std::size_t triangle) const { return impl_->triangle_group.at(triangle); }
+const std::vector<GroupInfo>& Scene::classes() const { return impl_->classes; }
+std::uint32_t Scene::triangle_class(std::size_t triangle) const {
+  return impl_->triangle_class.empty() ? kNoClass : impl_->triangle_class.at(triangle);
+}
 RTCScene detail::SceneAccess::embree(const Scene& scene) { return scene.impl_->scene; }
 
 Scene::Hit Scene::intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_near, double t_far) const {
@@ -198,9 +213,15 @@ std::string describe(const Scene& scene) {
   const BoundingBox& b = scene.bounds();
   out.precision(10);
   out << scene.triangle_count() << " triangles; bounding box [" << b.min.x() << ", " << b.max.x() << "] x ["
-      << b.min.y() << ", " << b.max.y() << "] x [" << b.min.z() << ", " << b.max.z() << "] m; groups:";
-  for (const GroupInfo& g : scene.groups())
-    out << " " << (g.name.empty() ? "(default)" : g.name) << " (" << g.triangles << ")";
+      << b.min.y() << ", " << b.max.y() << "] x [" << b.min.z() << ", " << b.max.z() << "] m; ";
+  // A city model may hold thousands of groups: a count and the first few.
+  const auto names = [](const std::vector<GroupInfo>& list) {
+    std::vector<std::string> out;
+    for (const GroupInfo& g : list) out.push_back((g.name.empty() ? "(default)" : g.name) + " (" + std::to_string(g.triangles) + ")");
+    return out;
+  };
+  out << scene.groups().size() << " groups: " << preview_names(names(scene.groups()));
+  if (!scene.classes().empty()) out << "; " << scene.classes().size() << " classes: " << preview_names(names(scene.classes()), 12);
   return out.str();
 }
 

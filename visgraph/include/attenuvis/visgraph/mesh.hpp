@@ -22,13 +22,39 @@ struct Mesh {
   // are selected by these names (e.g. "sidewalk", "crosswalk").
   std::vector<std::uint32_t> triangle_group;
   std::vector<std::string> groups;
+  // Surface class of each triangle, an index into `classes`: for CityJSON its
+  // semantic surface type (RoofSurface, GroundSurface, ...) or, without
+  // semantics, its city object's type (TINRelief, Road, Building, ...).
+  // Empty when the source has no classes (OBJ, glTF, generated scenes).
+  std::vector<std::uint32_t> triangle_class;
+  std::vector<std::string> classes;
+  // Coordinate reference system as the file names it (CityJSON
+  // metadata.referenceSystem, e.g. "urn:ogc:def:crs:EPSG::28992"); empty
+  // when unknown.
+  std::string crs;
 
   std::size_t add_group(const std::string& name);  // index of name, added if new
+  std::size_t add_class(const std::string& name);  // likewise for classes
 };
 
 // Horizontal (xy-projected) area of the triangles in the named groups: the
 // number of nodes a 1 m grid on those surfaces gives, to within edge effects.
 double walkable_area(const Mesh& mesh, const std::vector<std::string>& groups);
+
+// A horizontal rectangle at the lowest z of the mesh, covering its xy
+// bounding box grown by `margin` metres: ground for a model that has none
+// (buildings only).  Group kGroundPlaneGroup; class kGroundPlaneClass where
+// the mesh has classes.  Facing up.
+inline constexpr const char* kGroundPlaneGroup = "ground-plane";
+inline constexpr const char* kGroundPlaneClass = "GroundPlane";
+void add_ground_plane(Mesh& mesh, double margin = 1.0);
+
+// For messages: the first `shown` names, comma-separated, then
+// " ... and N more" and, if given, `more_hint` (e.g. "(`attenuvis scene info
+// FILE --groups` lists them)"), so that a message stays one short line
+// whatever the scene.
+std::string preview_names(const std::vector<std::string>& names, std::size_t shown = 5,
+                          const std::string& more_hint = "");
 
 struct MeshStats {
   struct Group {
@@ -39,6 +65,7 @@ struct MeshStats {
   std::size_t vertices = 0, triangles = 0;
   Eigen::Vector3d lower, upper;   // bounding box of the vertices used by triangles
   std::vector<Group> groups;
+  std::vector<Group> classes;     // empty when the mesh has no classes
 };
 MeshStats mesh_stats(const Mesh& mesh);
 

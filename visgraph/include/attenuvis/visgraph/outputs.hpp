@@ -38,10 +38,26 @@ void write_csv(const std::string& path, const ScoreTable& table);
 // the column's finite range; NaN grey) and the value itself (double).
 void write_ply(const std::string& path, const ScoreTable& table, const std::string& column);
 
-// Top-view heatmap of `column` drawn from an existing CSV by
-// visgraph/scripts/vg_heatmap.py with Debian's python3 (matplotlib).
+// Top-view heatmap drawn from an existing CSV by visgraph/scripts/vg_heatmap.py
+// with Debian's python3 (matplotlib): one panel per column on one colour
+// scale, covered cells (building footprints) in dark grey, nodes that see
+// nothing as red crosses, axes in metres (with the CRS), a labelled colour bar.
+struct HeatmapOptions {
+  std::vector<std::string> columns;            // panels; see default_heatmap_columns
+  std::string title;
+  std::vector<Eigen::Vector2d> covered_cells;  // NodeSet::covered_cells, or empty
+  std::string crs;                             // for the axis labels, or empty
+};
+void write_heatmap(const std::string& png_path, const std::string& csv_path, const HeatmapOptions& options);
+// One column: write_heatmap with a single panel and no footprints.
 void write_heatmap(const std::string& png_path, const std::string& csv_path, const std::string& column,
                    const std::string& title);
+
+// What a planner reads as "visible from here": the sum score S_S of every
+// condition, one panel each (sum:LABEL ...), or the degree when there is no
+// condition.  (The average S_A is highest in closed courtyards, where the few
+// partners are near, and lowest in open streets: the opposite reading.)
+std::vector<std::string> default_heatmap_columns(const ScoreTable& table);
 
 // How each sigma was obtained, for the summary.
 struct ConditionInfo {
@@ -54,6 +70,9 @@ struct ConditionInfo {
 struct RunInfo {
   std::string scene;              // file or generator spec
   std::string scene_report;       // describe(scene)
+  std::string scene_format;       // "CityJSON 1.0", "OBJ", ... (empty for generated scenes)
+  std::string crs;                // the scene's CRS, or empty
+  std::vector<std::string> warnings;  // what the run warned about
   std::string mode;               // "all-to-all" or "to-targets"
   std::size_t targets = 0;
   const NodeSet* grid = nullptr;  // null for given nodes
@@ -63,8 +82,10 @@ struct RunInfo {
   std::vector<ConditionInfo> conditions;
 };
 
-// JSON summary: nodes, pairs cast, visible fraction, min/max/mean per score,
-// sigma with units and convention, pruning bound, time, pairs/s.
+// JSON summary: nodes (and where the grid put them), pairs cast, visible
+// fraction, min/max/mean per score, sigma with units and convention, pruning
+// bound, time, pairs/s.  A few kB whatever the scene: lists of groups are
+// cut to their first entries.
 std::string summary_json(const ScoreTable& table, const RunInfo& info);
 
 // Writes through `fill` into a temporary file beside `path`, renamed into

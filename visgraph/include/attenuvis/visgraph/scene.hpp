@@ -53,6 +53,11 @@ class Scene {
   const std::vector<GroupInfo>& groups() const;
   // Group index of each triangle (as in Mesh::triangle_group).
   std::uint32_t triangle_group(std::size_t triangle) const;
+  // Surface classes (Mesh::classes, with triangle counts); empty when the mesh
+  // has none, and then triangle_class is kNoClass for every triangle.
+  const std::vector<GroupInfo>& classes() const;
+  static constexpr std::uint32_t kNoClass = 0xFFFFFFFFu;
+  std::uint32_t triangle_class(std::size_t triangle) const;
 
   Eigen::Vector3d to_local(const Eigen::Vector3d& world) const { return world - origin(); }
   Eigen::Vector3d to_world(const Eigen::Vector3d& local) const { return local + origin(); }
