@@ -8,8 +8,8 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake ninja-build
   libboost-dev libboost-math-dev       # Boost.Math quadrature/special functions, Boost.Multiprecision
-  libeigen3-dev libembree-dev libtinyobjloader-dev libtinygltf-dev libtbb-dev libnanoflann-dev
-  libcli11-dev nlohmann-json3-dev catch2 libbenchmark-dev
+  libeigen3-dev libembree-dev libtinyobjloader-dev libtbb-dev libnanoflann-dev
+  libcli11-dev nlohmann-json3-dev catch2 libbenchmark-dev libtinygltf-dev
   python3 python3-matplotlib python3-numpy
 )
 # Callers add what only they need (scripts/test.sh: clang and its libFuzzer runtime).

@@ -12,15 +12,20 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+#include <condition_variable>
+#include <mutex>
 
 #include <unistd.h>
 
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 
+#include "heartbeat.hpp"
+#include "section_scenes.hpp"
 #include "sections.hpp"
 
 namespace fs = std::filesystem;
@@ -28,24 +33,93 @@ namespace fs = std::filesystem;
 namespace attenuvis::validation {
 namespace detail {
 
+namespace {
+
+// What the progress line last said and when, shared by the steps and the
+// ticker that repeats it while a step runs long (Progress's own members are
+// per object; there is one job and one line).
+struct LineState {
+  std::mutex mutex;
+  std::string section, what;
+  std::string repeat;  // the ticker's repetition of `what`, not a new step
+  std::chrono::steady_clock::time_point since, last_print;
+};
+LineState& line_state() {
+  static LineState state;
+  return state;
+}
+
+}  // namespace
+
 Progress::Progress(std::ostream* os, bool tty) : os_(os), tty_(tty), start_(std::chrono::steady_clock::now()) {}
 
 double Progress::elapsed() const { return seconds_since(start_); }
 
 void Progress::step(const std::string& section, const std::string& what) {
   if (!os_) return;
+  LineState& line = line_state();
+  std::lock_guard<std::mutex> lock(line.mutex);
   char t[32];
   std::snprintf(t, sizeof t, "%6.1f s", elapsed());
   if (tty_) *os_ << "\r\033[K";
   *os_ << "reproduce [" << t << "] " << section << ": " << what;
   if (!tty_) *os_ << "\n";
   os_->flush();
+  line.last_print = std::chrono::steady_clock::now();
+  if (what == line.repeat) return;
+  if (section != line.section || what != line.what) line.since = line.last_print;
+  line.section = section;
+  line.what = what;
 }
 
 void Progress::done() {
   if (os_ && tty_) *os_ << "\r\033[K";
   if (os_) os_->flush();
 }
+
+// While a step runs longer than a few seconds without saying anything (a
+// sigma integral, a quadrature study), repeats its line with the time spent
+// in it, so the user always sees what the job is doing.  Quiet while a
+// library prints its own progress line (ExternalProgress).
+class StallTicker {
+ public:
+  StallTicker(Progress& progress, bool enabled) : progress_(progress) {
+    if (enabled) thread_ = std::thread([this] { run(); });
+  }
+  ~StallTicker() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+
+ private:
+  void run() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!wake_.wait_for(lock, std::chrono::seconds(1), [this] { return stop_; })) {
+      std::string section, what;
+      double in_step = 0;
+      {
+        LineState& line = line_state();
+        std::lock_guard<std::mutex> l(line.mutex);
+        if (line.section.empty() || seconds_since(line.last_print) < 3.0 || external_progress_active()) continue;
+        section = line.section, what = line.what, in_step = seconds_since(line.since);
+        char t[48];
+        std::snprintf(t, sizeof t, " (working, %.0f s in this step)", in_step);
+        line.repeat = what + t;
+        what = line.repeat;
+      }
+      progress_.step(section, what);
+    }
+  }
+  Progress& progress_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::thread thread_;
+};
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -129,6 +203,27 @@ void draw_figures(const Report& report, const std::string& dir, detail::Progress
   fs::remove_all(fs::path(dir) / ".mpl");
 }
 
+// The terms every section uses, for a reader who has only the seed paper.
+std::vector<Paragraph> reading_guide() {
+  return {
+      {"text",
+       "The seed paper is Schwartz, Vinnikov & Federici, 'Adding Visibility to Visibility Graphs: Weighting Visibility Analysis with Attenuation Coefficients' (SimAUD 2021). It weights "
+       "each line of sight of a visibility graph by its contrast ratio C = exp(-sigma d), d the distance in metres "
+       "and sigma the extinction coefficient of the weather in 1/m. Per node: the degree is the number of nodes it "
+       "sees; S_S is the sum of C over them (equal to the degree when sigma = 0); S_A is S_S divided by a node "
+       "count (the seed's equation divides by the degree; the city section shows which divisor its numbers use). "
+       "A single-point map shows C from every node to one chosen node, 0 where that node is not in sight."},
+      {"text",
+       "Two readings of the units. ITU-R P.1817-1 gives rain and snow attenuation as power "
+       "laws in dB/km; read that way, they give the 'itu' convention. The seed reads the same numbers as 1/km "
+       "('seed' convention), which makes every rain and snow sigma 10 / ln 10 = 4.34 times larger; its printed "
+       "sigma values (0.0045 1/m for rain of 8 mm/h, 0.0374 1/m for dry snow of 4 mm/h, Sec. Results) follow that "
+       "reading. Where the two differ, the "
+       "visibility sections are computed with both. Fog sigma comes from Mie theory and clear weather is a fixed "
+       "value, so the conventions do not touch them."},
+  };
+}
+
 std::string machine_line(int threads) {
   std::string cpu = "unknown CPU";
   std::ifstream f("/proc/cpuinfo");
@@ -173,6 +268,7 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
 
   detail::Progress progress(options.progress, options.progress == &std::cerr && ::isatty(2));
+  detail::StallTicker ticker(progress, options.progress != nullptr);
   Report report;
   report.title = "attenuvis: reproduction of Schwartz, Vinnikov & Federici (SimAUD 2021) and Mie validation";
   Context ctx;
@@ -185,25 +281,37 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
 
   detail::SeedConditions seed;
   detail::CityPerformance city_perf;
+  // Sections run in the order their inputs need (the sigma values first: the
+  // visibility sections use them) and are shown in the seed paper's order:
+  // its scenes, the five layouts, the city, then the sigma values behind
+  // them, then what the seed does not have (Mie validation, performance).
   struct Step {
     const char* id;
     const char* title;
+    int shown_at;
     std::function<void(Section&)> run;
   };
   const std::vector<Step> steps = {
-      {"mie", "1. Mie validation", [&](Section& s) { detail::section_mie(ctx, s); }},
-      {"weather", "2. Size distributions and weather", [&](Section& s) { detail::section_weather(ctx, s, seed); }},
-      {"layouts", "3. Visibility graphs: the seed's five layouts",
+      {"weather", "Extinction coefficients: the seed's sigma values and the models behind them", 3,
+       [&](Section& s) { detail::section_weather(ctx, s, seed); }},
+      {"scenes", "The scenes: five classic layouts and a city", 0, [&](Section& s) { detail::section_scenes(ctx, s); }},
+      {"layouts", "The five layouts: degree, S_S in clear weather and in weather, single-point maps", 1,
        [&](Section& s) { detail::section_layouts(ctx, s, seed); }},
-      {"city", "4. The city", [&](Section& s) { detail::section_city(ctx, s, seed, city_perf); }},
-      {"performance", "5. Visibility-graph performance", [&](Section& s) { detail::section_performance(ctx, s, city_perf); }},
+      {"city", "The city: S_S, P1, P2, P3 and the seed's conclusion", 2,
+       [&](Section& s) { detail::section_city(ctx, s, seed, city_perf); }},
+      {"mie", "Mie validation: published tables and a 50-digit reference", 4,
+       [&](Section& s) { detail::section_mie(ctx, s); }},
+      {"performance", "Visibility-graph performance", 5,
+       [&](Section& s) { detail::section_performance(ctx, s, city_perf); }},
   };
+  std::vector<std::pair<int, Section>> computed;
   for (const auto& step : steps) {
     Section s;
     s.id = step.id;
-    s.title = step.title;
+    s.title = std::to_string(step.shown_at + 1) + ". " + step.title;
     ctx.step(step.id, "starting");
     const auto ts = std::chrono::steady_clock::now();
+    const std::size_t verdicts_before = report.closing.size();
     try {
       step.run(s);
     } catch (const std::exception& e) {
@@ -212,11 +320,22 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
     }
     s.seconds = detail::seconds_since(ts);
     report.key["time." + std::string(step.id) + "_s"] = s.seconds;
-    report.sections.push_back(std::move(s));
+    // Each verdict links to the section that made it.
+    for (std::size_t i = verdicts_before; i < report.closing.size(); ++i) report.closing[i].section = s.id;
+    computed.emplace_back(step.shown_at, std::move(s));
   }
+  std::stable_sort(computed.begin(), computed.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  // The verdicts in the page's order too.
+  std::map<std::string, int> shown_at;
+  for (const auto& step : steps) shown_at[step.id] = step.shown_at;
+  std::stable_sort(report.closing.begin(), report.closing.end(), [&](const Paragraph& a, const Paragraph& b) {
+    return shown_at[a.section] < shown_at[b.section];
+  });
+  for (auto& [at, s] : computed) report.sections.push_back(std::move(s));
 
-  // The closing note opens with the count of what reproduces and what does
-  // not; the lines themselves (with the reasons) come from the sections.
+  // The verdicts open the page: first their count, then one row each (the
+  // lines themselves, with the reasons, come from the sections).
   {
     std::size_t agree = 0, disagree = 0, missing = 0;
     for (const auto& p : report.closing) {
@@ -225,14 +344,18 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
       else if (p.kind == "missing") ++missing;
     }
     report.closing.insert(report.closing.begin(),
-                          Paragraph{"text", "Of the " + std::to_string(agree + disagree + missing) +
-                                                " checks below, " + std::to_string(agree) + " agree, " +
-                                                std::to_string(disagree) + " differ (each with its reason) and " +
-                                                std::to_string(missing) + " could not be made in this build."});
+                          Paragraph{"text", "Of the " + std::to_string(agree + disagree + missing) + " checks, " +
+                                                std::to_string(agree) + " agree and " + std::to_string(disagree) +
+                                                " differ, each with its reason" +
+                                                (missing ? "; " + std::to_string(missing) +
+                                                               " could not be made in this build"
+                                                         : std::string()) +
+                                                "."});
     report.key["closing.agree"] = static_cast<double>(agree);
     report.key["closing.differ"] = static_cast<double>(disagree);
     report.key["closing.missing"] = static_cast<double>(missing);
   }
+  report.guide = reading_guide();
 
   if (options.figures) draw_figures(report, staging.string(), &progress);
 
@@ -258,7 +381,7 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
                              format_number(s.seconds, 3) + " s)");
     for (const auto& line : s.summary) result.summary.push_back("  " + line);
   }
-  result.summary.push_back("closing note: " + report.closing.front().text);
+  result.summary.push_back("verdict: " + report.closing.front().text);
 
   write_key_json(report, (staging / "key.json").string());
   if (options.figures) write_report_html(report, (staging / "report.html").string());

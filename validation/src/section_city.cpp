@@ -2,7 +2,7 @@
 // Figs. vg_city_region and vg_city-snow): the clear all-to-all graph, three
 // points P1/P2/P3 at a central junction, their S_S and S_A (both definitions)
 // in clear weather and dry snow 4 mm/h under both unit conventions, and the
-// range-pruning study that section 5 reports.
+// range-pruning study that the performance section reports.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -14,6 +14,8 @@
 #include "attenuvis/visgraph/nodes.hpp"
 #include "attenuvis/visgraph/scene.hpp"
 #include "attenuvis/visgraph/visibility.hpp"
+#include "heartbeat.hpp"
+#include "section_scenes.hpp"
 #include "sections.hpp"
 
 namespace attenuvis::validation::detail {
@@ -40,8 +42,7 @@ struct Point {
 
 void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerformance& perf) {
   const bool quick = ctx.options.quick;
-  vg::CityOptions copt;  // defaults: seed 2021, 4 rings (61 blocks)
-  if (quick) copt.rings = 1;
+  const vg::CityOptions copt = report_city_options(quick);
   ctx.step("city", "generating the city");
   const vg::City city = vg::make_city(copt);
   const vg::Scene scene(city.mesh);
@@ -75,7 +76,11 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
   vg::VisibilityOptions vopt;
   vopt.sigmas = sigmas;
   vopt.threads = ctx.threads;
-  const vg::VisibilityResult all = vg::all_to_all(scene, eyes, vopt);
+  vopt.progress = ctx.options.progress != nullptr;  // pairs done, rate and time left, once a second
+  const vg::VisibilityResult all = [&] {
+    const ExternalProgress pairs_line;  // visgraph reports pairs done, rate and time left
+    return vg::all_to_all(scene, eyes, vopt);
+  }();
   perf.city_nodes = n;
   perf.city_pairs = all.pairs_total;
   perf.city_exact_seconds = all.seconds;
@@ -178,8 +183,15 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
           " (the spread is the rounding of its printed S_A), i.e. its ~50,000 nodes, for every point and both "
           "weathers. Divided by the degree, as its equation says, clear-weather S_A would be close to 1 (here " +
           sig(all.sum[0][P[0].node] / all.degree[P[0].node], 3) + " at P1), not 0.07.");
-  ctx.conclude("agree", "City: the seed's S_A values are S_S / (all ~50,000 nodes), not S_S / degree as its "
-                        "equation for S_A states (implied divisor " + sig(implied_min, 4) + "-" + sig(implied_max, 4) + ").");
+  ctx.closing->push_back(verdict(
+      "agree",
+      "S_A = S_S / |N_VG(v)|, the visible nodes (its equation); S_A(P1, P2, P3) = 0.0725, 0.0730, 0.0810 in clear "
+      "weather, 0.014, 0.0121, 0.0136 in dry snow (Sec. Large-scale Case, Fig. vg_city-snow)",
+      "S_S / S_A of the seed's six printed pairs = " + sig(implied_min, 5) + "-" + sig(implied_max, 5) +
+          " for every point and both weathers; S_S / degree is " +
+          sig(all.sum[0][P[0].node] / all.degree[P[0].node], 3) + " at our P1 in clear weather",
+      "The seed's S_A values are S_S divided by all of its ~50,000 nodes, not by the visible ones as its "
+      "equation states."));
 
   // The seed's conclusion.
   const std::size_t clear_k = 0;
@@ -194,12 +206,22 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
     v.add_row({conds[k].convention, Cell(conds[k].sigma, 5), clear_p3_best ? "yes" : "no", snow_p1 ? "yes" : "no",
                survives ? "yes" : "no"});
     ctx.set("city.conclusion_survives." + conds[k].convention, survives ? 1 : 0);
-    ctx.conclude(survives ? "agree" : "disagree",
-                 "City (" + conds[k].convention + " convention, snow sigma " + sig(conds[k].sigma, 4) +
-                     " 1/m): the seed's reversal 'P1 beats P3 in snow, P3 best in clear' " +
-                     (survives ? "survives" : "does NOT survive") + " on our city (S_S clear P1/P3 " +
-                     sig(all.sum[clear_k][P[0].node], 5) + "/" + sig(all.sum[clear_k][P[2].node], 5) + ", snow " +
-                     sig(all.sum[k][P[0].node], 4) + "/" + sig(all.sum[k][P[2].node], 4) + ").");
+    const std::string why =
+        survives ? "The reversal holds on our city with this sigma."
+        : !clear_p3_best
+            ? "On our city P3 does not have the highest clear S_S of the three; our city is not the seed's, so "
+              "the order of three nearby points need not carry over."
+            : "On our city P3 stays ahead of P1 in snow with this sigma; our city is not the seed's, so the order "
+              "of three nearby points need not carry over.";
+    ctx.closing->push_back(verdict(
+        survives ? "agree" : "disagree",
+        "P3 has the highest clear S_S (4067 against 3642 at P1), yet in dry snow 4 mm/h S_S(P1) = 709 > "
+        "S_S(P3) = 686 (Sec. Large-scale Case)",
+        "S_S(P1) / S_S(P3): clear " + sig(all.sum[clear_k][P[0].node], 5) + " / " +
+            sig(all.sum[clear_k][P[2].node], 5) + "; snow, " + conds[k].convention + " convention (sigma " +
+            sig(conds[k].sigma, 4) + " 1/m), " + sig(all.sum[k][P[0].node], 4) + " / " +
+            sig(all.sum[k][P[2].node], 4),
+        why));
     s.summary.push_back("snow (" + conds[k].convention + "): S_S P1/P2/P3 = " + sig(all.sum[k][P[0].node], 4) + "/" +
                         sig(all.sum[k][P[1].node], 4) + "/" + sig(all.sum[k][P[2].node], 4) +
                         " (seed 709/610/686); reversal " + (survives ? "survives" : "does not survive"));
@@ -226,34 +248,58 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
       header.push_back("c_" + P[p].name + "_" + conds[k].tag), cols.push_back(&point_c[p][k]);
   write_data_csv(ctx, "city_nodes.csv", header, cols);
   s.data("city_nodes.csv", "per-node x, y, z, degree, S_S per condition and C to P1, P2, P3 per condition");
+  // P1-P3 each with its own symbol, so that the three can be told apart
+  // where they sit a few metres from each other.
+  const char* symbol[3] = {"o", "s", "^"};
   nlohmann::json markers = nlohmann::json::array();
-  for (int p = 0; p < 3; ++p) markers.push_back({{"x", eyes[P[p].node].x()}, {"y", eyes[P[p].node].y()}, {"label", P[p].name}});
+  for (int p = 0; p < 3; ++p)
+    markers.push_back({{"x", eyes[P[p].node].x()}, {"y", eyes[P[p].node].y()}, {"label", P[p].name},
+                       {"marker", symbol[p]}});
   const Eigen::Vector3d jc = city.intersections[junction].position;
-  const double half = quick ? 60 : 120;
-  const nlohmann::json xl = {jc.x() - half, jc.x() + half}, yl = {jc.y() - half, jc.y() + half};
-  s.figure({"city_clear", "Clear-weather all-to-all S_S over the city (left) and the central region with P1, P2, P3 "
-                          "(right) (seed Fig. vg_city_region).",
+  // The central region (the seed's Fig. vg_city_region) and a close-up of the
+  // junction where P1-P3 stand (sidewalk corners and crosswalks lie within
+  // one road width of its centre).
+  const double half = quick ? 60 : 120, close = 2.5 * copt.road_width;
+  auto window = [&](double h) {
+    return std::make_pair(nlohmann::json{jc.x() - h, jc.x() + h}, nlohmann::json{jc.y() - h, jc.y() + h});
+  };
+  const auto [xl, yl] = window(half);
+  const auto [xc, yc] = window(close);
+  const nlohmann::json region_box = {{{"x", xl}, {"y", yl}, {"label", "central region"}}};
+  const nlohmann::json close_box = {{{"x", xc}, {"y", yc}, {"label", "close-up"}}};
+  const std::string ss_label = "S_S, clear weather (sum of C over visible nodes)";
+  s.figure({"city_clear",
+            "Clear-weather all-to-all S_S over the city (left), the central region (middle; seed Fig. "
+            "vg_city_region) and a close-up of the junction with P1 (circle), P2 (square) and P3 (triangle) "
+            "(right). Boxes mark the next panel's window. White: no node (buildings, roads, parks).",
             {{"kind", "node_maps"},
-             {"panels", {{{"csv", "city_nodes.csv"}, {"value", "ss_" + conds[0].tag}, {"title", "S_S clear, whole city"}, {"markers", markers}},
-                         {{"csv", "city_nodes.csv"}, {"value", "ss_" + conds[0].tag}, {"title", "central region"}, {"markers", markers},
-                          {"xlim", xl}, {"ylim", yl}}}},
-             {"ncols", 2}, {"cmap", "jet"}, {"panel_size", 6.0}, {"dpi", 130}}});
+             {"panels", {{{"csv", "city_nodes.csv"}, {"value", "ss_" + conds[0].tag}, {"title", "whole city"},
+                          {"boxes", region_box}},
+                         {{"csv", "city_nodes.csv"}, {"value", "ss_" + conds[0].tag}, {"title", "central region"},
+                          {"xlim", xl}, {"ylim", yl}, {"boxes", close_box}},
+                         {{"csv", "city_nodes.csv"}, {"value", "ss_" + conds[0].tag},
+                          {"title", "close-up of the junction"}, {"markers", markers}, {"xlim", xc}, {"ylim", yc}}}},
+             {"ncols", 3}, {"common_scale", true}, {"cmap", "jet"}, {"panel_size", 4.2}, {"dpi", 120},
+             {"colorbar", ss_label}}});
   nlohmann::json sp = nlohmann::json::array();
   for (std::size_t k = 0; k < conds.size(); ++k)
     for (int p = 0; p < 3; ++p)
       sp.push_back({{"csv", "city_nodes.csv"}, {"value", "c_" + P[p].name + "_" + conds[k].tag},
                     {"title", P[p].name + ", " + conds[k].short_label}, {"markers", nlohmann::json::array({markers[p]})},
                     {"xlim", xl}, {"ylim", yl}});
-  s.figure({"city_single_point", "Single-point analysis: C of every node to P1, P2, P3, central region; rows: " +
+  s.figure({"city_single_point", "Single-point analysis over the central region: C from every node to P1, P2, P3 "
+                                 "(columns); rows: " +
                                      [&] {
                                        std::string l;
                                        for (auto& c : conds) l += (l.empty() ? "" : "; ") + c.label;
                                        return l;
-                                     }() + " (seed Fig. vg_city-snow shows dry snow).",
+                                     }() + " (seed Fig. vg_city-snow shows dry snow). Grey: nodes that do not see "
+                                           "the point (C = 0); white: no node.",
             {{"kind", "node_maps"}, {"panels", sp}, {"ncols", 3}, {"common_scale", true}, {"vmin", 0.0}, {"vmax", 1.0},
-             {"cmap", "jet"}, {"colorbar", "C"}}});
+             {"cmap", "jet"}, {"colorbar", "C = exp(-sigma d) to the point (contrast ratio)"},
+             {"zero", "does not see the point"}, {"panel_size", 3.4}}});
 
-  // ---- Range pruning: error against run time (reported in section 5) ------------
+  // ---- Range pruning: error against run time (reported in the performance section) ------------
   // Scores for the snow condition in the seed convention (the largest sigma,
   // hence the smallest pruning radius); exact reference = the run above.
   const std::size_t snow_k = conds.size() - 1;
@@ -275,9 +321,13 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
     popt.sigmas = {sigmas[snow_k]};
     popt.threads = ctx.threads;
     popt.tolerance = eps;
+    popt.progress = ctx.options.progress != nullptr;
     const double radius = std::log(1 / eps) / sigmas[snow_k];
     ctx.step("city", "pruning study, eps = " + format_number(eps, 2) + " (radius " + format_number(radius, 4) + " m)");
-    const vg::VisibilityResult pr = vg::all_to_all(scene, eyes, popt);
+    const vg::VisibilityResult pr = [&] {
+      const ExternalProgress pairs_line;
+      return vg::all_to_all(scene, eyes, popt);
+    }();
     CityPerformance::PruneRow row;
     row.tolerance = eps;
     row.radius_m = pr.pruning_radius;

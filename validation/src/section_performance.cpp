@@ -73,13 +73,13 @@ void section_performance(Context& ctx, Section& s, const CityPerformance& city) 
                       sig(worst_ratio, 3));
 
   if (city.city_nodes > 0) {
-    s.text("City (section 4): exact all-to-all over " + std::to_string(city.city_nodes) + " nodes, " +
+    s.text("City (see the city section): exact all-to-all over " + std::to_string(city.city_nodes) + " nodes, " +
            std::to_string(city.city_pairs) + " pairs, degree + 3 conditions: " + sig(city.city_exact_seconds, 3) + " s (" +
            sig(city.city_pairs / city.city_exact_seconds / 1e6, 4) + " M pairs/s) on " + std::to_string(ctx.threads) +
            " thread(s).");
     Table p{"performance_pruning",
             "Range pruning on the city: error against run time, S_S for " + city.prune_condition + " (sigma " +
-                sig(city.prune_sigma, 4) + " 1/m); reference = the exact run of section 4",
+                sig(city.prune_sigma, 4) + " 1/m); reference = the exact run of the city section",
             {"tolerance eps", "pruning radius [m]", "pairs cast", "fraction of all pairs", "time [s]",
              "speed-up vs exact run", "max |S_S error|", "certified bound (max over nodes)", "nodes over the bound"},
             {},

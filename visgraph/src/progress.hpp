@@ -1,5 +1,6 @@
 // A progress line on stderr for long passes: silent for the first 3 s, then
-// "\r<label>: NN% of P pairs, T s" once a second, and a final newline.
+// "<label>: NN% of P pairs, R M pairs/s, T s, about L s left" -- rewritten in
+// place once a second on a terminal, one line every 5 s otherwise (logs).
 #pragma once
 
 #include <atomic>

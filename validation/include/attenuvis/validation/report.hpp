@@ -55,11 +55,34 @@ struct Figure {
 // A paragraph of plain text (HTML-escaped when written).  `kind` styles it:
 // "text", "source" (where a published value comes from), "agree",
 // "disagree" (with the reason), "missing" (not available in this build),
-// "data" (a data file beside the report: `text` is "FILE|description").
+// "data" (data files beside the report: `text` is "FILE|description" or
+// "FILE FILE ...|description").
+//
+// The report's verdicts (Report::closing) are paragraphs of kind "agree",
+// "disagree" or "missing" and open the page as a table, one row each.  A
+// verdict may state its parts separately: `claim` (what the seed paper or the
+// published source says, with where), `ours` (what this run gives) and
+// `text` (the one-line reason); without a claim, the table shows `text`
+// whole, its part before the first ": " as the subject.  `section` is the id
+// of the section that made it (set by the reproduction job) for the link.
 struct Paragraph {
   std::string kind = "text";
   std::string text;
+  std::string claim;
+  std::string ours;
+  std::string section;
+
+  Paragraph() = default;
+  Paragraph(std::string k, std::string t) : kind(std::move(k)), text(std::move(t)) {}
 };
+
+// A verdict with its parts (see Paragraph): kind "agree", "disagree" or "missing".
+inline Paragraph verdict(std::string kind, std::string claim, std::string ours, std::string reason) {
+  Paragraph p(std::move(kind), std::move(reason));
+  p.claim = std::move(claim);
+  p.ours = std::move(ours);
+  return p;
+}
 
 using Block = std::variant<Paragraph, Table, Figure>;
 
@@ -92,8 +115,9 @@ struct Section {
 struct Report {
   std::string title;
   std::string preamble;                    // how the run was made (machine, options, time)
-  std::vector<Section> sections;
-  std::vector<Paragraph> closing;          // what reproduces the seed, what does not and why
+  std::vector<Paragraph> guide;            // how to read the page: the terms every section uses
+  std::vector<Section> sections;           // in the order the page shows them
+  std::vector<Paragraph> closing;          // the verdicts: what reproduces the seed, what does not and why
   std::map<std::string, double> key;       // named key numbers (summary.json, regression test)
 };
 
