@@ -201,8 +201,9 @@ void register_visgraph(CLI::App& app) {
   vgc->add_flag("--quiet", args->quiet, "no report or progress on stderr");
   vgc->callback([args, old_prune] {
     if (old_prune->count() > 0) {
-      std::cerr << "attenuvis vg: --tolerance is deprecated here (it means the Mie tolerance in sigma and table); "
-                   "use --prune-below\n";
+      if (!args->quiet)
+        std::cerr << "attenuvis vg: --tolerance is deprecated here (it means the Mie tolerance in sigma and table); "
+                     "use --prune-below\n";
       args->prune_below = args->deprecated_tolerance;
     }
     run_vg(*args);
