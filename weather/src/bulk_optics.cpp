@@ -271,8 +271,14 @@ class Refinement {
     }
   }
 
-  // Throws naming the worst integral when pass 1 did not meet rel_tolerance.
+  // Throws naming the worst integral when pass 1 did not meet rel_tolerance
+  // (a sum that is not finite, which no comparison catches, included).
   void require_quadrature_met(const SizeDistribution& d) const {
+    for (int c : {kExt, kSca, kAbs, kGSca})
+      if (!std::isfinite(value_[c]) || !std::isfinite(error_[c]))
+        throw std::runtime_error("integral over " + d.describe() + " is not finite in double precision (sigma_ext " +
+                                 significant(value_[kExt], 3) + "); the distribution's number density is out of "
+                                 "range");
     if (quadrature_met()) return;
     const char* names[] = {"sigma_ext", "sigma_sca", "sigma_abs", "asymmetry g"};
     int worst = kExt;
