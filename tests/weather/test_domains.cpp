@@ -185,6 +185,13 @@ TEST_CASE("hostile input: an output over an input is refused before any work", "
   write_text(file, content);
   check_error(run("table --conditions fog:file=" + file + " --out " + file), "input");
   CHECK(read_text(file) == content);
+  // vg: an output over the eye-point file, or two outputs on one file.
+  const std::string nodes = temp_path("nodes.csv");
+  write_text(nodes, "1,1,1.7\n2,2,1.7\n");
+  check_error(run("vg layout:0 --conditions clear --nodes " + nodes + " --out " + nodes), "--nodes");
+  CHECK(read_text(nodes) == "1,1,1.7\n2,2,1.7\n");
+  const std::string out = temp_path("vg.csv");
+  check_error(run("vg layout:0 --conditions clear --out " + out + " --summary " + out), "both name");
 }
 
 TEST_CASE("property: random valid power-law and visibility conditions give finite sigma", "[weather][domains]") {

@@ -19,7 +19,7 @@ namespace attenuvis::weather {
 namespace {
 
 [[noreturn]] void bad(const std::string& text, const std::string& why) {
-  throw std::invalid_argument("bad condition '" + text + "': " + why + "\n" + condition_grammar());
+  throw std::invalid_argument("bad condition " + quote_text(text, 80) + ": " + why + "\n" + condition_grammar());
 }
 
 std::vector<std::string> split(const std::string& s, char sep) {
