@@ -2,6 +2,7 @@
 // arguments, turns condition strings into sigma through the weather module
 // and calls the visgraph library.
 #include "commands.hpp"
+#include "path_clashes.hpp"
 #include "weather_options.hpp"
 
 #include <attenuvis/io/number_text.hpp>
@@ -156,6 +157,11 @@ void run_vg(const VgArguments& a) {
   const auto start = std::chrono::steady_clock::now();
   if (!a.targets_file.empty() && !a.target_point.empty())
     throw std::invalid_argument("give --targets or --target-point, not both");
+  refuse_path_clashes({{"--out", a.out}, {"--ply", a.ply}, {"--heatmap", a.heatmap}, {"--summary", a.summary},
+                       {"--edges", a.edges}},
+                      {{"the scene", vg::is_scene_spec(a.scene) ? "" : a.scene},
+                       {"--nodes", a.nodes_file},
+                       {"--targets", a.targets_file}});
   double wavelength_m = 0;
   const std::vector<vg::ConditionInfo> conditions = conditions_to_sigma(a, wavelength_m);
 
@@ -293,8 +299,9 @@ void register_visgraph(CLI::App& app) {
   vgc->add_flag("--quiet", args->quiet, "no report or progress on stderr");
   vgc->callback([args, old_prune] {
     if (old_prune->count() > 0) {
-      std::cerr << "attenuvis vg: --tolerance is deprecated here (it means the Mie tolerance in sigma and table); "
-                   "use --prune-below\n";
+      if (!args->quiet)
+        std::cerr << "attenuvis vg: --tolerance is deprecated here (it means the Mie tolerance in sigma and table); "
+                     "use --prune-below\n";
       args->prune_below = args->deprecated_tolerance;
     }
     run_vg(*args);

@@ -9,6 +9,7 @@
 
 #include "attenuvis/weather.hpp"
 #include "commands.hpp"
+#include "path_clashes.hpp"
 #include "weather_options.hpp"
 
 namespace attenuvis::cli {
@@ -43,7 +44,9 @@ void run_sigma(const std::vector<std::string>& conditions, const CommonOptions& 
   nlohmann::json out = nlohmann::json::array();
   for (const auto& c : parsed) {
     w::Sigma r = w::sigma(c.condition, wavelength_m, s);
-    double vis = r.per_m > 0 ? w::koschmieder_visibility_m(r.per_m, s.contrast_threshold) : INFINITY;
+    // sigma = 0: the visibility is unbounded (JSON null, "unbounded" in text).
+    const bool bounded = r.per_m > 0;
+    const double vis = bounded ? w::koschmieder_visibility_m(r.per_m, s.contrast_threshold) : 0.0;
     if (json) {
       nlohmann::json row = {{"condition", c.label},
                             {"wavelength_nm", wavelength_m * 1e9},
@@ -54,14 +57,15 @@ void run_sigma(const std::vector<std::string>& conditions, const CommonOptions& 
                             {"contrast_threshold", s.contrast_threshold},
                             {"model", r.model},
                             {"note", r.note}};
-      if (std::isfinite(vis)) row["visibility_m"] = vis;
+      if (bounded) row["visibility_m"] = vis;
       else row["visibility_m"] = nullptr;
       out.push_back(row);
     } else {
       std::cout << c.label << ": sigma = " << num(w::convert_from_per_m(r.per_m, unit), 10) << " +- "
                 << num(w::convert_from_per_m(r.error_per_m, unit), 3) << " " << w::to_string(unit)
                 << " at " << num(wavelength_m * 1e9) << " nm, convention " << r.convention << ", visibility "
-                << num(vis) << " m (contrast " << num(100 * s.contrast_threshold) << " %)\n"
+                << (bounded ? num(vis) + " m" : std::string("unbounded")) << " (contrast " << num(100 * s.contrast_threshold)
+                << " %)\n"
                 << "  model: " << r.model << "\n";
       if (!r.note.empty()) std::cout << "  note: " << r.note << "\n";
     }
@@ -78,6 +82,15 @@ std::vector<std::string> split_conditions(const std::string& text) {
   return out;
 }
 
+// The size-distribution files the conditions read (inputs no output may replace).
+std::vector<NamedPath> condition_inputs(const std::vector<w::LabelledCondition>& conditions) {
+  std::vector<NamedPath> out;
+  for (const auto& c : conditions)
+    if (const auto* mie = std::get_if<w::MieCondition>(&c.condition))
+      if (const auto* file = std::get_if<w::DistributionFile>(&mie->drops)) out.push_back({"fog:file=", file->path});
+  return out;
+}
+
 void run_table(const std::string& conditions, const std::string& wavelengths, const std::string& format,
                const std::string& path, int threads, const CommonOptions& o) {
   const w::Settings s = weather_settings(o.weather);
@@ -87,18 +100,45 @@ void run_table(const std::string& conditions, const std::string& wavelengths, co
     parsed.insert(parsed.end(), expanded.begin(), expanded.end());
   }
   if (parsed.empty()) throw std::invalid_argument("--conditions is empty\n" + w::condition_grammar());
-  auto table = w::sigma_table(parsed, w::parse_wavelength_list(wavelengths), s, threads);
-  w::write_sigma_table(table, path, w::parse_table_format(format), w::parse_sigma_unit(o.units));
+  refuse_path_clashes({{"--out", path}}, condition_inputs(parsed));
+  const auto table_format = w::parse_table_format(format);
+  const auto unit = w::parse_sigma_unit(o.units);
+  const auto wavelengths_m = [&] {
+    try {
+      return w::parse_wavelength_list(wavelengths);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("--wavelengths: ") + e.what());
+    }
+  }();
+  auto table = w::sigma_table(parsed, wavelengths_m, s, threads);
+  w::write_sigma_table(table, path, table_format, unit);
   std::cout << "wrote " << table.cells.size() << " sigma values (" << table.wavelengths_m.size() << " wavelengths x "
             << parsed.size() << " conditions) to " << path << "\n";
 }
 
-void run_distribution(const std::string& what, double density, bool json) {
+void run_distribution(const std::string& what, const std::string& density_text, bool json) {
+  double density = 0;
+  try {
+    density = w::read_in(w::domain::bulk_density, density_text);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("--bulk-density: ") + e.what());
+  }
   w::SizeDistribution d = w::is_preset_distribution(what) ? w::preset_distribution(what)
                                                           : w::read_distribution_csv(what);
   w::Moments m = w::moments(d, density);
   auto support = d.support(2.0, 1e-12);
-  bool ok = std::isfinite(m.number_per_m3) && m.number_per_m3 > 0 && std::isfinite(m.water_content_kg_m3);
+  // The domains of the presets and of file values keep these finite; a
+  // distribution that escapes them is an error, never a printed NaN.
+  const bool ok = std::isfinite(m.number_per_m3) && m.number_per_m3 > 0 && std::isfinite(m.water_content_kg_m3) &&
+                  m.water_content_kg_m3 > 0 && std::isfinite(m.effective_radius_m) && m.effective_radius_m > 0 &&
+                  std::isfinite(m.mean_radius_m) && std::isfinite(m.mode_radius_m) &&
+                  std::isfinite(support.total_moment) && support.total_moment > 0;
+  if (!ok)
+    throw std::runtime_error("distribution '" + what + "': its moments are not finite and positive (N = " +
+                             num(m.number_per_m3 * 1e-6) + " cm^-3, water content " +
+                             num(m.water_content_kg_m3 * 1e3) + " g/m^3, effective radius " +
+                             num(m.effective_radius_m * 1e6) + " um); its values lie outside what double "
+                             "precision can integrate");
   if (json) {
     nlohmann::json out = {{"distribution", d.describe()},
                           {"number_per_cm3", m.number_per_m3 * 1e-6},
@@ -121,9 +161,16 @@ void run_distribution(const std::string& what, double density, bool json) {
               << "  mean radius       = " << num(m.mean_radius_m * 1e6, 8) << " um\n"
               << "  r^2-weight range  = " << num(support.breakpoints_m.front() * 1e6) << " - "
               << num(support.breakpoints_m.back() * 1e6) << " um (all but 1e-12)\n"
-              << "  checks            : " << (ok ? "finite, positive number and water content" : "FAILED") << "\n";
+              << "  checks            : finite, positive number, water content and radii\n";
   }
-  if (!ok) exit_status() = 1;
+}
+
+// The valid ranges of the distribution command's numbers (weather/domains.hpp).
+std::string distribution_ranges() {
+  using namespace w::domain;
+  return "valid ranges: marshall-palmer R " + w::range_text(rain_rate) + ", gunn-marshall R " +
+         w::range_text(snow_rate) + ";\n  file values in SI: radius " + w::range_text(drop_radius) + ", dN/dr " +
+         w::range_text(density_per_radius) + ", dN/dln r and counts " + w::range_text(number_per_volume);
 }
 
 }  // namespace
@@ -153,7 +200,9 @@ void register_weather(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--format", *format, "csv or json")->capture_default_str();
     cmd->add_option("--out", *out, "output file")->required();
-    cmd->add_option("--threads", *threads, "worker threads (0: all cores)")->capture_default_str();
+    cmd->add_option("--threads", *threads, "worker threads (0: all cores); [0, 1024]")
+        ->check(CLI::Range(0, 1024))
+        ->capture_default_str();
     add_common(cmd, *opts, {/*wavelength=*/false, /*tolerance=*/true});
     cmd->callback([=] { run_table(*conditions, *wavelengths, *format, *out, *threads, *opts); });
   }
@@ -161,12 +210,14 @@ void register_weather(CLI::App& app) {
     auto* cmd = app.add_subcommand("distribution", std::string("moments and checks of a size distribution: a preset "
                                                                "(advection, radiation, marshall-palmer:R, "
                                                                "gunn-marshall:R) or a CSV file\n") +
-                                                       w::distribution_file_format());
+                                                       w::distribution_file_format() + "\n" + distribution_ranges());
     auto what = std::make_shared<std::string>();
-    auto density = std::make_shared<double>(1000.0);
+    auto density = std::make_shared<std::string>("1000");
     auto json = std::make_shared<bool>(false);
     cmd->add_option("distribution", *what, "preset name or CSV path")->required();
-    cmd->add_option("--bulk-density", *density, "kg/m^3 for the water content (ice: 917)")->capture_default_str();
+    cmd->add_option("--bulk-density", *density,
+                    "kg/m^3 for the water content (ice: 917); " + w::range_text(w::domain::bulk_density))
+        ->capture_default_str();
     cmd->add_flag("--json", *json, "print JSON");
     cmd->callback([=] { run_distribution(*what, *density, *json); });
   }

@@ -1,6 +1,8 @@
 // The weather options shared by every subcommand that computes sigma (sigma,
 // table, vg): each option means the same in all of them, and all build their
-// weather::Settings here.
+// weather::Settings here.  Numbers are taken as text and read against their
+// domains (weather/domains.hpp), so an error names the option, the value and
+// the valid range in the same words everywhere.
 #pragma once
 
 #include <string>
@@ -14,8 +16,8 @@ namespace attenuvis::cli {
 struct WeatherOptions {
   std::string wavelength = "550nm";
   std::string convention = "itu";
-  double threshold = 0.02;
-  double tolerance = 1e-9;
+  std::string threshold = "0.02";
+  std::string tolerance = "1e-9";
   std::string water = "hale-querry";
 };
 
@@ -28,7 +30,7 @@ struct WeatherOptionSet {
 // Adds --convention, --threshold, --water and, per `which`, --wavelength and --tolerance.
 void add_weather_options(CLI::App* cmd, WeatherOptions& o, WeatherOptionSet which = {});
 
-// Settings from the options; throws std::invalid_argument naming a bad value.
+// Settings from the options; throws std::invalid_argument "--OPTION: ..." naming a bad value.
 weather::Settings weather_settings(const WeatherOptions& o);
 // The --wavelength value in metres.
 double wavelength_m(const WeatherOptions& o);

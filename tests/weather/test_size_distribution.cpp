@@ -99,7 +99,8 @@ TEST_CASE("CSV distributions: errors name the line", "[weather][distribution][fi
   CHECK_THROWS_WITH(read_distribution_csv(data("bad_header.csv")), Contains(":1:") && Contains("radius_um"));
   CHECK_THROWS_WITH(read_distribution_csv(data("bad_one_point.csv")), Contains("at least 2"));
   CHECK_THROWS_WITH(read_distribution_csv(data("bad_number.csv")), Contains(":4:") && Contains("abc"));
-  CHECK_THROWS_WITH(read_distribution_csv(data("does_not_exist.csv")), Contains("cannot open"));
+  CHECK_THROWS_WITH(read_distribution_csv(data("does_not_exist.csv")),
+                    Contains("does_not_exist.csv") && Contains("No such file"));
   std::istringstream overlap("radius_lo_um,radius_hi_um,count_per_cm3\n1,3,1\n2,4,1\n");
   CHECK_THROWS_WITH(read_distribution_csv(overlap, "mem"), Contains("mem:3:") && Contains("overlap"));
 }

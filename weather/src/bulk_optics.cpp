@@ -145,13 +145,9 @@ class Integrator {
   std::complex<double> m_;  // for the large-x bound
 };
 
-}  // namespace
-
-BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double wavelength, const EfficiencyFunction& q,
-                                      const QuadratureSettings& s, std::complex<double> m) {
-  if (!(wavelength > 0)) throw std::invalid_argument("wavelength must be > 0");
-  if (!(s.rel_tolerance > 0 && s.rel_tolerance < 1)) throw std::invalid_argument("rel_tolerance must lie in (0, 1)");
-  double tail_fraction = s.tail_fraction > 0 ? s.tail_fraction : 1e-3 * s.rel_tolerance;
+// The r^2 support of `d` (where the geometric cross-section lives), all but
+// `tail_fraction` of it; throws when the moment diverges or is empty.
+Support cross_section_support(const SizeDistribution& d, double tail_fraction) {
   Support support;
   try {
     support = d.support(2.0, tail_fraction);
@@ -161,13 +157,14 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   if (!(support.total_moment > 0) || !std::isfinite(support.total_moment))
     throw std::runtime_error("sigma_ext integral diverges or is empty: the geometric cross-section moment "
                              "int r^2 n(r) dr is " + significant(support.total_moment, 3));
+  return support;
+}
 
-  Integrator integ(d, wavelength, q, s, m);
-  double k = 2 * kPi / wavelength;
-
-  // Initial panels: the support's smooth pieces in ln r, each cut into steps
-  // of at most 0.25 in ln r and at the asymptotic switch, so the first pass
-  // already sees the shape of the weight.
+// Initial panels: the support's smooth pieces in ln r, each cut into steps
+// of at most 0.25 in ln r and at the asymptotic switch, so the first pass
+// already sees the shape of the weight.
+std::vector<Panel> initial_panels(const Integrator& integ, const Support& support, const QuadratureSettings& s,
+                                  double k) {
   std::vector<double> cuts;
   for (std::size_t i = 0; i + 1 < support.breakpoints_m.size(); ++i) {
     double a = std::log(support.breakpoints_m[i]), b = std::log(support.breakpoints_m[i + 1]);
@@ -186,59 +183,131 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   std::vector<Panel> panels(first.size());
   tbb::parallel_for(std::size_t(0), first.size(),
                     [&](std::size_t i) { panels[i] = integ.evaluate(first[i].first, first[i].second); });
+  return panels;
+}
 
-  // Nearly non-absorbing spheres (resonance.hpp): a panel no wider than
-  // resonance_x_span in x resolves the smooth ripple of Q(x) (period ~0.8 in
-  // x for water), so what its Kronrod and Gauss sums still disagree on is
-  // resonance structure; it is reported as resonance error, not counted
-  // against rel_tolerance.
-  const bool resonances = s.estimate_resonances;
-  auto is_floor = [&](const Panel& p) { return resonances && p.x_span <= s.resonance_x_span; };
-  for (auto& p : panels) p.floor = is_floor(p);
+// The panels of the integral and their running sums, refined adaptively.
+//
+// Nearly non-absorbing spheres (resonance.hpp): a panel no wider than
+// resonance_x_span in x resolves the smooth ripple of Q(x) (period ~0.8 in x
+// for water), so what its Kronrod and Gauss sums still disagree on is
+// resonance structure; it is reported as resonance error (floor_error), not
+// counted against rel_tolerance.
+class Refinement {
+ public:
+  Refinement(const Integrator& integ, std::vector<Panel> panels, const QuadratureSettings& s)
+      : integ_(integ), s_(s), resonances_(s.estimate_resonances), panels_(std::move(panels)) {
+    for (auto& p : panels_) p.floor = is_floor(p);
+    for (const auto& p : panels_) evaluations_ += p.evaluations;
+    totals();
+    for (int c = 0; c < kComponents; ++c) scale0_[c] = scale(c, value_);
+  }
 
-  std::size_t evaluations = 0;
-  for (const auto& p : panels) evaluations += p.evaluations;
-  Vec value{}, error{}, floor_error{};
-  auto totals = [&] {
-    value.fill(0);
-    error.fill(0);
-    floor_error.fill(0);
-    for (const auto& p : panels)
+  // Recomputes the sums from the panels (the running sums drift).
+  void totals() {
+    value_.fill(0);
+    error_.fill(0);
+    floor_error_.fill(0);
+    for (const auto& p : panels_)
       for (int c = 0; c < kComponents; ++c) {
-        value[c] += p.kronrod[c];
-        (p.floor ? floor_error : error)[c] += p.error[c];
+        value_[c] += p.kronrod[c];
+        (p.floor ? floor_error_ : error_)[c] += p.error[c];
       }
-  };
-  totals();
+  }
+
   // Each component's error is measured against the scale it is reported on:
   // sigma_ext for ext/sca/abs, sigma_sca for g*sigma_sca (the asymmetry).
-  auto scale = [&](int c, const Vec& v) {
+  static double scale(int c, const Vec& v) {
     double ext = std::abs(v[kExt]);
     if (c == kGSca) return std::max(std::abs(v[kSca]), 1e-300);
     return std::max(ext, 1e-300);
-  };
-  auto within = [&](const Vec& e, double tol) {
+  }
+  bool within(const Vec& e, double tol) const {
     for (int c : {kExt, kSca, kAbs, kGSca})
-      if (e[c] > tol * scale(c, value)) return false;
+      if (e[c] > tol * scale(c, value_)) return false;
     return true;
-  };
-  Vec scale0{};
-  for (int c = 0; c < kComponents; ++c) scale0[c] = scale(c, value);
-  auto key = [&](const Panel& p) {
-    double worst = 0;
-    for (int c : {kExt, kSca, kAbs, kGSca}) worst = std::max(worst, p.error[c] / scale0[c]);
-    return worst;
-  };
+  }
+  bool quadrature_met() const { return within(error_, s_.rel_tolerance); }
 
   // Global adaptive refinement (QUADPACK QAG-style), the worst panels first,
   // kBatch at a time so that their halves can be evaluated in parallel.
-  // Pass 1 splits the panels wider than the resonance floor until their
-  // summed error meets rel_tolerance; pass 2 splits floor panels (down to
-  // min_resonance_x_span) until the resonance error meets
+  // Pass 1 (floor_pass false) splits the panels wider than the resonance
+  // floor until their summed error meets rel_tolerance; pass 2 splits floor
+  // panels (down to min_resonance_x_span) until the resonance error meets
   // resonance_tolerance, or the evaluation budget is spent.  Pass 2 is what
   // finds and resolves the resonances of intermediate width (1e-2..1 in x)
   // that carry most of the resonance error; narrower ones stay reported.
-  constexpr std::size_t kBatch = 8;
+  void refine(bool floor_pass) {
+    auto cmp = [&](std::size_t i, std::size_t j) {
+      return floor_pass ? floor_key(panels_[i]) < floor_key(panels_[j]) : key(panels_[i]) < key(panels_[j]);
+    };
+    std::priority_queue<std::size_t, std::vector<std::size_t>, decltype(cmp)> heap(cmp);
+    for (std::size_t i = 0; i < panels_.size(); ++i)
+      if (panels_[i].floor == floor_pass) heap.push(i);
+    std::size_t rounds = 0;
+    for (;;) {
+      bool done = floor_pass ? within(floor_error_, s_.resonance_tolerance) : within(error_, s_.rel_tolerance);
+      if (done || heap.empty() || evaluations_ > s_.max_evaluations) return;
+      std::vector<std::size_t> chosen;
+      std::vector<Panel> parents;
+      while (!heap.empty() && chosen.size() < kBatch) {
+        std::size_t i = heap.top();
+        heap.pop();
+        const Panel& p = panels_[i];
+        double mid = 0.5 * (p.a + p.b);
+        if (!(mid > p.a && mid < p.b) || (p.b - p.a) < 1e-12) continue;  // cannot split further
+        if (floor_pass && 0.5 * p.x_span < s_.min_resonance_x_span) continue;  // narrower than any sampling
+        chosen.push_back(i);
+        parents.push_back(p);
+      }
+      if (chosen.empty()) return;
+      std::vector<Panel> halves = integ_.split(parents);
+      for (std::size_t j = 0; j < chosen.size(); ++j) {
+        replace_by_halves(chosen[j], parents[j], halves[2 * j], halves[2 * j + 1]);
+        for (std::size_t child : {chosen[j], panels_.size() - 1})
+          if (panels_[child].floor == floor_pass) heap.push(child);
+      }
+      if (++rounds % 32 == 0) totals();  // keep the running sums from drifting
+    }
+  }
+
+  // Throws naming the worst integral when pass 1 did not meet rel_tolerance
+  // (a sum that is not finite, which no comparison catches, included).
+  void require_quadrature_met(const SizeDistribution& d) const {
+    for (int c : {kExt, kSca, kAbs, kGSca})
+      if (!std::isfinite(value_[c]) || !std::isfinite(error_[c]))
+        throw std::runtime_error("integral over " + d.describe() + " is not finite in double precision (sigma_ext " +
+                                 significant(value_[kExt], 3) + "); the distribution's number density is out of "
+                                 "range");
+    if (quadrature_met()) return;
+    const char* names[] = {"sigma_ext", "sigma_sca", "sigma_abs", "asymmetry g"};
+    int worst = kExt;
+    double ratio = 0;
+    for (int c : {kExt, kSca, kAbs, kGSca})
+      if (error_[c] / scale(c, value_) > ratio) { ratio = error_[c] / scale(c, value_); worst = c; }
+    throw std::runtime_error(std::string(names[worst]) + " integral over " + d.describe() + ": relative tolerance " +
+                             significant(s_.rel_tolerance, 3) + " not met after " + std::to_string(evaluations_) +
+                             " efficiency evaluations (estimated quadrature error " + significant(ratio, 3) +
+                             " relative); the integrand is too rough or too wide for the evaluation budget "
+                             "(raise max_evaluations or the tolerance)");
+  }
+
+  const std::vector<Panel>& panels() const { return panels_; }
+  const Vec& value() const { return value_; }
+  const Vec& error() const { return error_; }
+  const Vec& floor_error() const { return floor_error_; }
+  std::size_t evaluations() const { return evaluations_; }
+
+ private:
+  static constexpr std::size_t kBatch = 8;
+
+  bool is_floor(const Panel& p) const { return resonances_ && p.x_span <= s_.resonance_x_span; }
+  // Pass 1 order: the worst relative error first.
+  double key(const Panel& p) const {
+    double worst = 0;
+    for (int c : {kExt, kSca, kAbs, kGSca}) worst = std::max(worst, p.error[c] / scale0_[c]);
+    return worst;
+  }
   // In pass 2 the order must not depend on what the nodes sampled: splitting
   // where |K - G| is large splits away the nodes that hit a resonance while
   // panels whose nodes missed theirs stay, which biases sigma low (measured
@@ -248,83 +317,46 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   // their geometric cross-section W times their width in x (a hit resonance
   // costs of order W x_span / span of Q), divided by the size parameter,
   // since a Mie evaluation costs ~x (split where error goes cheapest).
-  auto floor_key = [&](const Panel& p) {
+  static double floor_key(const Panel& p) {
     double x_mid = p.x_span / (2 * std::sinh(0.5 * (p.b - p.a)));
     return std::abs(p.kronrod[kWeight]) * p.x_span / std::max(x_mid, 1.0);
-  };
-  auto refine = [&](bool floor_pass) {
-    auto cmp = [&](std::size_t i, std::size_t j) {
-      return floor_pass ? floor_key(panels[i]) < floor_key(panels[j]) : key(panels[i]) < key(panels[j]);
-    };
-    std::priority_queue<std::size_t, std::vector<std::size_t>, decltype(cmp)> heap(cmp);
-    for (std::size_t i = 0; i < panels.size(); ++i)
-      if (panels[i].floor == floor_pass) heap.push(i);
-    std::size_t rounds = 0;
-    for (;;) {
-      bool done = floor_pass ? within(floor_error, s.resonance_tolerance) : within(error, s.rel_tolerance);
-      if (done || heap.empty() || evaluations > s.max_evaluations) return;
-      std::vector<std::size_t> chosen;
-      std::vector<Panel> parents;
-      while (!heap.empty() && chosen.size() < kBatch) {
-        std::size_t i = heap.top();
-        heap.pop();
-        const Panel& p = panels[i];
-        double mid = 0.5 * (p.a + p.b);
-        if (!(mid > p.a && mid < p.b) || (p.b - p.a) < 1e-12) continue;  // cannot split further
-        if (floor_pass && 0.5 * p.x_span < s.min_resonance_x_span) continue;  // narrower than any sampling
-        chosen.push_back(i);
-        parents.push_back(p);
-      }
-      if (chosen.empty()) return;
-      std::vector<Panel> halves = integ.split(parents);
-      for (std::size_t j = 0; j < chosen.size(); ++j) {
-        std::size_t i = chosen[j];
-        const Panel& p = parents[j];
-        for (int h = 0; h < 2; ++h) {
-          Panel& child = halves[2 * j + h];
-          child.floor = is_floor(child);
-          evaluations += child.evaluations;
-          for (int c = 0; c < kComponents; ++c) {
-            value[c] += child.kronrod[c];
-            (child.floor ? floor_error : error)[c] += child.error[c];
-          }
-        }
-        for (int c = 0; c < kComponents; ++c) {
-          value[c] -= p.kronrod[c];
-          (p.floor ? floor_error : error)[c] -= p.error[c];
-        }
-        panels[i] = halves[2 * j];
-        panels.push_back(halves[2 * j + 1]);
-        for (std::size_t child : {i, panels.size() - 1})
-          if (panels[child].floor == floor_pass) heap.push(child);
-      }
-      if (++rounds % 32 == 0) totals();  // keep the running sums from drifting
-    }
-  };
-  refine(false);
-  totals();
-  if (!within(error, s.rel_tolerance)) {
-    const char* names[] = {"sigma_ext", "sigma_sca", "sigma_abs", "asymmetry g"};
-    int worst = kExt;
-    double ratio = 0;
-    for (int c : {kExt, kSca, kAbs, kGSca})
-      if (error[c] / scale(c, value) > ratio) { ratio = error[c] / scale(c, value); worst = c; }
-    throw std::runtime_error(std::string(names[worst]) + " integral over " + d.describe() + ": relative tolerance " +
-                             significant(s.rel_tolerance, 3) + " not met after " + std::to_string(evaluations) +
-                             " efficiency evaluations (estimated quadrature error " + significant(ratio, 3) +
-                             " relative); the integrand is too rough or too wide for the evaluation budget "
-                             "(raise max_evaluations or the tolerance)");
   }
-  if (resonances) {
-    refine(true);
-    totals();
+  // panels_[i] (= parent) becomes `lower`; `upper` joins at the end.
+  void replace_by_halves(std::size_t i, const Panel& parent, Panel& lower, Panel& upper) {
+    for (Panel* child : {&lower, &upper}) {
+      child->floor = is_floor(*child);
+      evaluations_ += child->evaluations;
+      for (int c = 0; c < kComponents; ++c) {
+        value_[c] += child->kronrod[c];
+        (child->floor ? floor_error_ : error_)[c] += child->error[c];
+      }
+    }
+    for (int c = 0; c < kComponents; ++c) {
+      value_[c] -= parent.kronrod[c];
+      (parent.floor ? floor_error_ : error_)[c] -= parent.error[c];
+    }
+    panels_[i] = lower;
+    panels_.push_back(upper);
   }
 
+  const Integrator& integ_;
+  const QuadratureSettings& s_;
+  bool resonances_;
+  std::vector<Panel> panels_;
+  Vec value_{}, error_{}, floor_error_{}, scale0_{};
+  std::size_t evaluations_ = 0;
+};
+
+// The estimates, errors and method of the refined panels.
+BulkOptics bulk_optics_result(const Refinement& r, const Support& support, const QuadratureSettings& s,
+                              double tail_fraction) {
+  const Vec& value = r.value();
+  const Vec& error = r.error();
   BulkOptics out;
-  out.evaluations = evaluations;
+  out.evaluations = r.evaluations();
   bool used_asymptotic = false;
   double qext_max = 0;
-  for (const auto& p : panels) {
+  for (const auto& p : r.panels()) {
     qext_max = std::max(qext_max, p.qext_max);
     out.max_size_parameter = std::max(out.max_size_parameter, p.max_x);
     used_asymptotic = used_asymptotic || p.used_asymptotic;
@@ -342,11 +374,11 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   fill(out.absorption, kAbs);
   out.extinction.asymptotic_error = value[kAsym] + error[kAsym];
   if (s.estimate_resonances) {
-    out.extinction.resonance_error = floor_error[kExt];
-    out.scattering.resonance_error = floor_error[kSca];
-    out.absorption.resonance_error = floor_error[kAbs];
+    out.extinction.resonance_error = r.floor_error()[kExt];
+    out.scattering.resonance_error = r.floor_error()[kSca];
+    out.absorption.resonance_error = r.floor_error()[kAbs];
     out.floor_panels = 0;
-    for (const auto& p : panels) out.floor_panels += p.floor ? 1 : 0;
+    for (const auto& p : r.panels()) out.floor_panels += p.floor ? 1 : 0;
   }
   if (out.scattering_computed && value[kExt] > 0) {
     out.albedo = value[kSca] / value[kExt];
@@ -367,6 +399,26 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   out.method = method.str();
   return out;
 }
+
+BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double wavelength, const EfficiencyFunction& q,
+                                      const QuadratureSettings& s, std::complex<double> m) {
+  if (!(wavelength > 0)) throw std::invalid_argument("wavelength must be > 0");
+  if (!(s.rel_tolerance > 0 && s.rel_tolerance < 1)) throw std::invalid_argument("rel_tolerance must lie in (0, 1)");
+  const double tail_fraction = s.tail_fraction > 0 ? s.tail_fraction : 1e-3 * s.rel_tolerance;
+  const Support support = cross_section_support(d, tail_fraction);
+  const Integrator integ(d, wavelength, q, s, m);
+  Refinement r(integ, initial_panels(integ, support, s, 2 * kPi / wavelength), s);
+  r.refine(false);
+  r.totals();
+  r.require_quadrature_met(d);
+  if (s.estimate_resonances) {
+    r.refine(true);
+    r.totals();
+  }
+  return bulk_optics_result(r, support, s, tail_fraction);
+}
+
+}  // namespace
 
 BulkOptics integrate_bulk_optics(const SizeDistribution& d, double wavelength_m, const EfficiencyFunction& q,
                                  const QuadratureSettings& s, std::complex<double> m) {

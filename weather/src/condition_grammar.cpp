@@ -12,13 +12,14 @@
 #include <stdexcept>
 
 #include "attenuvis/io/number_text.hpp"
+#include "attenuvis/weather/domains.hpp"
 #include "attenuvis/weather/units.hpp"
 
 namespace attenuvis::weather {
 namespace {
 
 [[noreturn]] void bad(const std::string& text, const std::string& why) {
-  throw std::invalid_argument("bad condition '" + text + "': " + why + "\n" + condition_grammar());
+  throw std::invalid_argument("bad condition " + quote_text(text, 80) + ": " + why + "\n" + condition_grammar());
 }
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -63,36 +64,39 @@ class Fields {
   }
   bool swept_field_read() const { return !swept_ || swept_read_; }
 
-  // Rate in mm/h, > 0.
-  double rate(std::size_t i) const {
-    double r = 0;
-    if (const auto v = swept(i)) {
-      if (!swept_->unit.empty()) fail("a rate is in mm/h and takes no unit ('" + swept_->unit + "')");
-      r = *v;
-    } else {
-      r = number(i, "rate (mm/h)");
-    }
-    if (!(r > 0)) fail("rate must be > 0 mm/h");
-    return r;
-  }
-  // Distance in metres, > 0 (units.hpp: parse_distance).
-  double distance(std::size_t i) const {
+  // Rate in mm/h within `range` (domains.hpp).
+  double rate(std::size_t i, const Domain& range) const {
     try {
       if (const auto v = swept(i)) {
-        if (!(*v > 0)) throw std::invalid_argument("distance must be positive");
-        return *v * distance_unit_m(swept_->unit);
+        if (!swept_->unit.empty()) fail("a rate is in mm/h and takes no unit ('" + swept_->unit + "')");
+        return require_in(range, *v);
       }
-      return parse_distance(fields_[i]);
+      return read_in(range, fields_[i]);
     } catch (const std::invalid_argument& e) {
       fail(e.what());
     }
   }
-  // sigma in 1/m, >= 0, from VALUE[/m|/km|dB/km].
+  // A visibility in metres (units.hpp: parse_distance) within domain::visibility.
+  double distance(std::size_t i) const {
+    try {
+      if (const auto v = swept(i)) {
+        if (!(*v > 0)) throw std::invalid_argument("distance must be positive");
+        return require_in_si(domain::visibility, *v * distance_unit_m(swept_->unit));
+      }
+      const double m = parse_distance(fields_[i]);
+      if (!std::isfinite(m))  // 1e308km
+        throw std::invalid_argument("visibility " + quote_text(fields_[i]) + " is outside its valid range " +
+                                    range_text(domain::visibility));
+      return require_in_si(domain::visibility, m);
+    } catch (const std::invalid_argument& e) {
+      fail(e.what());
+    }
+  }
+  // sigma in 1/m, from VALUE[/m|/km|dB/km], within domain::sigma.
   double sigma(std::size_t i) const {
     if (const auto v = swept(i)) {
       if (!swept_->unit.empty()) fail("a swept sigma is in 1/m and takes no unit");
-      if (*v < 0) fail("sigma must be >= 0");
-      return *v;
+      return checked(domain::sigma, *v);
     }
     std::string v = fields_[i];
     SigmaUnit unit = SigmaUnit::per_m;
@@ -108,7 +112,22 @@ class Fields {
     }
     const double x = number(v, "sigma");
     if (x < 0) fail("sigma must be >= 0");
-    return convert_to_per_m(x, unit);
+    return checked(domain::sigma, convert_to_per_m(x, unit));
+  }
+  // A number read and checked against `range`.
+  double in(const Domain& range, const std::string& text) const {
+    try {
+      return read_in(range, text);
+    } catch (const std::invalid_argument& e) {
+      fail(e.what());
+    }
+  }
+  double checked(const Domain& range, double value) const {
+    try {
+      return require_in(range, value);
+    } catch (const std::invalid_argument& e) {
+      fail(e.what());
+    }
   }
   double number(const std::string& text, const std::string& what) const {
     try {
@@ -143,15 +162,13 @@ std::complex<double> parse_index(const std::string& text, const Fields& f) {
     for (std::size_t i = 1; i < s.size(); ++i)
       if ((s[i] == '+' || s[i] == '-') && s[i - 1] != 'e' && s[i - 1] != 'E') split_at = i;
     if (split_at == std::string::npos) f.fail("refractive index '" + text + "' should look like 1.33+1e-8i");
-    const double n = f.number(s.substr(0, split_at), "refractive index real part");
-    const double k = f.number(s.substr(split_at), "refractive index imaginary part");
-    if (k < 0) f.fail("refractive index imaginary part must be >= 0 (absorbing; m = n + ik)");
-    if (!(n > 0)) f.fail("refractive index real part must be > 0");
+    const double n = f.in(domain::index_real, s.substr(0, split_at));
+    if (f.number(s.substr(split_at), "refractive index imaginary part") < 0)
+      f.fail("refractive index imaginary part must be >= 0 (absorbing; m = n + ik)");
+    const double k = f.in(domain::index_imag, s.substr(split_at));
     return {n, k};
   }
-  const double n = f.number(s, "refractive index");
-  if (!(n > 0)) f.fail("refractive index real part must be > 0");
-  return {n, 0.0};
+  return {f.in(domain::index_real, s), 0.0};
 }
 
 struct MieOption {
@@ -178,15 +195,11 @@ const MieOption kMieOptions[] = {
      }},
     {"N=", ":N=PER_CM3", "rescale the drops to this many particles per cm^3",
      [](MieCondition& c, const std::string& v, const Fields& f) {
-       const double n = f.number(v, "N");
-       if (!(n > 0)) f.fail("N must be > 0 (per cm^3)");
-       set_rescaling(c, NumberDensity{n}, f);
+       set_rescaling(c, NumberDensity{f.in(domain::number_density, v)}, f);
      }},
     {"lwc=", ":lwc=G_PER_M3", "rescale the drops to this liquid water content (g/m^3)",
      [](MieCondition& c, const std::string& v, const Fields& f) {
-       const double w = f.number(v, "lwc");
-       if (!(w > 0)) f.fail("lwc must be > 0 (g/m^3)");
-       set_rescaling(c, LiquidWaterContent{w}, f);
+       set_rescaling(c, LiquidWaterContent{f.in(domain::water_content, v)}, f);
      }},
 };
 
@@ -244,12 +257,12 @@ const Kind kKinds[] = {
      }},
     {"rain", "rain:RATE:mie[:OPTIONS]", "Mie over Marshall-Palmer drops, RATE mm/h, e.g. rain:8:mie",
      [](const Fields& f) { return f.size() >= 3 && f[2] == "mie"; },
-     [](const Fields& f) -> Condition { return with_options(MarshallPalmerRain{f.rate(1)}, f, 3); }},
+     [](const Fields& f) -> Condition { return with_options(MarshallPalmerRain{f.rate(1, domain::rain_rate)}, f, 3); }},
     {"rain", "rain:RATE[:seed|carbonneau|p1814]",
      "power law, RATE mm/h, read per --convention; seed (default): k=1.17, alpha=0.65; e.g. rain:8", always,
      [](const Fields& f) -> Condition {
        f.require(2);
-       const double rate = f.rate(1);
+       const double rate = f.rate(1, domain::rain_rate);
        if (f.size() < 3) return RainPowerLaw{rate, RainLaw::seed};
        f.at_most(3, "options (m=, N=...) apply only to rain:RATE:mie");
        try {
@@ -267,7 +280,7 @@ const Kind kKinds[] = {
        if (f[1] == "wet") type = SnowType::wet;
        else if (f[1] != "dry") f.fail("snow type must be wet or dry");
        f.at_most(3, "snow takes a type and a rate");
-       return Snow{type, f.rate(2)};
+       return Snow{type, f.rate(2, domain::snow_rate)};
      }},
     {"fog", "fog:advection | fog:radiation | fog:file=PATH  [:OPTIONS]",
      "Mie over the P.1817-1 / seed modified-gamma presets or a size-distribution CSV",
@@ -310,7 +323,12 @@ std::string generate_grammar() {
   out << "  OPTIONS after a Mie condition (fog:..., rain:RATE:mie), any order:\n";
   for (const auto& o : kMieOptions) line(std::string("  ") + o.grammar, o.help);
   out << "  RATE in mm/h; DIST a number with unit " << distance_units() << " (bare number: m), e.g. 500m, 2km\n"
-      << "  in tables a RATE, DIST or VALUE may sweep: A..B or A..B/STEP (rain:1..100, fog:kim:200..1000/200m)";
+      << "  in tables a RATE, DIST or VALUE may sweep: A..B or A..B/STEP (rain:1..100, fog:kim:200..1000/200m)\n"
+      << "  valid ranges: rain RATE " << range_text(domain::rain_rate) << ", snow RATE "
+      << range_text(domain::snow_rate) << ", DIST " << range_text(domain::visibility) << ",\n"
+      << "    sigma VALUE " << range_text(domain::sigma) << " (in any unit), N= " << range_text(domain::number_density)
+      << ", lwc= " << range_text(domain::water_content) << ",\n"
+      << "    m= n " << range_text(domain::index_real) << " and k " << range_text(domain::index_imag);
   return out.str();
 }
 

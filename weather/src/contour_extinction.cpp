@@ -230,6 +230,15 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
     for (const auto& h : halves) evaluations += h.evaluations;
     return halves;
   };
+  // A sum that overflowed (or a density that is not finite) would never meet
+  // a tolerance; it is an error, not a number.
+  const auto require_finite = [&](const Sums& sum) {
+    if (!std::isfinite(sum.total.real()) || !std::isfinite(sum.error))
+      throw std::runtime_error("sigma_ext by contour over " + d.describe() +
+                               ": the integral is not finite in double precision (sum " +
+                               significant(sum.total.real(), 3) + ", error " + significant(sum.error, 3) +
+                               "); the distribution's number density is out of range");
+  };
   const auto check_budget = [&](const char* what, const Sums& sum) {
     if (evaluations > s.max_evaluations)
       throw std::runtime_error(std::string("sigma_ext by contour: ") + what + " " +
@@ -241,15 +250,21 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
   const auto refine = [&](std::vector<PanelResult>& ps) {
     for (;;) {
       const Sums sum = sums(ps);
+      require_finite(sum);
       const double target = s.rel_tolerance * std::abs(sum.total.real());
       if (sum.error <= target) return;
       check_budget("quadrature error", sum);
-      // Split every panel above its share of the target (at least the worst);
-      // which ones depends on the values alone, not on the thread count.
+      // Split every panel above its share of the target, and at least the
+      // worst (so every round spends evaluations and the budget ends the
+      // loop); which ones depends on the values alone, not on the thread count.
       const double share = target / static_cast<double>(ps.size());
       std::vector<std::size_t> split;
-      for (std::size_t i = 0; i < ps.size(); ++i)
+      std::size_t worst = 0;
+      for (std::size_t i = 0; i < ps.size(); ++i) {
         if (ps[i].error > share) split.push_back(i);
+        if (ps[i].error > ps[worst].error) worst = i;
+      }
+      if (split.empty()) split.push_back(worst);
       const std::vector<PanelResult> halves = halves_of(ps, split);
       std::vector<PanelResult> next;
       next.reserve(ps.size() + split.size());
@@ -293,6 +308,7 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
     std::vector<PanelResult> halves = halves_of(panels, all);
     fine = sums(halves);
     fine.error += std::abs((fine.total - coarse).real());
+    require_finite(fine);
     if (fine.error <= s.rel_tolerance * std::abs(fine.total.real())) break;
     check_budget("verified quadrature error", fine);
     panels.swap(halves);

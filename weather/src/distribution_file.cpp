@@ -2,15 +2,20 @@
 #include "attenuvis/weather/distribution_file.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
 
+#include "attenuvis/io/input_file.hpp"
 #include "attenuvis/io/number_text.hpp"
+#include "attenuvis/weather/domains.hpp"
 
 namespace attenuvis::weather {
 namespace {
+
+// A size distribution has at most a few thousand rows of two or three numbers.
+constexpr std::size_t kMaxDistributionFileBytes = 16u << 20;
+constexpr std::size_t kMaxDistributionLineChars = 4096;
 
 std::string trim(const std::string& s) {
   auto b = s.find_first_not_of(" \t\r");
@@ -52,8 +57,13 @@ const char* distribution_file_format() {
 }
 
 SizeDistribution read_distribution_csv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument("cannot open size-distribution file '" + path + "'");
+  std::string text;
+  try {
+    text = io::read_input_file(path, kMaxDistributionFileBytes);
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(std::string("size-distribution file ") + e.what());
+  }
+  std::istringstream in(std::move(text));
   return read_distribution_csv(in, path);
 }
 
@@ -68,6 +78,11 @@ SizeDistribution read_distribution_csv(std::istream& in, const std::string& sour
   int line_no = 0;
   while (std::getline(in, raw)) {
     ++line_no;
+    if (raw.size() > kMaxDistributionLineChars)
+      fail(source, line_no, "line of " + std::to_string(raw.size()) + " characters; a row holds at most " +
+                                std::to_string(kMaxDistributionLineChars));
+    // A UTF-8 byte-order mark (spreadsheet exports) is not part of the header.
+    if (line_no == 1 && raw.rfind("\xEF\xBB\xBF", 0) == 0) raw.erase(0, 3);
     std::string line = trim(raw);
     if (line.empty() || line[0] == '#') continue;
     auto cells = split_csv(line);
@@ -90,7 +105,7 @@ SizeDistribution read_distribution_csv(std::istream& in, const std::string& sour
         else if (cells[2] == "count_per_m3") { n_scale = 1; ok2 = true; }
       }
       if (!ok1 || !ok2)
-        fail(source, line_no, "header '" + line + "' does not state the columns and units; expected\n" +
+        fail(source, line_no, "header " + quote_text(line, 80) + " does not state the columns and units; expected\n" +
                                   distribution_file_format());
       continue;
     }
@@ -99,26 +114,37 @@ SizeDistribution read_distribution_csv(std::istream& in, const std::string& sour
       fail(source, line_no, "expected " + std::to_string(want) + " comma-separated values, found " +
                                 std::to_string(cells.size()));
     std::vector<double> v;
-    for (const auto& c : cells) {
+    for (std::size_t i = 0; i < cells.size(); ++i) {
       try {
-        v.push_back(io::parse_double(c, "value"));
-      } catch (const std::invalid_argument&) {
-        fail(source, line_no, "'" + c + "' is not a finite number");
+        v.push_back(io::parse_double(cells[i], "column " + std::to_string(i + 1)));
+      } catch (const std::invalid_argument& e) {
+        fail(source, line_no, e.what());
       }
     }
+    // Each value within its domain (domains.hpp), checked in SI.
+    const auto in_range = [&](const Domain& range, double si, std::size_t column) {
+      try {
+        return require_in_si(range, si);
+      } catch (const std::invalid_argument& e) {
+        fail(source, line_no, "column " + std::to_string(column + 1) + " (" + quote_text(cells[column]) + "): " + e.what());
+      }
+    };
     if (kind == Kind::bins) {
       double lo = v[0] * r_scale, hi = v[1] * r2_scale, count = v[2] * n_scale;
-      if (!(lo > 0)) fail(source, line_no, "bin lower radius must be > 0");
-      if (!(hi > lo)) fail(source, line_no, "bin upper radius must exceed its lower radius");
       if (count < 0) fail(source, line_no, "negative count");
+      in_range(domain::drop_radius, lo, 0);
+      in_range(domain::drop_radius, hi, 1);
+      in_range(domain::number_per_volume, count, 2);
+      if (!(hi > lo)) fail(source, line_no, "bin upper radius must exceed its lower radius");
       if (!segments.empty() && lo < segments.back().r1)
         fail(source, line_no, "bins must increase and not overlap (lower radius below the previous bin's upper)");
       double n = count / (hi - lo);
       segments.push_back({lo, hi, n, n});
     } else {
       double r = v[0] * r_scale, n = v[1] * n_scale;
-      if (!(r > 0)) fail(source, line_no, "radius must be > 0");
       if (n < 0) fail(source, line_no, "negative density");
+      in_range(domain::drop_radius, r, 0);
+      in_range(kind == Kind::dndlnr ? domain::number_per_volume : domain::density_per_radius, n, 1);
       if (!points.empty() && !(r > points.back().first))
         fail(source, line_no, "radii must strictly increase");
       if (kind == Kind::dndlnr) n /= r;

@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "attenuvis/io/number_text.hpp"
+#include "attenuvis/weather/condition_grammar.hpp"
 #include "attenuvis/weather/contour_extinction.hpp"
 #include "attenuvis/weather/distribution_file.hpp"
 #include "attenuvis/weather/refractive_index.hpp"
@@ -219,7 +220,14 @@ Sigma sigma(const Condition& condition, double wavelength_m, const Settings& s) 
     }
     Sigma operator()(const MieCondition& c) const { return cached_mie_sigma(c, wavelength_m, s); }
   };
-  return std::visit(Visitor{wavelength_m, s}, condition);
+  const Sigma out = std::visit(Visitor{wavelength_m, s}, condition);
+  // The domains (domains.hpp) keep every model finite; this guards the promise
+  // that no output carries inf or NaN.
+  if (!std::isfinite(out.per_m) || !(out.per_m >= 0) || !std::isfinite(out.error_per_m))
+    throw std::runtime_error("sigma of " + to_text(condition) + " at " + g4(wavelength_m * 1e9) + " nm is " +
+                             g4(out.per_m) + " +- " + g4(out.error_per_m) + " 1/m, not a finite value (" + out.model +
+                             ")");
+  return out;
 }
 
 }  // namespace attenuvis::weather

@@ -36,7 +36,7 @@ std::vector<double> parse_wavelength_list(const std::string& text) {
       bool has_unit = !s.empty() && std::isalpha(static_cast<unsigned char>(s.back()));
       return parse_wavelength(has_unit ? s : s + unit);
     };
-    double a = with_unit(f[0]), b = with_unit(f[1]), h = parse_wavelength(step + unit);
+    double a = with_unit(f[0]), b = with_unit(f[1]), h = parse_length(step + unit, "wavelength step");
     if (!(b >= a)) throw std::invalid_argument("wavelength range '" + text + "': STOP must be >= START");
     double n = std::floor((b - a) / h + 1e-9);
     if (n > 100000) throw std::invalid_argument("wavelength range '" + text + "' has too many values");
@@ -127,9 +127,12 @@ std::string format_sigma_table(const SigmaTable& t, TableFormat format, SigmaUni
     for (std::size_t w = 0; w < t.wavelengths_m.size(); ++w)
       for (std::size_t c = 0; c < t.conditions.size(); ++c) {
         const Sigma& s = t.at(w, c);
-        double vis = s.per_m > 0 ? koschmieder_visibility_m(s.per_m, t.settings.contrast_threshold) : INFINITY;
+        // sigma = 0 has no visibility (unbounded): the cell stays empty, as the JSON omits it.
+        std::ostringstream vis;
+        vis.precision(10);
+        if (s.per_m > 0) vis << koschmieder_visibility_m(s.per_m, t.settings.contrast_threshold);
         o << t.wavelengths_m[w] * 1e9 << "," << csv_quote(t.conditions[c].label) << ","
-          << convert_from_per_m(s.per_m, unit) << "," << convert_from_per_m(s.error_per_m, unit) << "," << vis << ","
+          << convert_from_per_m(s.per_m, unit) << "," << convert_from_per_m(s.error_per_m, unit) << "," << vis.str() << ","
           << s.convention << "," << csv_quote(s.model) << "," << csv_quote(s.note) << "\n";
       }
   } else {

@@ -12,7 +12,7 @@
 #include <boost/math/special_functions/gamma.hpp>
 
 #include "analytic_density.hpp"
-#include "attenuvis/io/number_text.hpp"
+#include "attenuvis/weather/domains.hpp"
 
 namespace attenuvis::weather {
 namespace {
@@ -237,9 +237,16 @@ SizeDistribution preset_distribution(const std::string& name) {
     auto d = SizeDistribution::modified_gamma_um(607.5, 6, 3);
     return SizeDistribution(d.form(), "moderate radiation fog (P.1817-1: alpha=6, a=607.5, b=3; r um, n cm^-3 um^-1)");
   }
-  auto rate_of = [&](std::size_t prefix) { return io::parse_double(name.substr(prefix), "rate in '" + name + "'"); };
-  if (name.rfind("marshall-palmer:", 0) == 0) return SizeDistribution::marshall_palmer(rate_of(16));
-  if (name.rfind("gunn-marshall:", 0) == 0) return SizeDistribution::gunn_marshall(rate_of(14));
+  auto rate_of = [&](std::size_t prefix, const Domain& range) {
+    try {
+      return read_in(range, name.substr(prefix));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("size distribution preset " + quote_text(name) + ": " + e.what());
+    }
+  };
+  if (name.rfind("marshall-palmer:", 0) == 0)
+    return SizeDistribution::marshall_palmer(rate_of(16, domain::rain_rate));
+  if (name.rfind("gunn-marshall:", 0) == 0) return SizeDistribution::gunn_marshall(rate_of(14, domain::snow_rate));
   throw std::invalid_argument("unknown size distribution preset '" + name + "'; presets: " + kPresetList);
 }
 

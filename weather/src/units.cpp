@@ -2,11 +2,13 @@
 #include "attenuvis/weather/units.hpp"
 
 #include <cctype>
-#include <iterator>
 #include <cmath>
+#include <iterator>
+#include <limits>
 #include <stdexcept>
 
 #include "attenuvis/io/number_text.hpp"
+#include "attenuvis/weather/domains.hpp"
 
 namespace attenuvis::weather {
 
@@ -77,19 +79,29 @@ std::pair<std::string, std::string> split_number_unit(const std::string& text) {
 }
 }  // namespace
 
-double parse_wavelength(const std::string& text) {
+double parse_length(const std::string& text, const std::string& what) {
   auto [num, unit] = split_number_unit(text);
   if (unit.empty())
-    throw std::invalid_argument("wavelength '" + text + "' needs a unit (nm, um or m), e.g. 550nm");
-  double v = io::parse_double(num, "wavelength");
+    throw std::invalid_argument(what + " " + quote_text(text) + " needs a unit (nm, um, mm or m), e.g. 550nm");
   double scale = 0;
   if (unit == "nm") scale = 1e-9;
   else if (unit == "um" || unit == "µm" || unit == "micron") scale = 1e-6;
   else if (unit == "mm") scale = 1e-3;
   else if (unit == "m") scale = 1;
-  else throw std::invalid_argument("wavelength '" + text + "': unknown unit '" + unit + "' (nm, um or m)");
-  if (!(v > 0)) throw std::invalid_argument("wavelength '" + text + "' must be positive");
+  else throw std::invalid_argument(what + " " + quote_text(text) + ": unknown unit " + quote_text(unit) + " (nm, um, mm or m)");
+  // Read in the unit given, so that 1e300m is reported as out of range, not as overflow.
+  const Domain in_unit{what, unit, scale, 0, std::numeric_limits<double>::max()};
+  const double v = read_in(in_unit, num);
+  if (!(v > 0)) throw std::invalid_argument(what + " " + quote_text(text) + " must be positive");
   return v * scale;
+}
+
+double parse_wavelength(const std::string& text) {
+  const double m = parse_length(text, "wavelength");
+  if (!in_domain(domain::wavelength, m / domain::wavelength.unit_si))
+    throw std::invalid_argument("wavelength " + quote_text(text) + " is outside its valid range " +
+                                range_text(domain::wavelength) + " (where the water tables have data)");
+  return m;
 }
 
 const std::string& distance_units() {

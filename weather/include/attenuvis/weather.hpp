@@ -12,6 +12,7 @@
 #include "attenuvis/weather/condition_grammar.hpp"
 #include "attenuvis/weather/contour_extinction.hpp"
 #include "attenuvis/weather/distribution_file.hpp"
+#include "attenuvis/weather/domains.hpp"
 #include "attenuvis/weather/empirical_models.hpp"
 #include "attenuvis/weather/refractive_index.hpp"
 #include "attenuvis/weather/settings.hpp"

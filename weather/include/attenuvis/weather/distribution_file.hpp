@@ -12,8 +12,12 @@
 // converted point by point, n = (dN/dln r)/r) and are zero outside the first
 // and last radius; they need at least two points.  Bins have n(r) constant
 // inside each bin (count / width); one bin is enough.  Radii must increase,
-// bins must not overlap, values must be finite and >= 0, and the total must be
-// > 0.  Every error names the file and line.
+// bins must not overlap, the total must be > 0, and every value must lie in
+// its domain (domains.hpp, in SI): radii domain::drop_radius, dN/dr
+// domain::density_per_radius, dN/dln r and counts domain::number_per_volume.
+// A UTF-8 byte-order mark is skipped.  The file must be a regular file of at
+// most 16 MiB, a line at most 4096 characters.  Every error (std::invalid_argument)
+// names the file and line.
 #pragma once
 
 #include <istream>

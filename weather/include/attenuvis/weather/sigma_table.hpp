@@ -30,7 +30,9 @@ SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const s
 enum class TableFormat { csv, json };
 TableFormat parse_table_format(const std::string& text);
 // Writes through attenuvis::io::StagedFile (a temporary renamed onto `path`):
-// a failure leaves no partial file.
+// a failure leaves no partial file.  Every number is finite (sigma() checks
+// its results); where sigma = 0 the visibility is unbounded: an empty CSV
+// cell, no "visibility_m" member in JSON.
 void write_sigma_table(const SigmaTable& t, const std::string& path, TableFormat format, SigmaUnit unit);
 std::string format_sigma_table(const SigmaTable& t, TableFormat format, SigmaUnit unit);
 

@@ -41,8 +41,12 @@ double convert_from_per_m(double sigma_per_m, SigmaUnit to);
 double convert_to_per_m(double value, SigmaUnit from);
 
 // "550nm", "0.55um", "0.55µm", "5.5e-7m", "10.6um".  A bare number is an error
-// (a wavelength without a unit is ambiguous).  Returns metres.
+// (a wavelength without a unit is ambiguous).  Returns metres; throws
+// std::invalid_argument outside domain::wavelength (domains.hpp).
 double parse_wavelength(const std::string& text);
+// A positive length with a unit nm, um, mm or m, in metres, not range-checked
+// (a wavelength step); `what` names it in messages.
+double parse_length(const std::string& text, const std::string& what);
 // "500m", "2km", "2.5 km", "1mi".  A bare number means metres.  Returns metres.
 double parse_distance(const std::string& text);
 // Metres per distance unit: "" or "m" (1), "km", "mi" (international mile);
