@@ -27,8 +27,8 @@ struct MieArgs {
 mie::Options make_options(const MieArgs& a) {
   mie::Options o;
   if (a.terms == "wiscombe") o.terms = mie::TermRule::wiscombe;
-  if (a.working == "double") o.working = mie::Working::double_only;
-  if (a.working == "extended") o.working = mie::Working::extended;
+  if (a.working == "double") o.precision = mie::Precision::double_precision;
+  if (a.working == "extended") o.precision = mie::Precision::extended;
   return o;
 }
 

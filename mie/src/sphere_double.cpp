@@ -36,11 +36,7 @@ void check_m(std::complex<double> m) {
 // their rounding errors accumulate to ~√N·ε ≈ 1e-13 in every aₙ; Qback, an
 // alternating sum that cancels by a factor ~x, would be off by up to 1e-8.
 bool use_extended(double x, const Options& options) {
-  switch (options.working) {
-    case Working::double_only: return false;
-    case Working::extended: return true;
-    case Working::automatic: break;
-  }
+  if (options.precision) return *options.precision == Precision::extended;
   return x > options.extended_above;
 }
 

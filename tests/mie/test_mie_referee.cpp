@@ -1,9 +1,9 @@
 // The double-precision Mie product against the 50-digit referee
-// (attenuvis/mie/referee.hpp: the same series in cpp_bin_float_50) over issue 2's
+// (attenuvis/mie/referee.hpp: the same series in cpp_bin_float_50) over the
 // stress grid:  x in the decades 1e-8 ... 1e6 plus non-round values,
 //               n in {1+1e-6, 1.0001, 1.33, 1.5, 2, 10, 0.75},
 //               k in {0, 1e-8, 1e-5, 0.1, 1, 10, 1000}.
-// Requirement (issue 2): Qext, Qsca, Qabs, g, Qback within 1e-10 relative, with an
+// Requirement: Qext, Qsca, Qabs, g, Qback within 1e-10 relative, with an
 // absolute floor of 1e-14 Qext only where the quantity itself is that small, i.e.
 //     |q - q_ref| <= max(1e-10 |q_ref|, 1e-14 Qext_ref),
 // and no NaN, no infinity, no exception anywhere.
@@ -21,6 +21,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -143,9 +144,19 @@ TEST_CASE("double vs 50-digit referee: x = 12345.6 and 1e5, one k per n", "[mie]
 }
 
 TEST_CASE("double vs 50-digit referee: x = 1e6", "[mie][referee][slow]") {
-  // The weakly absorbing water-like sphere of trap 2, where D_n(mx) and Qback are
+  // The weakly absorbing water-like sphere of trap start-value, where D_n(mx) and Qback are
   // hardest; one point because the referee needs ~30 s here.
   check_grid({1e6}, {cd(1.33, 1e-8)}, "x = 1e6");
+}
+
+TEST_CASE("purely imaginary index n = 0 is accepted and accurate; n < 0 and m = 0 are not", "[mie][referee]") {
+  // mie.hpp's contract: n >= 0, k >= 0, m != 0.  m = ik is the index of a
+  // lossless Drude metal below its plasma frequency; k = sqrt(2) puts the dipole
+  // surface resonance (m^2 + 2 = 0, B&H §12.1) exactly at m.
+  check_grid({1e-3, 0.3, 1.0, 10.0, 150.0}, {cd(0.0, 0.5), cd(0.0, std::sqrt(2.0)), cd(0.0, 3.0)}, "n = 0");
+  CHECK_THROWS_AS(mie::sphere(1.0, cd(-1e-300, 1.0)), std::invalid_argument);
+  CHECK_THROWS_AS(mie::sphere(1.0, cd(-0.5, 1.0)), std::invalid_argument);
+  CHECK_THROWS_AS(mie::sphere(1.0, cd(0.0, 0.0)), std::invalid_argument);
 }
 
 TEST_CASE("no NaN, no infinity, no exception on the whole grid up to x = 1e5", "[mie][referee]") {

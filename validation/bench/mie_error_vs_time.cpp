@@ -1,4 +1,4 @@
-// Error against run time of the Mie core (issue 2): for x in the decades
+// Error against run time of the Mie core: for x in the decades
 // 1e-3 ... 1e6 and m in {1.0001, 1.33+1e-8i, 1.5+0.1i, 10+10i}, the median time
 // per call and the largest relative error against the 50-digit referee of
 //   default       attenuvis::mie::sphere (terms until converged)

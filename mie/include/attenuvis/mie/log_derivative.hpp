@@ -10,9 +10,9 @@
 //     Dₙ(z) = 1/(n/z − D_{n-1}(z)) − n/z,   D₀(z) = cot z           (upward)
 // Writing Dₙ through yₙ removes the leading (n+1)/z exactly, so
 // m Dₙ(mx) − Dₙ(x) = −m yₙ(mx) + yₙ(x) is formed without the 1/x² cancellation
-// that ruins bₙ at x = 1e-8 (trap 3).
+// that ruins bₙ at x = 1e-8 (trap small-x; the traps are listed in series.hpp).
 //
-// Trap 4 (m → 1).  The numerators of aₙ, bₙ are O(m−1) and would be formed by
+// Trap m-near-1.  The numerators of aₙ, bₙ are O(m−1) and would be formed by
 // cancellation.  We carry the difference δₙ = yₙ(mx) − yₙ(x) through its own
 // downward recurrence, obtained by subtracting the two y recurrences:
 //     δₙ = ((2n+3) c + δ_{n+1}) · yₙ(mx) · yₙ(x),   c = (m−1)/(m x),
@@ -21,9 +21,9 @@
 // recurrences.  The start δ_N = y_N(mx) − y_N(x) has an error ε|y_N| that the
 // factor Π yₖ(x) (≪ 1 above n ≈ x) damps long before it matters.
 //
-// Trap 2 (start value).  Both recurrences start at the top index N from the
+// Trap start-value.  Both recurrences start at the top index N from the
 // exact values given by Lentz's continued fraction (lentz.hpp), never from 0.
-// Trap 5 (large k·x).  Only ratios appear; nothing grows like e^{kx}.
+// Trap large-kx.  Only ratios appear; nothing grows like e^{kx}.
 #pragma once
 
 #include <cmath>
@@ -33,6 +33,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "attenuvis/mie/complex_ops.hpp"
 #include "attenuvis/mie/lentz.hpp"
 #include "attenuvis/mie/scratch.hpp"
 
@@ -97,13 +98,13 @@ inline void avoid_zero(T& v) {
 
 // What the complex slot of the downward pass holds.
 enum class Slot {
-  difference,  // δₙ = yₙ(mx) − yₙ(x)   (|m−1| small: trap 4)
+  difference,  // δₙ = yₙ(mx) − yₙ(x)   (|m−1| small: trap m-near-1)
   value,       // yₙ(mx)              (m far from 1: δ would only add rounding)
   none,        // nothing (Dₙ(mx) goes upward, or perfect conductor)
 };
 
 // Downward pass from index N: fills y[n] = yₙ(x) for n = 0..N and, according
-// to `slot`, w[n] = δₙ or yₙ(mx).  Returns the Lentz iteration count.
+// to `slot`, w[n] = δₙ or yₙ(mx).
 // W is the stored complex type: it may be narrower than C (see SlotStore in
 // series.hpp), since each wₙ is used once and not fed into a product.
 //
@@ -113,16 +114,15 @@ enum class Slot {
 // this, a single term near such a pole loses ε|yₙ(x)/yₙ(mx)| (1e-8 at
 // x = 116.78455902863854, m = 1.33+1e-5i, i.e. 9e-9 in Qback).
 template <class Real, class C, class YArray, class WArray, class FlagArray>
-std::size_t downward_ratios(const Real& x, const C& m, std::size_t N, Slot slot, YArray& y, WArray& w,
+void downward_ratios(const Real& x, const C& m, std::size_t N, Slot slot, YArray& y, WArray& w,
                             FlagArray& is_value) {
   // Every entry 0..N is written below before it is read.
   is_value.resize(slot == Slot::difference ? N + 1 : 0);
   y.resize(N + 1);
   w.resize(slot == Slot::none ? 0 : N + 1);
   const ScaledInverse<Real> over_x(x);
-  LentzResult info_x, info_z;
   // y_N = ψ_{N+1}/ψ_N = 1/(ψ_N/ψ_{N+1}).
-  Real yx = Real(1) / riccati_psi_ratio<Real, Real>(N + 1, over_x, &info_x);
+  Real yx = Real(1) / riccati_psi_ratio<Real, Real>(N + 1, over_x);
   if (slot == Slot::none) {
     for (std::size_t n = N;; --n) {
       y[n] = yx;
@@ -131,11 +131,11 @@ std::size_t downward_ratios(const Real& x, const C& m, std::size_t N, Slot slot,
       avoid_zero<Real, Real>(den);
       yx = Real(1) / den;
     }
-    return info_x.iterations;
+    return;
   }
   const ScaledInverseComplex<Real, C> over_z(x, m);
   const C c = (m - C(Real(1))) * over_z(Real(1));  // (m−1)/(m x)
-  C yz = recip(riccati_psi_ratio<C, Real>(N + 1, over_z, &info_z));
+  C yz = recip(riccati_psi_ratio<C, Real>(N + 1, over_z));
   C d = yz - C(yx);
   for (std::size_t n = N;; --n) {
     y[n] = yx;
@@ -158,7 +158,6 @@ std::size_t downward_ratios(const Real& x, const C& m, std::size_t N, Slot slot,
     yz = recip(den_z);
     d = d_next * yz * yx;
   }
-  return info_x.iterations + info_z.iterations;
 }
 
 // cot z for Im z >= 0 without overflow: cot z = i(E+1)/(E−1), E = e^{2iz},

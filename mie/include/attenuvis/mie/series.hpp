@@ -10,23 +10,57 @@
 // with Rₙ = ψₙ(x)/ξₙ(x), Gₙ = ξₙ'/ξₙ.  This follows from B&H 4.88 after
 // dividing by ψₙ (numerator) and ξₙ (denominator) and using ψ_{n-1}/ψₙ =
 // Dₙ + n/x, ξ_{n-1}/ξₙ = Gₙ + n/x.
-//   * Real argument (trap 3, small x): ψₙ(x) enters only through Pₙ(x) =
+//   * Real argument (trap small-x): ψₙ(x) enters only through Pₙ(x) =
 //     ψ_{n-1}/ψₙ from the downward recurrence (Lentz start), and ξₙ through
 //     ρₙ = ξ_{n-1}/ξₙ from 1/ρₙ = (2n−1)/x − ρ_{n-1}, ρ₀ = ξ₋₁/ξ₀ = i (upward,
 //     stable since ξ is the dominant solution).  Rₙ = R_{n-1} ρₙ/Pₙ with
 //     R₀ = ψ₀/ξ₀ = sin²x + i sin x cos x.  No ψ₁ = sin x/x − cos x anywhere,
 //     and Gₙ + n/x = ρₙ is never formed by subtraction.
-//   * Absorption: Re aₙ − |aₙ|² = −Im(T) / (|ξₙ|² |T − Gₙ|²) with T = Dₙ(mx)/m
-//     (bₙ: T = m Dₙ(mx)), from the Wronskian ψₙ'χₙ − ψₙχₙ' = 1.  Summing this
-//     gives Qabs to full relative accuracy even when Qabs ≪ Qsca, where
-//     Qext − Qsca would cancel.  1/|ξₙ|² = Π|ρ_k|² (|ξ₀| = 1) is carried as a
-//     product, so it underflows harmlessly instead of overflowing.
+//   * Absorption (trap weak-absorption): Re aₙ − |aₙ|² = −Im(T) / (|ξₙ|²
+//     |T − Gₙ|²) with T = Dₙ(mx)/m (bₙ: T = m Dₙ(mx)), from the Wronskian
+//     ψₙ'χₙ − ψₙχₙ' = 1.  Summing this gives Qabs to full relative accuracy
+//     even when Qabs ≪ Qsca, where Qext − Qsca would cancel.  1/|ξₙ|² =
+//     Π|ρ_k|² (|ξ₀| = 1) is carried as a product, so it underflows harmlessly
+//     instead of overflowing.
 //   * Dₙ(mx): downward from a Lentz start (log_derivative.hpp, with the Δ
-//     difference for trap 4), or — when the continued fraction would need far
-//     more steps than the series has terms and the upward recurrence is
-//     provably stable — upward from cot(mx); see choose_method().
+//     difference for trap m-near-1), or — when the continued fraction would
+//     need far more steps than the series has terms and the upward recurrence
+//     is provably stable — upward from cot(mx); see choose_method().
 //   * Sums are compensated (Kahan) so that 1e6 terms of alternating sign
 //     (Qback, g) keep their digits.
+//
+// The Mie traps: numerical pitfalls, each seen in widely used Mie codes, that
+// this core is built to avoid.  Comments and tests refer to them by name
+// ("trap m-near-1"); tests/mie/test_mie_traps.cpp holds one test per trap
+// against the 50-digit referee.
+//   truncation          Stopping at Wiscombe's N = x + 4.05 x^{1/3} + 2 leaves
+//                       ~1e-10 in Qext and up to ~1e-5 in Qback; the series is
+//                       summed until the terms stop changing the sums.
+//   start-value         Dₙ(mx) downward from an arbitrary start (0 at
+//                       max(N, |mx|) + 15) is not forgotten for large, weakly
+//                       absorbing spheres; every downward recurrence starts
+//                       from Lentz's continued fraction (lentz.hpp).
+//   upward-instability  Dₙ(mx) upward from cot(mx) amplifies rounding errors by
+//                       ~exp(N² Im z/|z|²) and is unstable for n > |z|; it is
+//                       used only where choose_method() proves it stable.
+//   small-x             ψ₁(x) = sin x/x − cos x and the leading 1/x terms of
+//                       m Dₙ(mx) − Dₙ(x) cancel catastrophically for x ≪ 1
+//                       (negative Qext below x ≈ 3e-3 in one code); only
+//                       ratios yₙ = ψₙ₊₁/ψₙ appear, with (n+1)/x removed exactly.
+//   m-near-1            The numerators of aₙ, bₙ and m² − 1 are O(m − 1) and
+//                       cancel as m → 1; the difference δₙ = yₙ(mx) − yₙ(x)
+//                       has its own recurrence (log_derivative.hpp).
+//   psi-zero            Near a zero of ψₙ(x) the ratio ψₙ₊₁/ψₙ is formed by
+//                       cancellation and yₙ(mx) − yₙ(x) loses digits; such
+//                       entries are stored as values, and the recurrences run
+//                       in extended precision (see Options::precision).
+//   large-kx            ψₙ(mx) ~ e^{kx} overflows for large k x unless only
+//                       ratios appear (they do everywhere here).
+//   weak-absorption     Qabs = Qext − Qsca loses all digits when Qabs ≪ Qsca;
+//                       Qabs is a sum of its own, from the Wronskian.
+//   back-cancellation   Qback is an alternating sum that cancels by ~x, so it
+//                       amplifies the accumulated rounding of the recurrences
+//                       (and the phase error of k/z, see ScaledInverse).
 #pragma once
 
 #include <algorithm>
@@ -127,7 +161,7 @@ DMethod choose_method(double x, std::complex<double> m, std::size_t N) {
 // ρₙ, Rₙ, 1/|ξₙ|², upward Dₙ), whose rounding errors accumulate like √N·ε;
 // Real: the type of each term's own arithmetic (aₙ, bₙ, sums), whose errors do
 // not accumulate.  The double product uses Work = long double above
-// Options::extended_above (see Working in mie.hpp).
+// Options::extended_above (see Options::precision in mie.hpp).
 template <class Real, class Work = Real>
 Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& extras,
                             const Options& options) {
@@ -177,7 +211,7 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
   const ScaledInverse<Real> over_x(x);
   const ScaledInverseComplex<Real, C> over_mx(x, m);
   const C m_minus_1 = m - C(Real(1));
-  const C m2_minus_1_over_m = m_minus_1 * (m + C(Real(1))) * recip(m);  // (m²−1)/m, trap 4
+  const C m2_minus_1_over_m = m_minus_1 * (m + C(Real(1))) * recip(m);  // (m²−1)/m, trap m-near-1
   const double tol = std::exp(-tail_log_tolerance<Real>());
   KahanSum<Real> ext, sca, abs_, back_re, back_im, g_re;
   const ScaledInverse<Work> over_xw(xw);
@@ -206,7 +240,7 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
       b = R;
     } else {
       // Dₙ(mx) − m Dₙ(x) and m Dₙ(mx) − Dₙ(x), with (n+1)/x removed exactly;
-      // through δ = yₙ(mx) − yₙ(x) when it is stored (trap 4), else directly.
+      // through δ = yₙ(mx) − yₙ(x) when it is stored (trap m-near-1), else directly.
       const C c_n = m2_minus_1_over_m * over_x(rn + 1);  // (m²−1)(n+1)/(m x)
       C ymx, num_a, num_b;
       if (slot == Slot::difference && !is_value[n]) {
