@@ -5,24 +5,35 @@
 //   wiscombe      attenuvis with Wiscombe's term count N = x + 4.05 x^(1/3) + 2
 //   conventional  a textbook Bohren–Huffman double loop (Wiscombe's N, D_n downward
 //                 from |mx| + 15), see mie_conventional.hpp — not MIEV0 itself
+//   double        attenuvis with Precision::double_precision (the fast mode)
 // The last column is default time / conventional time, both measured in this run.
 //
-// Usage: mie_error_vs_time [out.csv] [--quick] [--max-x X]
-//   out.csv   default out/mie_error_vs_time.csv (written atomically)
-//   --quick   stop at x = 1e4 (a few seconds); the full table needs the 50-digit
-//             referee at x = 1e5 and 1e6, about 30 s per m at 1e6.
+// With --baseline LIB it then times the default mode against an earlier build
+// of the core (LIB from validation/bench/baseline/build_mie_baseline.sh, by
+// default commit 78ee94c), interleaved in the same run, and prints the
+// speed-up per x and index (see attenuvis/validation/mie_baseline.hpp).
+//
+// Usage: mie_error_vs_time [out.csv] [--quick] [--max-x X] [--baseline LIB] [--speed-only]
+//   out.csv       default out/mie_error_vs_time.csv (written atomically)
+//   --quick       stop at x = 1e4 (a few seconds); the full table needs the 50-digit
+//                 referee at x = 1e5 and 1e6, about 30 s per m at 1e6.
+//   --speed-only  skip the error-vs-time table (with --baseline)
+#include <algorithm>
 #include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <string>
 
 #include "attenuvis/validation/mie_accuracy.hpp"
+#include "attenuvis/validation/mie_baseline.hpp"
 
 int main(int argc, char** argv) {
   using namespace attenuvis::validation;
   try {
     std::string out = "out/mie_error_vs_time.csv";
     ErrorTimeOptions options;
+    std::string baseline_path;
+    bool speed_only = false;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       if (a == "--quick") {
@@ -31,21 +42,39 @@ int main(int argc, char** argv) {
         if (keep < options.max_x) options.max_x = keep;
       } else if (a == "--max-x" && i + 1 < argc) {
         options.max_x = std::stod(argv[++i]);
+      } else if (a == "--baseline" && i + 1 < argc) {
+        baseline_path = argv[++i];
+      } else if (a == "--speed-only") {
+        speed_only = true;
       } else if (!a.empty() && a[0] == '-') {
         std::cerr << "mie_error_vs_time: unknown option " << a
-                  << "\nusage: mie_error_vs_time [out.csv] [--quick] [--max-x X]\n";
+                  << "\nusage: mie_error_vs_time [out.csv] [--quick] [--max-x X] [--baseline LIB] [--speed-only]\n";
         return 2;
       } else {
         out = a;
       }
     }
-    const auto rows = mie_error_vs_time(options);
-    std::cout << "Mie error against run time (" << timing_machine_description() << ")\n"
-              << "error: max over Qext, Qsca, Qabs, g, Qback of |q - q_ref| / max(|q_ref|, 1e-4 Qext)"
-                 " against the 50-digit referee\n\n"
-              << format_error_vs_time(rows);
-    write_error_vs_time_csv(out, rows);
-    std::cout << "\nwrote " << out << "\n";
+    if (speed_only && baseline_path.empty()) {
+      std::cerr << "mie_error_vs_time: --speed-only needs --baseline LIB\n";
+      return 2;
+    }
+    std::cout << "Mie core timings (" << timing_machine_description() << ")\n";
+    if (!speed_only) {
+      const auto rows = mie_error_vs_time(options);
+      std::cout << "\nerror: max over Qext, Qsca, Qabs, g, Qback of |q - q_ref| / max(|q_ref|, 1e-4 Qext)"
+                   " against the 50-digit referee\n\n"
+                << format_error_vs_time(rows);
+      write_error_vs_time_csv(out, rows);
+      std::cout << "\nwrote " << out << "\n";
+    }
+    if (!baseline_path.empty()) {
+      const MieBaseline baseline(baseline_path);
+      SpeedOptions speed;
+      speed.xs.erase(std::remove_if(speed.xs.begin(), speed.xs.end(), [&](double x) { return x > options.max_x; }),
+                     speed.xs.end());
+      std::cout << "\nper call, default accuracy, against " << baseline_path << "\n"
+                << format_speed_vs_baseline(mie_speed_vs_baseline(baseline, speed), "baseline");
+    }
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "mie_error_vs_time: error: " << e.what() << "\n";

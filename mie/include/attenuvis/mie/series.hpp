@@ -91,23 +91,41 @@ struct KahanSum {
 };
 
 // −ln of the relative size of the last term kept: the series stops once a
-// term is below 1e-4·ε of the sums.
+// term is below 1e-4·ε of the sums.  Computed once per type (a log per call
+// was measurable at x ~ 0.1).
 template <class Real>
 double tail_log_tolerance() {
-  using std::log;
-  return -std::log(static_cast<double>(std::numeric_limits<Real>::epsilon())) + 9.3;
+  static const double L = -std::log(static_cast<double>(std::numeric_limits<Real>::epsilon())) + 9.3;
+  return L;
+}
+
+// Coefficient c of the Airy tail n − x = c x^{1/3} below; 20% margin.
+template <class Real>
+double airy_tail_coefficient() {
+  static const double c = 1.2 * std::pow(0.75 * tail_log_tolerance<Real>(), 2.0 / 3.0) / std::cbrt(2.0);
+  return c;
 }
 
 // Upper bound on the number of terms the converged rule may need.  Beyond
 // n ≈ x the terms fall like the square of an Airy function,
 // exp(−(4/3) s^{3/2}) with s = (n−x)(2/x)^{1/3}; solving for a term ratio
-// e^{−L} gives n − x = (3L/4)^{2/3} (x/2)^{1/3}.  We allocate 20% more, plus
+// e^{−L} gives n − x = (3L/4)^{2/3} (x/2)^{1/3}.  We allow 20% more, plus
 // L/2 terms for x ≲ 1 where the asymptotics do not yet hold.
 template <class Real>
 std::size_t max_terms(double x) {
-  const double L = tail_log_tolerance<Real>();
-  const double c = 1.2 * std::pow(0.75 * L, 2.0 / 3.0) / std::cbrt(2.0);
-  return static_cast<std::size_t>(x + c * std::cbrt(x) + 0.5 * L) + 1;
+  return static_cast<std::size_t>(x + airy_tail_coefficient<Real>() * std::cbrt(x) +
+                                  0.5 * tail_log_tolerance<Real>()) + 1;
+}
+
+// First table length tried by the converged rule: the same Airy bound with 6
+// instead of L/2 spare terms.  For x ≲ 1 the series needs far fewer terms than
+// max_terms (9 instead of 28 at x = 0.1 in double), and the downward pass over
+// the unused ones cost as much as the series.  Lentz's start is exact at any
+// index, so a table that turns out too short is simply redone at max_terms.
+template <class Real>
+std::size_t first_terms(double x) {
+  return std::min(max_terms<Real>(x),
+                  static_cast<std::size_t>(x + airy_tail_coefficient<Real>() * std::cbrt(x) + 6.0) + 1);
 }
 
 inline std::size_t wiscombe_term_count(double x) {
@@ -144,7 +162,7 @@ enum class DMethod { downward, upward };
 template <class Real, class C>
 DMethod choose_method(double x, std::complex<double> m, std::size_t N) {
   const std::complex<double> z = m * x;
-  const double az = std::abs(z);
+  const double az = std::sqrt(norm2(z));
   const double n = static_cast<double>(N);
   if (az <= n) return DMethod::downward;
   const double b = z.imag();
@@ -156,70 +174,106 @@ DMethod choose_method(double x, std::complex<double> m, std::size_t N) {
   return E <= 3.0 ? DMethod::upward : DMethod::downward;
 }
 
-// The series.  pec: perfectly conducting sphere (m ignored).
-// Work: the type of the recurrences that run over all n (yₙ(x), yₙ(mx), δₙ,
-// ρₙ, Rₙ, 1/|ξₙ|², upward Dₙ), whose rounding errors accumulate like √N·ε;
-// Real: the type of each term's own arithmetic (aₙ, bₙ, sums), whose errors do
-// not accumulate.  The double product uses Work = long double above
-// Options::extended_above (see Options::precision in mie.hpp).
-template <class Real, class Work = Real>
-Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& extras,
-                            const Options& options) {
+// Per-thread tables of the downward pass, reused between calls: a fresh
+// ~33·N-byte allocation per call costs more in page faults than the series
+// itself for x ≳ 1e4.  Tables above 8 MB (x ≳ 2.5e5) are given back after
+// each call so a single x = 1e6 call does not pin 33 MB per thread (see
+// scratch.hpp).
+template <class Work>
+struct DownwardTables {
+  Scratch<Work> y;
+  Scratch<typename SlotStore<Work>::type> w;
+  Scratch<unsigned char> is_value;
+  void release_large() {
+    constexpr std::size_t kKeep = std::size_t(8) << 20;
+    if (y.capacity_bytes() > kKeep) y.release();
+    if (is_value.capacity_bytes() > kKeep) is_value.release();
+    if (w.capacity_bytes() > kKeep) w.release();
+  }
+};
+
+// Amplitudes S1, S2 at the requested angles, accumulated term by term
+// (B&H 4.74 with πₙ, τₙ from B&H 4.47).
+template <class Real>
+class AngularSums {
+ public:
+  using C = Complex<Real>;
+  AngularSums(const std::vector<double>& angles_deg, Scattering<Real>& out) : out_(out) {
+    const std::size_t na = angles_deg.size();
+    mu_.resize(na);
+    pi_prev_.assign(na, Real(0));
+    pi_cur_.assign(na, Real(1));
+    for (std::size_t j = 0; j < na; ++j) mu_[j] = boost::math::cos_pi(Real(angles_deg[j]) / Real(180));
+    out_.s1.assign(na, C(Real(0)));
+    out_.s2.assign(na, C(Real(0)));
+  }
+  void add(std::size_t n, const C& a, const C& b) {
+    const Real rn = Real(n), f = Real(2 * n + 1) / (rn * (rn + 1));
+    for (std::size_t j = 0; j < mu_.size(); ++j) {
+      Real pi_n = pi_cur_[j];
+      if (n >= 2) {
+        pi_n = (Real(2 * n - 1) * mu_[j] * pi_cur_[j] - rn * pi_prev_[j]) / Real(n - 1);
+        pi_prev_[j] = pi_cur_[j];
+        pi_cur_[j] = pi_n;
+      }
+      const Real tau = rn * mu_[j] * pi_n - (rn + 1) * pi_prev_[j];
+      const C fa = a * f, fb = b * f;
+      out_.s1[j] += fa * pi_n + fb * tau;
+      out_.s2[j] += fa * tau + fb * pi_n;
+    }
+  }
+
+ private:
+  Scattering<Real>& out_;
+  std::vector<Real> mu_, pi_prev_, pi_cur_;
+};
+
+// One summation of the series from tables of N + 1 entries into `out`.
+// Returns false if the converged rule asked for more than N terms.
+template <class Real, class Work>
+bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& extras, bool converged_rule,
+                std::size_t N, DMethod method, Slot slot, Scattering<Real>& out) {
   using C = Complex<Real>;
   using CW = Complex<Work>;
-  const Work xw = static_cast<Work>(x);
-  const CW mw(static_cast<Work>(m.real()), static_cast<Work>(m.imag()));
   using std::cos;
   using std::sin;
+  const Work xw = static_cast<Work>(x);
+  const CW mw(static_cast<Work>(m.real()), static_cast<Work>(m.imag()));
   const double xd = static_cast<double>(x);
-  const std::complex<double> md(static_cast<double>(m.real()), static_cast<double>(m.imag()));
-  const bool converged_rule = options.terms == TermRule::converged;
-  const std::size_t N = converged_rule ? max_terms<Real>(xd) : std::max<std::size_t>(1, wiscombe_term_count(xd));
 
   // yₙ(x) and, in w, δₙ or yₙ(mx) (log_derivative.hpp).
-  const DMethod method = pec ? DMethod::downward : choose_method<Real, C>(xd, md, N);
-  Slot slot = Slot::none;
-  if (!pec && method == DMethod::downward) slot = std::abs(md - 1.0) < 0.5 ? Slot::difference : Slot::value;
-  // Per-thread buffers, reused between calls: a fresh ~33·N-byte allocation
-  // per call costs more in page faults than the series itself for x ≳ 1e4.
-  // Buffers above 8 MB (x ≳ 2.5e5) are given back so a single x = 1e6 call
-  // does not pin 33 MB per thread (see scratch.hpp).
-  thread_local Scratch<Work> y;
-  thread_local Scratch<typename SlotStore<Work>::type> w;
-  thread_local Scratch<unsigned char> is_value;
+  thread_local DownwardTables<Work> tables;
   struct Release {
-    ~Release() {
-      constexpr std::size_t kKeep = std::size_t(8) << 20;
-      if (y.capacity_bytes() > kKeep) y.release();
-      if (is_value.capacity_bytes() > kKeep) is_value.release();
-      if (w.capacity_bytes() > kKeep) w.release();
-    }
-  } release_large_buffers;
-  downward_ratios<Work, CW>(xw, mw, N, slot, y, w, is_value);
+    DownwardTables<Work>& t;
+    ~Release() { t.release_large(); }
+  } release_large_tables{tables};
+  const auto& y = tables.y;
+  const auto& w = tables.w;
+  const auto& is_value = tables.is_value;
+  downward_ratios<Work, CW>(xw, mw, N, slot, tables.y, tables.w, tables.is_value);
   UpwardLogDerivative<Work, CW> upward(xw, mw, method == DMethod::upward);
 
-  Scattering<Real> out;
+  out = Scattering<Real>{};
   out.angles_deg = extras.angles_deg;
-  const std::size_t na = extras.angles_deg.size();
-  std::vector<Real> mu(na), pi_prev(na, Real(0)), pi_cur(na, Real(1));
-  for (std::size_t j = 0; j < na; ++j)
-    mu[j] = boost::math::cos_pi(Real(extras.angles_deg[j]) / Real(180));
-  out.s1.assign(na, C(Real(0)));
-  out.s2.assign(na, C(Real(0)));
+  AngularSums<Real> angular(extras.angles_deg, out);
+  const bool any_angle = !extras.angles_deg.empty();
 
   const Real inv_x = Real(1) / x;
   const ScaledInverse<Real> over_x(x);
   const ScaledInverseComplex<Real, C> over_mx(x, m);
   const C m_minus_1 = m - C(Real(1));
   const C m2_minus_1_over_m = m_minus_1 * (m + C(Real(1))) * recip(m);  // (m²−1)/m, trap m-near-1
-  const double tol = std::exp(-tail_log_tolerance<Real>());
+  static const double tol_d = std::exp(-tail_log_tolerance<Real>());
+  const Real tol(tol_d);
   KahanSum<Real> ext, sca, abs_, back_re, back_im, g_re;
   const ScaledInverse<Work> over_xw(xw);
   const ScaledInverseComplex<Work, CW> over_mxw(xw, mw);
   CW rho_w(Work(0), Work(1));                      // ρ₀ = ξ₋₁/ξ₀ = i
-  CW R_w(sin(xw) * sin(xw), sin(xw) * cos(xw));    // R₀ = ψ₀/ξ₀
+  const Work sx = sin(xw), cx = cos(xw);
+  CW R_w(sx * sx, sx * cx);                        // R₀ = ψ₀/ξ₀
   Work s_w(1);                                     // 1/|ξ₀|²
   C a_prev(Real(0)), b_prev(Real(0));
+  bool converged = !converged_rule;
   std::size_t n = 1;
   for (; n <= N; ++n) {
     const Real rn = Real(n);
@@ -294,26 +348,15 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
       out.a.push_back(a);
       out.b.push_back(b);
     }
-    if (na > 0) {
-      const Real f = wn / (rn * (rn + 1));
-      for (std::size_t j = 0; j < na; ++j) {
-        Real pi_n = pi_cur[j];
-        if (n >= 2) {
-          pi_n = (Real(2 * n - 1) * mu[j] * pi_cur[j] - rn * pi_prev[j]) / Real(n - 1);
-          pi_prev[j] = pi_cur[j];
-          pi_cur[j] = pi_n;
-        }
-        const Real tau = rn * mu[j] * pi_n - (rn + 1) * pi_prev[j];
-        const C fa = a * f, fb = b * f;
-        out.s1[j] += fa * pi_n + fb * tau;
-        out.s2[j] += fa * tau + fb * pi_n;
-      }
-    }
+    if (any_angle) angular.add(n, a, b);
     if (converged_rule && static_cast<double>(n) > xd) {
       using std::abs;
       const Real term = wn * (abs(a.real()) + abs(a.imag()) + abs(b.real()) + abs(b.imag()));
       const Real scale = (std::min)(abs(ext.sum), abs(back_re.sum) + abs(back_im.sum));
-      if (term <= Real(tol) * scale) break;
+      if (term <= tol * scale) {
+        converged = true;
+        break;
+      }
     }
   }
   if (n > N) n = N;
@@ -327,6 +370,40 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
   q.qback = (br * br + bi * bi) * inv_x * inv_x;
   q.g = ssum > 0 ? Real(2) * g_re.value() / ssum : Real(0);
   q.qpr = q.qext - q.g * q.qsca;
+  return converged;
+}
+
+// The series.  pec: perfectly conducting sphere (m ignored).
+// Work: the type of the recurrences that run over all n (yₙ(x), yₙ(mx), δₙ,
+// ρₙ, Rₙ, 1/|ξₙ|², upward Dₙ), whose rounding errors accumulate like √N·ε;
+// Real: the type of each term's own arithmetic (aₙ, bₙ, sums), whose errors do
+// not accumulate.  The double product chooses Work per call (see
+// Options::precision in mie.hpp and use_extended() in sphere_double.cpp).
+//
+// The converged rule first fills tables of first_terms(x) entries; in the
+// rare case the series has not converged by then, it is summed again from
+// tables of max_terms(x) entries (the previous bound, where it stops in any
+// case).
+template <class Real, class Work = Real>
+Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& extras,
+                            const Options& options) {
+  const double xd = static_cast<double>(x);
+  const std::complex<double> md(static_cast<double>(m.real()), static_cast<double>(m.imag()));
+  const bool converged_rule = options.terms == TermRule::converged;
+  const std::size_t n_max =
+      converged_rule ? max_terms<Real>(xd) : std::max<std::size_t>(1, wiscombe_term_count(xd));
+  // Dₙ(mx) upward or downward: decided for the longest table, so that the
+  // choice does not depend on the first guess.
+  const DMethod method = pec ? DMethod::downward : choose_method<Real, Complex<Real>>(xd, md, n_max);
+  Slot slot = Slot::none;
+  if (!pec && method == DMethod::downward) {
+    const std::complex<double> d = md - 1.0;
+    slot = norm2(d) < 0.25 ? Slot::difference : Slot::value;
+  }
+  Scattering<Real> out;
+  std::size_t N = converged_rule ? first_terms<Real>(xd) : n_max;
+  while (!sum_series<Real, Work>(x, m, pec, extras, converged_rule, N, method, slot, out) && N < n_max)
+    N = n_max;
   return out;
 }
 

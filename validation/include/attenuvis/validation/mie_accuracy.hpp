@@ -67,8 +67,9 @@ ErrorTimeOptions quick_error_time_options();
 struct ErrorTimeRow {
   double x = 0;
   std::complex<double> m;
-  /// "default", "wiscombe" (attenuvis with Wiscombe's term count), any faster
-  /// mode the core offers, and "conventional" (the textbook baseline).
+  /// "default", "double" (Precision::double_precision, the fast mode),
+  /// "wiscombe" (attenuvis with Wiscombe's term count) and "conventional"
+  /// (the textbook baseline).
   std::string mode;
   double ns_per_call = 0;     ///< median over the samples
   double max_rel_error = 0;   ///< against the 50-digit referee
