@@ -42,7 +42,7 @@ void check_m(std::complex<double> m) {
 // errors accumulate to ~√N·ε in every aₙ; Qback, an alternating sum that
 // cancels by a factor ~x, would be off by up to 1e-8 at x = 1e6 (trap
 // back-cancellation).
-constexpr double kDoubleUpTo = 1e3;
+constexpr double kDoubleUpTo = 1e4;
 constexpr double kNearOne = 1e-2;
 
 bool use_extended(double x, std::complex<double> m, bool pec, const Options& options) {

@@ -68,6 +68,7 @@
 #include <cstddef>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include <boost/math/special_functions/cos_pi.hpp>
@@ -182,11 +183,13 @@ DMethod choose_method(double x, std::complex<double> m, std::size_t N) {
 template <class Work>
 struct DownwardTables {
   Scratch<Work> y;
+  Scratch<Complex<Work>> rho;
   Scratch<typename SlotStore<Work>::type> w;
   Scratch<unsigned char> is_value;
   void release_large() {
     constexpr std::size_t kKeep = std::size_t(8) << 20;
     if (y.capacity_bytes() > kKeep) y.release();
+    if (rho.capacity_bytes() > kKeep) rho.release();
     if (is_value.capacity_bytes() > kKeep) is_value.release();
     if (w.capacity_bytes() > kKeep) w.release();
   }
@@ -248,10 +251,13 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
     ~Release() { t.release_large(); }
   } release_large_tables{tables};
   const auto& y = tables.y;
+  const auto& rho_table = tables.rho;
   const auto& w = tables.w;
   const auto& is_value = tables.is_value;
-  downward_ratios<Work, CW>(xw, mw, N, slot, tables.y, tables.w, tables.is_value);
-  UpwardLogDerivative<Work, CW> upward(xw, mw, method == DMethod::upward);
+  const ScaledInverse<Work> over_xw(xw);
+  const ScaledInverseComplex<Work, CW> over_mxw(xw, mw);
+  downward_ratios<Work, CW>(over_xw, over_mxw, mw, N, slot, tables.y, tables.rho, tables.w, tables.is_value);
+  UpwardLogDerivative<Work, CW> upward(xw, mw, over_mxw, method == DMethod::upward);
 
   out = Scattering<Real>{};
   out.angles_deg = extras.angles_deg;
@@ -259,26 +265,31 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   const bool any_angle = !extras.angles_deg.empty();
 
   const Real inv_x = Real(1) / x;
-  const ScaledInverse<Real> over_x(x);
-  const ScaledInverseComplex<Real, C> over_mx(x, m);
+  // k/x and k/(mx) for the terms (already built above when Real is Work).
+  const ScaledInverse<Real> over_x = [&] {
+    if constexpr (std::is_same_v<Real, Work>) return over_xw;
+    else return ScaledInverse<Real>(x);
+  }();
+  const ScaledInverseComplex<Real, C> over_mx = [&] {
+    if constexpr (std::is_same_v<Real, Work>) return over_mxw;
+    else return ScaledInverseComplex<Real, C>(x, m);
+  }();
   const C m_minus_1 = m - C(Real(1));
   const C m2_minus_1_over_m = m_minus_1 * (m + C(Real(1))) * recip(m);  // (m²−1)/m, trap m-near-1
   static const double tol_d = std::exp(-tail_log_tolerance<Real>());
   const Real tol(tol_d);
   KahanSum<Real> ext, sca, abs_, back_re, back_im, g_re;
-  const ScaledInverse<Work> over_xw(xw);
-  const ScaledInverseComplex<Work, CW> over_mxw(xw, mw);
-  CW rho_w(Work(0), Work(1));                      // ρ₀ = ξ₋₁/ξ₀ = i
   const Work sx = sin(xw), cx = cos(xw);
   CW R_w(sx * sx, sx * cx);                        // R₀ = ψ₀/ξ₀
   Work s_w(1);                                     // 1/|ξ₀|²
   C a_prev(Real(0)), b_prev(Real(0));
+  Real inv_n(1);  // 1/n
   bool converged = !converged_rule;
   std::size_t n = 1;
   for (; n <= N; ++n) {
     const Real rn = Real(n);
     const Real n_over_x = over_x(rn);
-    rho_w = recip(CW(over_xw(Work(2 * n - 1))) - rho_w);  // ρₙ = ξ_{n-1}/ξₙ
+    const CW& rho_w = rho_table[n];                        // ρₙ = ξ_{n-1}/ξₙ
     R_w = R_w * rho_w * y[n - 1];                          // Rₙ = R_{n-1} ρₙ ψₙ/ψ_{n-1}
     s_w *= norm2(rho_w);
     const C rho(static_cast<Real>(rho_w.real()), static_cast<Real>(rho_w.imag()));
@@ -334,14 +345,17 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
     const C ab = a - b;
     if (n % 2 == 0) { back_re.add(wn * ab.real()); back_im.add(wn * ab.imag()); }
     else { back_re.add(-wn * ab.real()); back_im.add(-wn * ab.imag()); }
-    // g (B&H 4.74): Σ n(n+2)/(n+1) Re(aₙa*ₙ₊₁ + bₙb*ₙ₊₁) + Σ (2n+1)/(n(n+1)) Re(aₙb*ₙ)
+    // g (B&H 4.74): Σ n(n+2)/(n+1) Re(aₙa*ₙ₊₁ + bₙb*ₙ₊₁) + Σ (2n+1)/(n(n+1)) Re(aₙb*ₙ),
+    // with k(k+2)/(k+1) = n − 1/n for k = n − 1 and (2n+1)/(n(n+1)) = 1/n + 1/(n+1):
+    // one division per term.
+    const Real inv_n1 = Real(1) / (rn + 1);
     if (n >= 2) {
-      const Real k = Real(n - 1);
       const Real cross = a_prev.real() * a.real() + a_prev.imag() * a.imag() +
                          b_prev.real() * b.real() + b_prev.imag() * b.imag();
-      g_re.add(k * (k + 2) / (k + 1) * cross);
+      g_re.add((rn - inv_n) * cross);
     }
-    g_re.add(wn / (rn * (rn + 1)) * (a.real() * b.real() + a.imag() * b.imag()));
+    g_re.add((inv_n + inv_n1) * (a.real() * b.real() + a.imag() * b.imag()));
+    inv_n = inv_n1;
     a_prev = a;
     b_prev = b;
     if (extras.coefficients) {
