@@ -76,6 +76,7 @@
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/log_derivative.hpp"
 #include "attenuvis/mie/scratch.hpp"
+#include "attenuvis/mie/term_block.hpp"
 
 namespace attenuvis::mie::detail {
 
@@ -231,8 +232,25 @@ class AngularSums {
   std::vector<Real> mu_, pi_prev_, pi_cur_;
 };
 
+// The per-block term loops: the run-time dispatched clones for double
+// (term_block_double.cpp), the templates otherwise.
+template <class Real>
+void block_terms(bool pec, const TermConstants<Real>& k, const TermInputs<Real>& in, std::size_t count,
+                 const Complex<Real>& a_prev, const Complex<Real>& b_prev, TermOutputs<Real>& out) {
+  if constexpr (std::is_same_v<Real, double>) {
+    if (pec) conductor_terms_double(k, in, count, out);
+    else sphere_terms_double(k, in, count, out);
+    sum_terms_double(in, count, a_prev, b_prev, out);
+  } else {
+    if (pec) conductor_terms(k, in, count, out);
+    else sphere_terms(k, in, count, out);
+    sum_terms(in, count, a_prev, b_prev, out);
+  }
+}
+
 // One summation of the series from tables of N + 1 entries into `out`.
 // Returns false if the converged rule asked for more than N terms.
+// Blocks of kTermBlock orders go through the three passes of term_block.hpp.
 template <class Real, class Work>
 bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& extras, bool converged_rule,
                 std::size_t N, DMethod method, Slot slot, Scattering<Real>& out) {
@@ -244,7 +262,7 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   const CW mw(static_cast<Work>(m.real()), static_cast<Work>(m.imag()));
   const double xd = static_cast<double>(x);
 
-  // yₙ(x) and, in w, δₙ or yₙ(mx) (log_derivative.hpp).
+  // yₙ(x), ρₙ and, in w, δₙ or yₙ(mx) (log_derivative.hpp).
   thread_local DownwardTables<Work> tables;
   struct Release {
     DownwardTables<Work>& t;
@@ -264,119 +282,103 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   AngularSums<Real> angular(extras.angles_deg, out);
   const bool any_angle = !extras.angles_deg.empty();
 
-  const Real inv_x = Real(1) / x;
-  // k/x and k/(mx) for the terms (already built above when Real is Work).
-  const ScaledInverse<Real> over_x = [&] {
-    if constexpr (std::is_same_v<Real, Work>) return over_xw;
-    else return ScaledInverse<Real>(x);
-  }();
-  const ScaledInverseComplex<Real, C> over_mx = [&] {
-    if constexpr (std::is_same_v<Real, Work>) return over_mxw;
-    else return ScaledInverseComplex<Real, C>(x, m);
-  }();
+  // Constants of the term formulas; k/x and k/(mx) already built above when Real is Work.
   const C m_minus_1 = m - C(Real(1));
   const C m2_minus_1_over_m = m_minus_1 * (m + C(Real(1))) * recip(m);  // (m²−1)/m, trap m-near-1
+  const TermConstants<Real> constants{
+      m.real(), m.imag(), m_minus_1.real(), m_minus_1.imag(), m2_minus_1_over_m.real(), m2_minus_1_over_m.imag(),
+      [&] {
+        if constexpr (std::is_same_v<Real, Work>) return over_xw;
+        else return ScaledInverse<Real>(x);
+      }(),
+      [&] {
+        if constexpr (std::is_same_v<Real, Work>) return over_mxw;
+        else return ScaledInverseComplex<Real, C>(x, m);
+      }()};
   static const double tol_d = std::exp(-tail_log_tolerance<Real>());
   const Real tol(tol_d);
   KahanSum<Real> ext, sca, abs_, back_re, back_im, g_re;
   const Work sx = sin(xw), cx = cos(xw);
-  CW R_w(sx * sx, sx * cx);                        // R₀ = ψ₀/ξ₀
-  Work s_w(1);                                     // 1/|ξ₀|²
+  CW R_w(sx * sx, sx * cx);  // R₀ = ψ₀/ξ₀
+  Work s_w(1);               // 1/|ξ₀|²
   C a_prev(Real(0)), b_prev(Real(0));
-  Real inv_n(1);  // 1/n
-  bool converged = !converged_rule;
-  std::size_t n = 1;
-  for (; n <= N; ++n) {
-    const Real rn = Real(n);
-    const Real n_over_x = over_x(rn);
-    const CW& rho_w = rho_table[n];                        // ρₙ = ξ_{n-1}/ξₙ
-    R_w = R_w * rho_w * y[n - 1];                          // Rₙ = R_{n-1} ρₙ ψₙ/ψ_{n-1}
-    s_w *= norm2(rho_w);
-    const C rho(static_cast<Real>(rho_w.real()), static_cast<Real>(rho_w.imag()));
-    const C R(static_cast<Real>(R_w.real()), static_cast<Real>(R_w.imag()));
-    const Real s = static_cast<Real>(s_w);
-    const Real yx = static_cast<Real>(y[n]);
-    const Real dx = over_x(rn + 1) - yx;           // Dₙ(x)
-    const C G = rho - C(n_over_x);                   // Gₙ = ξₙ'/ξₙ
-    C a, b;
-    Real alpha(0), beta(0);
-    if (pec) {
-      a = R * C(dx) * recip(G);
-      b = R;
-    } else {
-      // Dₙ(mx) − m Dₙ(x) and m Dₙ(mx) − Dₙ(x), with (n+1)/x removed exactly;
-      // through δ = yₙ(mx) − yₙ(x) when it is stored (trap m-near-1), else directly.
-      const C c_n = m2_minus_1_over_m * over_x(rn + 1);  // (m²−1)(n+1)/(m x)
-      C ymx, num_a, num_b;
+  thread_local TermInputs<Real> in;
+  thread_local TermOutputs<Real> terms;
+  bool converged = !converged_rule, stopped = false;
+  std::size_t n_last = N;
+  for (std::size_t first = 1; first <= N && !stopped; first += kTermBlock) {
+    const std::size_t count = std::min(kTermBlock, N + 1 - first);
+    // Pass 1 (serial, working precision): Rₙ = R_{n-1} ρₙ ψₙ/ψ_{n-1}, sₙ, and
+    // each order's inputs.
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t n = first + i;
+      const CW& rho_w = rho_table[n];  // ρₙ = ξ_{n-1}/ξₙ
+      R_w = R_w * rho_w * y[n - 1];
+      s_w *= norm2(rho_w);
+      const Real yx = static_cast<Real>(y[n]);
+      in.rn[i] = Real(n);
+      in.yx[i] = yx;
+      in.R_re[i] = static_cast<Real>(R_w.real()), in.R_im[i] = static_cast<Real>(R_w.imag());
+      in.s[i] = static_cast<Real>(s_w);
+      in.rho_re[i] = static_cast<Real>(rho_w.real()), in.rho_im[i] = static_cast<Real>(rho_w.imag());
+      in.sign[i] = n % 2 == 0 ? Real(1) : Real(-1);
+      if (pec) continue;
       if (slot == Slot::difference && !is_value[n]) {
         const C dy(w[n].real(), w[n].imag());
-        ymx = C(yx) + dy;
-        num_a = m_minus_1 * yx - dy - c_n;
-        num_b = -(m * dy) - m_minus_1 * yx;
+        const C ymx = C(yx) + dy;
+        in.dy_re[i] = dy.real(), in.dy_im[i] = dy.imag();
+        in.ymx_re[i] = ymx.real(), in.ymx_im[i] = ymx.imag();
+        in.difference[i] = Real(1);
       } else {
+        C ymx;
         if (slot != Slot::none) {
           ymx = C(w[n].real(), w[n].imag());
         } else {
           const CW v = over_mxw(Work(n + 1)) - upward.next(n);
           ymx = C(static_cast<Real>(v.real()), static_cast<Real>(v.imag()));
         }
-        num_a = m * yx - ymx - c_n;
-        num_b = C(yx) - m * ymx;
-      }
-      const C dmx = over_mx(rn + 1) - ymx;        // Dₙ(mx)
-      const C my = m * ymx;
-      const C inv_da = recip(dmx - m * G);
-      const C inv_db = recip(C(over_x(Real(2 * n + 1))) - my - rho);  // m Dₙ(mx) − Gₙ
-      a = R * num_a * inv_da;
-      b = R * num_b * inv_db;
-      // Re aₙ − |aₙ|² = −Im(Dₙ(mx) m̄) s |inv_da|²;  Re bₙ − |bₙ|² = Im(m yₙ(mx)) s |inv_db|².
-      const Real im_t_a = dmx.imag() * m.real() - dmx.real() * m.imag();
-      alpha = -im_t_a * s * norm2(inv_da);
-      beta = my.imag() * s * norm2(inv_db);
-    }
-    const Real wn = Real(2 * n + 1);
-    // Re(aₙ+bₙ) = |aₙ|²+|bₙ|² + (αₙ+βₙ): two positive parts, so Qext keeps its
-    // relative accuracy even when it is as small as Qsca ~ x⁴(m−1)².
-    const Real sca_n = wn * (norm2(a) + norm2(b));
-    const Real abs_n = wn * (alpha + beta);
-    ext.add(sca_n + abs_n);
-    sca.add(sca_n);
-    abs_.add(abs_n);
-    const C ab = a - b;
-    if (n % 2 == 0) { back_re.add(wn * ab.real()); back_im.add(wn * ab.imag()); }
-    else { back_re.add(-wn * ab.real()); back_im.add(-wn * ab.imag()); }
-    // g (B&H 4.74): Σ n(n+2)/(n+1) Re(aₙa*ₙ₊₁ + bₙb*ₙ₊₁) + Σ (2n+1)/(n(n+1)) Re(aₙb*ₙ),
-    // with k(k+2)/(k+1) = n − 1/n for k = n − 1 and (2n+1)/(n(n+1)) = 1/n + 1/(n+1):
-    // one division per term.
-    const Real inv_n1 = Real(1) / (rn + 1);
-    if (n >= 2) {
-      const Real cross = a_prev.real() * a.real() + a_prev.imag() * a.imag() +
-                         b_prev.real() * b.real() + b_prev.imag() * b.imag();
-      g_re.add((rn - inv_n) * cross);
-    }
-    g_re.add((inv_n + inv_n1) * (a.real() * b.real() + a.imag() * b.imag()));
-    inv_n = inv_n1;
-    a_prev = a;
-    b_prev = b;
-    if (extras.coefficients) {
-      out.a.push_back(a);
-      out.b.push_back(b);
-    }
-    if (any_angle) angular.add(n, a, b);
-    if (converged_rule && static_cast<double>(n) > xd) {
-      using std::abs;
-      const Real term = wn * (abs(a.real()) + abs(a.imag()) + abs(b.real()) + abs(b.imag()));
-      const Real scale = (std::min)(abs(ext.sum), abs(back_re.sum) + abs(back_im.sum));
-      if (term <= tol * scale) {
-        converged = true;
-        break;
+        in.ymx_re[i] = ymx.real(), in.ymx_im[i] = ymx.imag();
+        in.dy_re[i] = Real(0), in.dy_im[i] = Real(0);
+        in.difference[i] = Real(0);
       }
     }
+    // Pass 2 (every order independently): aₙ, bₙ and their terms.
+    block_terms<Real>(pec, constants, in, count, a_prev, b_prev, terms);
+    // Pass 3 (serial): compensated sums, extras, convergence.
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t n = first + i;
+      ext.add(terms.ext[i]);
+      sca.add(terms.sca[i]);
+      abs_.add(terms.abs[i]);
+      back_re.add(terms.back_re[i]);
+      back_im.add(terms.back_im[i]);
+      // g (B&H 4.74): Σ n(n+2)/(n+1) Re(aₙa*ₙ₊₁ + bₙb*ₙ₊₁) + Σ (2n+1)/(n(n+1)) Re(aₙb*ₙ),
+      // with k(k+2)/(k+1) = n − 1/n for k = n − 1 and (2n+1)/(n(n+1)) = 1/n + 1/(n+1).
+      if (n >= 2) g_re.add(terms.g_cross[i]);
+      g_re.add(terms.g_self[i]);
+      const C a(terms.a_re[i], terms.a_im[i]), b(terms.b_re[i], terms.b_im[i]);
+      if (extras.coefficients) {
+        out.a.push_back(a);
+        out.b.push_back(b);
+      }
+      if (any_angle) angular.add(n, a, b);
+      if (converged_rule && static_cast<double>(n) > xd) {
+        using std::abs;
+        const Real scale = (std::min)(abs(ext.sum), abs(back_re.sum) + abs(back_im.sum));
+        if (terms.size[i] <= tol * scale) {
+          converged = stopped = true;
+          n_last = n;
+          break;
+        }
+      }
+    }
+    a_prev = C(terms.a_re[count - 1], terms.a_im[count - 1]);
+    b_prev = C(terms.b_re[count - 1], terms.b_im[count - 1]);
   }
-  if (n > N) n = N;
   Efficiencies<Real>& q = out.q;
+  const Real inv_x = Real(1) / x;
   const Real f = Real(2) * inv_x * inv_x;
-  q.terms = n;
+  q.terms = n_last;
   const Real br = back_re.value(), bi = back_im.value(), ssum = sca.value();
   q.qext = f * ext.value();
   q.qsca = f * ssum;
