@@ -161,7 +161,7 @@ void downward_ratios(const ScaledInverse<Real>& over_x, const ScaledInverseCompl
   if (slot == Slot::none) {
     for (std::size_t n = N;; --n) {
       y[n] = yx;
-      rho[N + 1 - n] = hankel.next(N + 1 - n, over_x);
+      store(rho[N + 1 - n], hankel.next(N + 1 - n, over_x));
       if (n == 0) break;
       Real den = over_x(Real(2 * n + 1)) - yx;
       avoid_zero<Real, Real>(den);
@@ -174,7 +174,7 @@ void downward_ratios(const ScaledInverse<Real>& over_x, const ScaledInverseCompl
   C d = yz - C(yx);
   for (std::size_t n = N;; --n) {
     y[n] = yx;
-    rho[N + 1 - n] = hankel.next(N + 1 - n, over_x);
+    store(rho[N + 1 - n], hankel.next(N + 1 - n, over_x));
     if (slot == Slot::difference) {
       const bool value = 64 * norm2(yz) < yx * yx;
       is_value[n] = value;

@@ -184,7 +184,7 @@ DMethod choose_method(double x, std::complex<double> m, std::size_t N) {
 template <class Work>
 struct DownwardTables {
   Scratch<Work> y;
-  Scratch<Complex<Work>> rho;
+  Scratch<StoredComplex<Work>> rho;
   Scratch<typename SlotStore<Work>::type> w;
   Scratch<unsigned char> is_value;
   void release_large() {
@@ -285,8 +285,10 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   // Constants of the term formulas; k/x and k/(mx) already built above when Real is Work.
   const C m_minus_1 = m - C(Real(1));
   const C m2_minus_1_over_m = m_minus_1 * (m + C(Real(1))) * recip(m);  // (m²−1)/m, trap m-near-1
+  const C m2_minus_1 = m_minus_1 * (m + C(Real(1)));
   const TermConstants<Real> constants{
       m.real(), m.imag(), m_minus_1.real(), m_minus_1.imag(), m2_minus_1_over_m.real(), m2_minus_1_over_m.imag(),
+      m2_minus_1.real(), m2_minus_1.imag(),
       [&] {
         if constexpr (std::is_same_v<Real, Work>) return over_xw;
         else return ScaledInverse<Real>(x);
@@ -297,7 +299,7 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
       }()};
   static const double tol_d = std::exp(-tail_log_tolerance<Real>());
   const Real tol(tol_d);
-  KahanSum<Real> ext, sca, abs_, back_re, back_im, g_re;
+  KahanSum<Real> ext, sca, abs_, back_re, back_im, g_cross, g_self;
   const Work sx = sin(xw), cx = cos(xw);
   CW R_w(sx * sx, sx * cx);  // R₀ = ψ₀/ξ₀
   Work s_w(1);               // 1/|ξ₀|²
@@ -312,7 +314,7 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
     // each order's inputs.
     for (std::size_t i = 0; i < count; ++i) {
       const std::size_t n = first + i;
-      const CW& rho_w = rho_table[n];  // ρₙ = ξ_{n-1}/ξₙ
+      const CW rho_w(rho_table[n].real(), rho_table[n].imag());  // ρₙ = ξ_{n-1}/ξₙ
       R_w = R_w * rho_w * y[n - 1];
       s_w *= norm2(rho_w);
       const Real yx = static_cast<Real>(y[n]);
@@ -354,8 +356,9 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
       back_im.add(terms.back_im[i]);
       // g (B&H 4.74): Σ n(n+2)/(n+1) Re(aₙa*ₙ₊₁ + bₙb*ₙ₊₁) + Σ (2n+1)/(n(n+1)) Re(aₙb*ₙ),
       // with k(k+2)/(k+1) = n − 1/n for k = n − 1 and (2n+1)/(n(n+1)) = 1/n + 1/(n+1).
-      if (n >= 2) g_re.add(terms.g_cross[i]);
-      g_re.add(terms.g_self[i]);
+      // Two sums, so that neither compensated chain waits for the other.
+      if (n >= 2) g_cross.add(terms.g_cross[i]);
+      g_self.add(terms.g_self[i]);
       const C a(terms.a_re[i], terms.a_im[i]), b(terms.b_re[i], terms.b_im[i]);
       if (extras.coefficients) {
         out.a.push_back(a);
@@ -384,7 +387,7 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   q.qsca = f * ssum;
   q.qabs = pec ? Real(0) : f * abs_.value();
   q.qback = (br * br + bi * bi) * inv_x * inv_x;
-  q.g = ssum > 0 ? Real(2) * g_re.value() / ssum : Real(0);
+  q.g = ssum > 0 ? Real(2) * (g_cross.value() + g_self.value()) / ssum : Real(0);
   q.qpr = q.qext - q.g * q.qsca;
   return converged;
 }

@@ -12,7 +12,8 @@
 //   3. serial: the compensated sums and the convergence test (series.hpp).
 // The formulas are those of series.hpp's header (B&H 4.88 in ratios), written
 // out in real and imaginary parts, in the same order of operations as the
-// one-order-at-a-time form they replace, so the results did not change.
+// one-order-at-a-time form they replace; only aₙ − bₙ (for Qback) has a
+// formula of its own (sphere_terms).
 #pragma once
 
 #include <cmath>
@@ -43,10 +44,11 @@ struct TermInputs {
 template <class Real>
 struct TermOutputs {
   Real a_re[kTermBlock], a_im[kTermBlock], b_re[kTermBlock], b_im[kTermBlock];
+  Real d_re[kTermBlock], d_im[kTermBlock];  // aₙ − bₙ, without cancellation (trap back-cancellation)
   Real ext[kTermBlock];      // (2n+1) Re(aₙ + bₙ), as |aₙ|²+|bₙ|² + (αₙ+βₙ)
   Real sca[kTermBlock];      // (2n+1)(|aₙ|² + |bₙ|²)
   Real abs[kTermBlock];      // (2n+1)(αₙ + βₙ)
-  Real back_re[kTermBlock], back_im[kTermBlock];  // (−1)ⁿ (2n+1)(aₙ − bₙ)
+  Real back_re[kTermBlock], back_im[kTermBlock];  // (−1)ⁿ (2n+1)(aₙ − bₙ), from d
   Real g_self[kTermBlock];   // (2n+1)/(n(n+1)) Re(aₙ b*ₙ)
   Real g_cross[kTermBlock];  // (n − 1/n) Re(aₙ₋₁a*ₙ + bₙ₋₁b*ₙ)  (n >= 2)
   Real size[kTermBlock];     // (2n+1)(|Re aₙ|+|Im aₙ|+|Re bₙ|+|Im bₙ|), for the convergence test
@@ -58,6 +60,7 @@ struct TermConstants {
   Real m_re, m_im;                      // m
   Real m1_re, m1_im;                    // m − 1
   Real c_re, c_im;                      // (m² − 1)/m  (trap m-near-1)
+  Real e_re, e_im;                      // m² − 1
   // k/x and k/(mx) (ScaledInverse, ScaledInverseComplex in log_derivative.hpp).
   ScaledInverse<Real> over_x;
   ScaledInverseComplex<Real, Complex<Real>> over_mx;
@@ -106,6 +109,18 @@ inline void sphere_terms(const TermConstants<Real>& k, const TermInputs<Real>& i
     const Real alpha = -im_t_a * in.s[i] * (iar * iar + iai * iai);
     const Real beta = myi * in.s[i] * (ibr * ibr + ibi * ibi);
     out.a_re[i] = ar, out.a_im[i] = ai, out.b_re[i] = br, out.b_im[i] = bi;
+    // aₙ − bₙ = Rₙ (m² − 1) Dₙ(mx) (Gₙ − Dₙ(x)) / ((Dₙ(mx) − m Gₙ)(m Dₙ(mx) − Gₙ)):
+    // the numerators' difference num_a·B − num_b·A factors exactly, so aₙ − bₙ
+    // keeps full relative accuracy where aₙ ≈ bₙ (m → 1, large x: there
+    // Qback ~ 1e-9 Qext comes from Σ(−1)ⁿ(2n+1)(aₙ − bₙ), and forming aₙ − bₙ
+    // by subtraction cost up to 9e-10 of Qback).  Gₙ − Dₙ(x) = ρₙ + yₙ(x) − (2n+1)/x.
+    const Real gdr = (in.rho_re[i] + yx) - w_over_x, gdi = in.rho_im[i];
+    const Real er = k.e_re, ei = k.e_im;
+    const Real p1r = Rr * er - Ri * ei, p1i = Rr * ei + Ri * er;            // R (m² − 1)
+    const Real p2r = p1r * dmr - p1i * dmi, p2i = p1r * dmi + p1i * dmr;    // · Dₙ(mx)
+    const Real p3r = p2r * gdr - p2i * gdi, p3i = p2r * gdi + p2i * gdr;    // · (Gₙ − Dₙ(x))
+    const Real p4r = p3r * iar - p3i * iai, p4i = p3r * iai + p3i * iar;    // / A
+    out.d_re[i] = p4r * ibr - p4i * ibi, out.d_im[i] = p4r * ibi + p4i * ibr;  // / B
     const Real wn = 2 * rn + 1;
     const Real sca = wn * ((ar * ar + ai * ai) + (br * br + bi * bi));
     const Real abs_n = wn * (alpha + beta);
@@ -127,6 +142,7 @@ inline void conductor_terms(const TermConstants<Real>& k, const TermInputs<Real>
     const Real igr = Gr * sg, igi = -Gi * sg;
     const Real ar = Rdr * igr - Rdi * igi, ai = Rdr * igi + Rdi * igr;
     out.a_re[i] = ar, out.a_im[i] = ai, out.b_re[i] = Rr, out.b_im[i] = Ri;
+    out.d_re[i] = ar - Rr, out.d_im[i] = ai - Ri;
     const Real wn = 2 * rn + 1;
     const Real sca = wn * ((ar * ar + ai * ai) + (Rr * Rr + Ri * Ri));
     out.sca[i] = sca, out.abs[i] = Real(0), out.ext[i] = sca;
@@ -142,8 +158,8 @@ inline void sum_terms(const TermInputs<Real>& in, std::size_t count, const Compl
   for (std::size_t i = 0; i < count; ++i) {
     const Real rn = in.rn[i], wn = 2 * rn + 1;
     const Real ar = out.a_re[i], ai = out.a_im[i], br = out.b_re[i], bi = out.b_im[i];
-    out.back_re[i] = in.sign[i] * wn * (ar - br);
-    out.back_im[i] = in.sign[i] * wn * (ai - bi);
+    out.back_re[i] = in.sign[i] * wn * out.d_re[i];
+    out.back_im[i] = in.sign[i] * wn * out.d_im[i];
     const Real inv_n = 1 / rn, inv_n1 = 1 / (rn + 1);
     out.g_self[i] = (inv_n + inv_n1) * (ar * br + ai * bi);
     out.g_cross[i] = rn - inv_n;  // times the cross product below
