@@ -31,25 +31,32 @@ void check_m(std::complex<double> m) {
 }
 
 // Where the recurrences need extended precision (Options::precision unset).
-// Double is enough, to the rounding level of the result, for every index the
-// stress grid holds (tests/mie/test_mie_referee.cpp) up to kDoubleUpTo, except
-// close to m = 1 (trap psi-zero, series.hpp): at a zero of ψₙ(x) the
-// difference recurrence for yₙ(mx) − yₙ(x) inherits the cancellation of
-// yₙ(x), and with |m − 1| <= 1e-6 the result misses 1e-10 by up to 3× in
-// double (measured at x = 4.4934…, 6.9879…, 15.03…, 41.9…), while at
-// |m − 1| = 1e-4 the double error is still below 1e-11.  Above kDoubleUpTo
-// the recurrences run through ~x oscillations and in double their rounding
-// errors accumulate to ~√N·ε in every aₙ; Qback, an alternating sum that
-// cancels by a factor ~x, would be off by up to 1e-8 at x = 1e6 (trap
-// back-cancellation).
+// Double is enough, to well within 1e-10 of the 50-digit referee, except:
+//  * above kDoubleUpTo: the recurrences run through ~x oscillations and in
+//    double their rounding errors accumulate to ~√N·ε in every aₙ; Qback, an
+//    alternating sum that cancels by ~x, is then off by ~1e-11 at x = 3e4 and
+//    1e5 (trap back-cancellation); at x = 1e4 the largest error over the 49
+//    indices of the stress grid is 1.2e-12.
+//  * |m − 1| < kPsiZero: at a zero of ψₙ(x) the difference recurrence for
+//    yₙ(mx) − yₙ(x) inherits the cancellation of yₙ(x) (trap psi-zero); the
+//    double error there grows like 1/|m − 1|: measured at the zeros of
+//    tests/mie/test_mie_referee.cpp, 8e-11 at |m − 1| = 1e-6, 8e-12 at 1e-5,
+//    6e-13 at 1e-4 (extended: 3e-13 throughout).
+//  * |m − 1| < kNearOne and x > kNearOneUpTo: there Qback ~ 1e-9 Qext, and its
+//    relative error in double grows with x: 1e-12 at x = 1e3, 1e-11 at 1e4
+//    (m = 1.001), against 4e-14 and 2e-13 with extended recurrences.
 constexpr double kDoubleUpTo = 1e4;
+constexpr double kPsiZero = 5e-5;
 constexpr double kNearOne = 1e-2;
+constexpr double kNearOneUpTo = 1e3;
 
 bool use_extended(double x, std::complex<double> m, bool pec, const Options& options) {
   if (options.precision) return *options.precision == Precision::extended;
   if (x <= options.extended_above) return false;
   if (x > kDoubleUpTo) return true;
-  return !pec && std::norm(m - 1.0) < kNearOne * kNearOne;
+  if (pec) return false;
+  const double d2 = std::norm(m - 1.0);
+  return d2 < kPsiZero * kPsiZero || (d2 < kNearOne * kNearOne && x > kNearOneUpTo);
 }
 
 }  // namespace
