@@ -4,9 +4,11 @@
 // only exported symbol is the C function attenuvis_mie_baseline_sphere.
 //
 // Timing: for each (x, m) the two cores are timed in alternating blocks of
-// calls (each block lasts at least min_block_seconds), and each core's time is
-// the minimum over the blocks.  On a shared machine the load changes from
-// block to block; alternating exposes both cores to the same load, and the
+// calls (each block lasts at least min_block_seconds of the thread's CPU
+// time), and each core's time is the minimum over the blocks.  On a shared
+// machine the load changes from block to block; CPU time leaves out the time
+// the thread waits for a core, alternating exposes both cores to the same
+// remaining interference (caches, the sibling hardware thread), and the
 // minimum is the block least disturbed by it.
 #pragma once
 
@@ -42,7 +44,7 @@ struct SpeedOptions {
   std::vector<double> xs = {0.1, 1, 10, 100, 1e3, 1e4, 1e5, 1e6};
   std::vector<std::complex<double>> ms = {{1.0001, 0.0}, {1.33, 1e-8}, {1.5, 0.1}, {10.0, 10.0}};
   double min_block_seconds = 2e-3;
-  int blocks = 9;  ///< per core, alternating
+  int blocks = 15;  ///< per core, alternating
   /// Error against the 50-digit referee is measured for x <= this (cost).
   double max_referee_x = 1e4;
 };
