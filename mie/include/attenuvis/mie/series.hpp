@@ -67,6 +67,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <type_traits>
 #include <vector>
@@ -114,20 +115,28 @@ double airy_tail_coefficient() {
 // e^{−L} gives n − x = (3L/4)^{2/3} (x/2)^{1/3}.  We allow 20% more, plus
 // L/2 terms for x ≲ 1 where the asymptotics do not yet hold.
 template <class Real>
-std::size_t max_terms(double x) {
-  return static_cast<std::size_t>(x + airy_tail_coefficient<Real>() * std::cbrt(x) +
-                                  0.5 * tail_log_tolerance<Real>()) + 1;
+std::size_t max_terms(double x, double cbrt_x) {
+  return static_cast<std::size_t>(x + airy_tail_coefficient<Real>() * cbrt_x + 0.5 * tail_log_tolerance<Real>()) +
+         1;
 }
 
 // First table length tried by the converged rule: the same Airy bound with 6
-// instead of L/2 spare terms.  For x ≲ 1 the series needs far fewer terms than
-// max_terms (9 instead of 28 at x = 0.1 in double), and the downward pass over
-// the unused ones cost as much as the series.  Lentz's start is exact at any
-// index, so a table that turns out too short is simply redone at max_terms.
+// instead of L/2 spare terms, and for x < 1 the small-x bound below.  For
+// x ≲ 1 the series needs far fewer terms than max_terms (9 instead of 28 at
+// x = 0.1 in double), and the downward pass over the unused ones cost as much
+// as the series.  Lentz's start is exact at any index, so a table that turns
+// out too short is simply redone at max_terms.
+// Small x: successive terms fall by about (x/2)², so a term ratio e^{−L} is
+// reached 1 + L/(2 ln(2/x)) orders in; two spare orders.
 template <class Real>
-std::size_t first_terms(double x) {
-  return std::min(max_terms<Real>(x),
-                  static_cast<std::size_t>(x + airy_tail_coefficient<Real>() * std::cbrt(x) + 6.0) + 1);
+std::size_t first_terms(double x, double cbrt_x) {
+  const std::size_t airy = static_cast<std::size_t>(x + airy_tail_coefficient<Real>() * cbrt_x + 6.0) + 1;
+  std::size_t n = std::min(max_terms<Real>(x, cbrt_x), airy);
+  if (x < 1) {
+    const double small = 3.0 + tail_log_tolerance<Real>() / (2.0 * std::log(2.0 / x));
+    n = std::min(n, static_cast<std::size_t>(small) + 1);
+  }
+  return n;
 }
 
 inline std::size_t wiscombe_term_count(double x) {
@@ -279,8 +288,9 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
 
   out = Scattering<Real>{};
   out.angles_deg = extras.angles_deg;
-  AngularSums<Real> angular(extras.angles_deg, out);
   const bool any_angle = !extras.angles_deg.empty();
+  std::optional<AngularSums<Real>> angular;
+  if (any_angle) angular.emplace(extras.angles_deg, out);
 
   // Constants of the term formulas; k/x and k/(mx) already built above when Real is Work.
   const C m_minus_1 = m - C(Real(1));
@@ -344,8 +354,13 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
         in.difference[i] = Real(0);
       }
     }
-    // Pass 2 (every order independently): aₙ, bₙ and their terms.
-    block_terms<Real>(pec, constants, in, count, a_prev, b_prev, terms);
+    // Pass 2 (every order independently): aₙ, bₙ and their terms.  The count
+    // is padded to a multiple of 8 with copies of the last order, so that a
+    // short block (small x) runs in vector lanes too instead of a scalar
+    // remainder loop; the padded entries are not summed.
+    const std::size_t padded = std::min(kTermBlock, (count + 7) / 8 * 8);
+    for (std::size_t i = count; i < padded; ++i) in.copy_entry(count - 1, i);
+    block_terms<Real>(pec, constants, in, padded, a_prev, b_prev, terms);
     // Pass 3 (serial): compensated sums, extras, convergence.
     for (std::size_t i = 0; i < count; ++i) {
       const std::size_t n = first + i;
@@ -364,7 +379,7 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
         out.a.push_back(a);
         out.b.push_back(b);
       }
-      if (any_angle) angular.add(n, a, b);
+      if (any_angle) angular->add(n, a, b);
       if (converged_rule && static_cast<double>(n) > xd) {
         using std::abs;
         const Real scale = (std::min)(abs(ext.sum), abs(back_re.sum) + abs(back_im.sum));
@@ -409,8 +424,9 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
   const double xd = static_cast<double>(x);
   const std::complex<double> md(static_cast<double>(m.real()), static_cast<double>(m.imag()));
   const bool converged_rule = options.terms == TermRule::converged;
+  const double cbrt_x = std::cbrt(xd);
   const std::size_t n_max =
-      converged_rule ? max_terms<Real>(xd) : std::max<std::size_t>(1, wiscombe_term_count(xd));
+      converged_rule ? max_terms<Real>(xd, cbrt_x) : std::max<std::size_t>(1, wiscombe_term_count(xd));
   // Dₙ(mx) upward or downward: decided for the longest table, so that the
   // choice does not depend on the first guess.
   const DMethod method = pec ? DMethod::downward : choose_method<Real, Complex<Real>>(xd, md, n_max);
@@ -420,7 +436,7 @@ Scattering<Real> mie_series(const Real& x, const Complex<Real>& m, bool pec, con
     slot = norm2(d) < 0.25 ? Slot::difference : Slot::value;
   }
   Scattering<Real> out;
-  std::size_t N = converged_rule ? first_terms<Real>(xd) : n_max;
+  std::size_t N = converged_rule ? first_terms<Real>(xd, cbrt_x) : n_max;
   while (!sum_series<Real, Work>(x, m, pec, extras, converged_rule, N, method, slot, out) && N < n_max)
     N = n_max;
   return out;

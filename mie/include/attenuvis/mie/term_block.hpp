@@ -26,6 +26,14 @@ namespace attenuvis::mie::detail {
 
 constexpr std::size_t kTermBlock = 64;
 
+// The loops below are inlined into each instruction-set clone of
+// term_block_double.cpp; a call to one shared copy would run its SSE2 code.
+#if defined(__GNUC__)
+#define ATTENUVIS_MIE_INLINE inline __attribute__((always_inline))
+#else
+#define ATTENUVIS_MIE_INLINE inline
+#endif
+
 // Inputs of one block, one entry per order n = first + i.
 template <class Real>
 struct TermInputs {
@@ -38,6 +46,10 @@ struct TermInputs {
   Real dy_re[kTermBlock], dy_im[kTermBlock];    // δₙ = yₙ(mx) − yₙ(x) where `difference`
   Real difference[kTermBlock];          // 1: numerators from δₙ (trap m-near-1); 0: from yₙ(mx)
   Real sign[kTermBlock];                // (−1)ⁿ
+  void copy_entry(std::size_t from, std::size_t to) {
+    for (Real* a : {rn, yx, R_re, R_im, s, rho_re, rho_im, ymx_re, ymx_im, dy_re, dy_im, difference, sign})
+      a[to] = a[from];
+  }
 };
 
 // Outputs: the coefficients and each order's term of every sum.
@@ -70,7 +82,7 @@ struct TermConstants {
 // Real-and-imaginary arithmetic in the order of the complex expressions
 //   a = R·num_a·(1/(Dₙ(mx) − m Gₙ)),   b = R·num_b·(1/(m Dₙ(mx) − Gₙ)).
 template <class Real>
-inline void sphere_terms(const TermConstants<Real>& k, const TermInputs<Real>& in, std::size_t count,
+ATTENUVIS_MIE_INLINE void sphere_terms(const TermConstants<Real>& k, const TermInputs<Real>& in, std::size_t count,
                          TermOutputs<Real>& out) {
   const Real mr = k.m_re, mi = k.m_im, m1r = k.m1_re, m1i = k.m1_im, cr = k.c_re, ci = k.c_im;
 #if defined(__GNUC__) && !defined(__clang__)
@@ -130,7 +142,7 @@ inline void sphere_terms(const TermConstants<Real>& k, const TermInputs<Real>& i
 
 // Perfectly conducting sphere: aₙ = Rₙ Dₙ(x)/Gₙ, bₙ = Rₙ, no absorption.
 template <class Real>
-inline void conductor_terms(const TermConstants<Real>& k, const TermInputs<Real>& in, std::size_t count,
+ATTENUVIS_MIE_INLINE void conductor_terms(const TermConstants<Real>& k, const TermInputs<Real>& in, std::size_t count,
                             TermOutputs<Real>& out) {
   for (std::size_t i = 0; i < count; ++i) {
     const Real rn = in.rn[i];
@@ -152,7 +164,7 @@ inline void conductor_terms(const TermConstants<Real>& k, const TermInputs<Real>
 // The remaining per-order terms (back-scattering, g, size of the term);
 // a_prev/b_prev: the coefficients of order first − 1 (zero for first = 1).
 template <class Real>
-inline void sum_terms(const TermInputs<Real>& in, std::size_t count, const Complex<Real>& a_prev,
+ATTENUVIS_MIE_INLINE void sum_terms(const TermInputs<Real>& in, std::size_t count, const Complex<Real>& a_prev,
                       const Complex<Real>& b_prev, TermOutputs<Real>& out) {
   using std::abs;
   for (std::size_t i = 0; i < count; ++i) {
