@@ -1,0 +1,254 @@
+// kLanes spheres at once, one per vector lane: see sphere_lanes.hpp.  The
+// lane loops below are plain arithmetic on arrays of kLanes doubles, which
+// the compiler turns into vector instructions (one clone per instruction set,
+// chosen at run time); each lane's operations are those of series.hpp.
+#include "sphere_lanes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include "attenuvis/mie/series.hpp"
+#include "sphere_checks.hpp"
+
+namespace attenuvis::mie::detail {
+namespace {
+
+constexpr int L = kLanes;
+using C = std::complex<double>;
+
+// kLanes doubles / 64-bit masks in one GCC vector (split into SSE2, AVX2 or
+// AVX-512 registers by the clone that runs).  Arithmetic is element-wise
+// IEEE, so each lane computes what the scalar code computes.
+typedef double V __attribute__((vector_size(8 * kLanes)));
+typedef long long M __attribute__((vector_size(8 * kLanes)));
+
+// |v| by clearing the sign bit, as std::abs does.
+inline V vabs(V v) { return (V)((M)v & (M{} + 0x7fffffffffffffffLL)); }
+
+inline V splat(double v) { return V{} + v; }
+
+// k/x and k/(mx) per lane, as SplitInverse (log_derivative.hpp) computes them.
+struct LaneInverse {
+  V h1, h2, lo;
+  V at(double k) const { return k * h1 + (k * h2 + k * lo); }
+};
+
+// Compensated sum per lane (KahanSum in series.hpp), advanced where `on`.
+struct LaneKahan {
+  V sum{}, carry{};
+  void add(V v, M on) {
+    const V y = v - carry;
+    const V t = sum + y;
+    const V c = (t - sum) - y;
+    sum = on ? t : sum;
+    carry = on ? c : carry;
+  }
+  V value() const { return sum - carry; }
+};
+
+// Per-thread tables of the downward pass, one vector per order n, in plain
+// double arrays (std::vector of an over-aligned vector type was not aligned
+// by this standard library); loads and stores go through memcpy.
+struct LaneTables {
+  std::vector<double> y, w_re, w_im, use_d;
+  void resize(std::size_t N) {
+    const std::size_t n = (N + 1) * L;
+    if (y.size() < n) y.resize(n), w_re.resize(n), w_im.resize(n), use_d.resize(n);
+  }
+};
+
+template <class T>
+inline T load(const double* p) {
+  T v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+template <class T>
+inline void save(double* p, const T& v) {
+  __builtin_memcpy(p, &v, sizeof v);
+}
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define ATTENUVIS_MIE_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define ATTENUVIS_MIE_CLONES
+#endif
+
+ATTENUVIS_MIE_CLONES
+void run_lanes(const LaneProblems& in, LaneResults& out) {
+  // ---- per-lane set-up (scalar, as mie_series/sum_series/downward_ratios) ----
+  std::size_t Nj[L];
+  std::size_t N = 0;
+  V x, Njd, mr, mi, m1r, m1i, cr, ci, er, ei, cdr, cdi, yx0, yzr0, yzi0, dr0, di0, Rr, Ri;
+  M diff_slot;
+  LaneInverse ox{}, ozr{}, ozi{};
+  const double tiny = (std::numeric_limits<double>::min)() * 1e20;
+  for (int j = 0; j < L; ++j) {
+    x[j] = in.x[j];
+    const C m = in.m[j];
+    const double cbrt_x = std::cbrt(x[j]);
+    Nj[j] = first_terms<double>(x[j], cbrt_x);
+    N = std::max(N, Nj[j]);
+    Njd[j] = double(Nj[j]);
+    const C dm = m - 1.0;
+    diff_slot[j] = norm2(dm) < 0.25 ? -1 : 0;
+    const ScaledInverse<double> over_x(x[j]);
+    const ScaledInverseComplex<double, C> over_z(x[j], m);
+    ox.h1[j] = over_x.split.h1, ox.h2[j] = over_x.split.h2, ox.lo[j] = over_x.split.lo;
+    ozr.h1[j] = over_z.re.h1, ozr.h2[j] = over_z.re.h2, ozr.lo[j] = over_z.re.lo;
+    ozi.h1[j] = over_z.im.h1, ozi.h2[j] = over_z.im.h2, ozi.lo[j] = over_z.im.lo;
+    yx0[j] = 1.0 / riccati_psi_ratio<double, double>(Nj[j] + 1, over_x);
+    const C cd = (m - C(1.0)) * over_z(1.0);  // (m−1)/(m x), the δ recurrence's constant
+    cdr[j] = cd.real(), cdi[j] = cd.imag();
+    const C yz = recip(riccati_psi_ratio<C, double>(Nj[j] + 1, over_z));
+    const C d = yz - C(yx0[j]);
+    yzr0[j] = yz.real(), yzi0[j] = yz.imag(), dr0[j] = d.real(), di0[j] = d.imag();
+    const C m_minus_1 = m - C(1.0);
+    const C c = m_minus_1 * (m + C(1.0)) * recip(m);
+    const C e = m_minus_1 * (m + C(1.0));
+    mr[j] = m.real(), mi[j] = m.imag(), m1r[j] = m_minus_1.real(), m1i[j] = m_minus_1.imag();
+    cr[j] = c.real(), ci[j] = c.imag(), er[j] = e.real(), ei[j] = e.imag();
+    const double sx = std::sin(x[j]), cx = std::cos(x[j]);
+    Rr[j] = sx * sx, Ri[j] = sx * cx;
+  }
+  V s = splat(1.0);
+
+  // ---- downward pass: yₙ(x) and δₙ or yₙ(mx) (downward_ratios) ----
+  thread_local LaneTables tables;
+  tables.resize(N);
+  V yx = yx0, yzr = yzr0, yzi = yzi0, dr = dr0, di = di0;
+  const V zero{}, vtiny = splat(tiny);
+  for (std::size_t n = N;; --n) {
+    const double k = double(2 * n + 1);
+    const M start = Njd == double(n);  // the lane's own table starts here
+    yx = start ? yx0 : yx;
+    yzr = start ? yzr0 : yzr, yzi = start ? yzi0 : yzi;
+    dr = start ? dr0 : dr, di = start ? di0 : di;
+    const M value = 64 * (yzr * yzr + yzi * yzi) < yx * yx;
+    const M use_d = diff_slot & ~value;
+    save(&tables.y[n * L], yx);
+    save(&tables.w_re[n * L], use_d ? dr : yzr);
+    save(&tables.w_im[n * L], use_d ? di : yzi);
+    save(&tables.use_d[n * L], use_d);
+    if (n == 0) break;
+    V den_x = ox.at(k) - yx;
+    V dzr = ozr.at(k) - yzr, dzi = ozi.at(k) - yzi;
+    den_x = den_x == zero ? vtiny : den_x;
+    const M zero_z = (dzr == zero) & (dzi == zero);
+    dzr = zero_z ? vtiny : dzr;
+    dzi = zero_z ? zero : dzi;
+    const V dnr = cdr * k + dr, dni = cdi * k + di;
+    yx = 1 / den_x;
+    const V sz = 1 / (dzr * dzr + dzi * dzi);
+    yzr = dzr * sz, yzi = -dzi * sz;
+    const V pr = dnr * yzr - dni * yzi, pi = dnr * yzi + dni * yzr;
+    dr = pr * yx, di = pi * yx;
+  }
+
+  // ---- the series, order by order for all lanes (sum_series + term_block) ----
+  static const double tol = std::exp(-tail_log_tolerance<double>());
+  LaneKahan ext, sca, abs_, back_re, back_im, g_cross, g_self;
+  V rhor = zero, rhoi = splat(1.0), apr{}, api{}, bpr{}, bpi{};
+  M active = zero == zero, converged_any = zero != zero;
+  V terms = Njd;
+  for (std::size_t n = 1; n <= N; ++n) {
+    const double rn = double(n), wn = 2 * rn + 1, sign = n % 2 == 0 ? 1.0 : -1.0;
+    // ρₙ = 1/((2n−1)/x − ρₙ₋₁) (HankelRatio), Rₙ, sₙ (pass 1).
+    const V ur = ox.at(double(2 * n - 1)) - rhor, ui = 0.0 - rhoi;
+    const V su = 1 / (ur * ur + ui * ui);
+    rhor = ur * su, rhoi = -ui * su;
+    const V t1r = Rr * rhor - Ri * rhoi, t1i = Rr * rhoi + Ri * rhor;
+    const V yprev = load<V>(&tables.y[(n - 1) * L]);
+    Rr = t1r * yprev, Ri = t1i * yprev;
+    s *= rhor * rhor + rhoi * rhoi;
+    const V y_x = load<V>(&tables.y[n * L]);
+    const M use_d = load<M>(&tables.use_d[n * L]);
+    const V wr = load<V>(&tables.w_re[n * L]), wi = load<V>(&tables.w_im[n * L]);
+    const V yr = use_d ? y_x + wr : wr, yi = use_d ? 0.0 + wi : wi;
+    const V dyr = use_d ? wr : zero, dyi = use_d ? wi : zero;
+    // aₙ, bₙ (sphere_terms in term_block.hpp).
+    const V n_over_x = ox.at(rn), n1_over_x = ox.at(rn + 1), w_over_x = ox.at(2 * rn + 1);
+    const V Gr = rhor - n_over_x, Gi = rhoi;
+    const V cnr = cr * n1_over_x, cni = ci * n1_over_x;
+    const V na_d_r = (m1r * y_x - dyr) - cnr, na_d_i = (m1i * y_x - dyi) - cni;
+    const V nb_d_r = -(mr * dyr - mi * dyi) - m1r * y_x, nb_d_i = -(mr * dyi + mi * dyr) - m1i * y_x;
+    const V na_v_r = (mr * y_x - yr) - cnr, na_v_i = (mi * y_x - yi) - cni;
+    const V nb_v_r = y_x - (mr * yr - mi * yi), nb_v_i = 0.0 - (mr * yi + mi * yr);
+    const V nar = use_d ? na_d_r : na_v_r, nai = use_d ? na_d_i : na_v_i;
+    const V nbr = use_d ? nb_d_r : nb_v_r, nbi = use_d ? nb_d_i : nb_v_i;
+    const V dmr = ozr.at(rn + 1) - yr, dmi = ozi.at(rn + 1) - yi;
+    const V myr = mr * yr - mi * yi, myi = mr * yi + mi * yr;
+    const V Ar = dmr - (mr * Gr - mi * Gi), Ai = dmi - (mr * Gi + mi * Gr);
+    const V Br = (w_over_x - myr) - rhor, Bi = (0.0 - myi) - rhoi;
+    const V sa = 1 / (Ar * Ar + Ai * Ai), sb = 1 / (Br * Br + Bi * Bi);
+    const V iar = Ar * sa, iai = -Ai * sa, ibr = Br * sb, ibi = -Bi * sb;
+    const V Rar = Rr * nar - Ri * nai, Rai = Rr * nai + Ri * nar;
+    const V Rbr = Rr * nbr - Ri * nbi, Rbi = Rr * nbi + Ri * nbr;
+    const V ar = Rar * iar - Rai * iai, ai = Rar * iai + Rai * iar;
+    const V br = Rbr * ibr - Rbi * ibi, bi = Rbr * ibi + Rbi * ibr;
+    const V im_t_a = dmi * mr - dmr * mi;
+    const V alpha = -im_t_a * s * (iar * iar + iai * iai);
+    const V beta = myi * s * (ibr * ibr + ibi * ibi);
+    const V gdr = (rhor + y_x) - w_over_x, gdi = rhoi;
+    const V p1r = Rr * er - Ri * ei, p1i = Rr * ei + Ri * er;
+    const V p2r = p1r * dmr - p1i * dmi, p2i = p1r * dmi + p1i * dmr;
+    const V p3r = p2r * gdr - p2i * gdi, p3i = p2r * gdi + p2i * gdr;
+    const V p4r = p3r * iar - p3i * iai, p4i = p3r * iai + p3i * iar;
+    const V ddr = p4r * ibr - p4i * ibi, ddi = p4r * ibi + p4i * ibr;
+    const V sca_n = wn * ((ar * ar + ai * ai) + (br * br + bi * bi));
+    const V abs_n = wn * (alpha + beta);
+    // sum_terms
+    const V back_r = sign * wn * ddr, back_i = sign * wn * ddi;
+    const double inv_n = 1 / rn, inv_n1 = 1 / (rn + 1);
+    const V gs = (inv_n + inv_n1) * (ar * br + ai * bi);
+    const V gc = (rn - inv_n) * (apr * ar + api * ai + bpr * br + bpi * bi);
+    const V size = wn * (vabs(ar) + vabs(ai) + vabs(br) + vabs(bi));
+    apr = ar, api = ai, bpr = br, bpi = bi;
+    // Compensated sums and the convergence test (pass 3).
+    ext.add(sca_n + abs_n, active);
+    sca.add(sca_n, active);
+    abs_.add(abs_n, active);
+    back_re.add(back_r, active);
+    back_im.add(back_i, active);
+    if (n >= 2) g_cross.add(gc, active);
+    g_self.add(gs, active);
+    const V e_abs = vabs(ext.sum), b_abs = vabs(back_re.sum) + vabs(back_im.sum);
+    const V scale = b_abs < e_abs ? b_abs : e_abs;
+    const M converged = active & (rn > x) & (size <= tol * scale);
+    const M stop = active & (converged | (rn == Njd));
+    converged_any |= converged;
+    terms = stop ? splat(rn) : terms;
+    active &= ~stop;
+    bool any = false;
+    for (int j = 0; j < L; ++j) any |= active[j] != 0;
+    if (!any) break;
+  }
+  const V inv_x = 1.0 / x;
+  const V f = 2.0 * inv_x * inv_x;
+  const V br = back_re.value(), bi = back_im.value(), ssum = sca.value();
+  const V qext = f * ext.value(), qsca = f * ssum, qabs = f * abs_.value();
+  const V qback = (br * br + bi * bi) * inv_x * inv_x;
+  const V g = ssum > zero ? 2.0 * (g_cross.value() + g_self.value()) / ssum : zero;
+  const V qpr = qext - g * qsca;
+  for (int j = 0; j < L; ++j) {
+    Efficiencies<double>& q = out.q[j];
+    q.terms = static_cast<std::size_t>(terms[j]);
+    q.qext = qext[j], q.qsca = qsca[j], q.qabs = qabs[j], q.qback = qback[j], q.g = g[j], q.qpr = qpr[j];
+    out.converged[j] = converged_any[j] != 0;
+  }
+}
+
+}  // namespace
+
+bool lane_eligible(double x, std::complex<double> m) {
+  if (!size_parameter_error(x).empty() || !refractive_index_error(m).empty()) return false;
+  if (use_extended(x, m, false, Options{})) return false;
+  return choose_method<double, C>(x, m, max_terms<double>(x, std::cbrt(x))) == DMethod::downward;
+}
+
+void sphere_lanes(const LaneProblems& in, LaneResults& out) { run_lanes(in, out); }
+
+}  // namespace attenuvis::mie::detail
