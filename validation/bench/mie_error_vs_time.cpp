@@ -11,7 +11,9 @@
 // With --baseline LIB it then times the default mode against an earlier build
 // of the core (LIB from validation/bench/baseline/build_mie_baseline.sh, by
 // default commit 78ee94c), interleaved in the same run, and prints the
-// speed-up per x and index (see attenuvis/validation/mie_baseline.hpp).
+// speed-up per x and index, then the throughput of many spheres (x uniform in
+// [0.01, 100], m = 1.33+1e-8i): the baseline's sphere() in a loop against the
+// current sphere() and spheres() (see attenuvis/validation/mie_baseline.hpp).
 //
 // Usage: mie_error_vs_time [out.csv] [--quick] [--max-x X] [--baseline LIB] [--speed-only]
 //   out.csv       default out/mie_error_vs_time.csv (written atomically)
@@ -73,7 +75,8 @@ int main(int argc, char** argv) {
       speed.xs.erase(std::remove_if(speed.xs.begin(), speed.xs.end(), [&](double x) { return x > options.max_x; }),
                      speed.xs.end());
       std::cout << "\nper call, default accuracy, against " << baseline_path << "\n"
-                << format_speed_vs_baseline(mie_speed_vs_baseline(baseline, speed), "baseline");
+                << format_speed_vs_baseline(mie_speed_vs_baseline(baseline, speed), "baseline") << "\n"
+                << format_batch_speed(mie_batch_vs_baseline(baseline, BatchSpeed{}));
     }
     return 0;
   } catch (const std::exception& e) {

@@ -6,6 +6,10 @@
 #include <time.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <random>
+#include <thread>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -14,6 +18,7 @@
 #include <stdexcept>
 
 #include "attenuvis/mie.hpp"
+#include "attenuvis/mie/spheres.hpp"
 
 namespace attenuvis::validation {
 namespace {
@@ -111,6 +116,62 @@ std::vector<SpeedCell> mie_speed_vs_baseline(const MieBaseline& baseline, const 
       cells.push_back(c);
     }
   return cells;
+}
+
+BatchSpeed mie_batch_vs_baseline(const MieBaseline& baseline, BatchSpeed b, int blocks) {
+  std::mt19937_64 rng(20240601);
+  std::uniform_real_distribution<double> u(b.x_min, b.x_max);
+  std::vector<double> x(b.count);
+  for (double& v : x) v = u(rng);
+  std::vector<mie::Efficiencies<double>> single(b.count), batch(b.count);
+  mie::SpheresOptions one;
+  one.threads = 1;
+  mie::SpheresOptions all;
+  b.threads = std::max(1u, std::thread::hardware_concurrency());
+  const double n = static_cast<double>(b.count);
+  auto run_base = [&] {
+    double acc = 0;
+    for (double xi : x) acc += baseline.sphere(xi, b.m).qext;
+    return acc;
+  };
+  auto run_single = [&] {
+    for (std::size_t i = 0; i < b.count; ++i) single[i] = mie::sphere(x[i], b.m);
+    return single[0].qext;
+  };
+  auto run_batch = [&] {
+    mie::spheres(x.data(), b.m, b.count, batch.data(), one);
+    return batch[0].qext;
+  };
+  b.ns_baseline = b.ns_single = b.ns_batch = b.ns_batch_threads = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < std::max(1, blocks); ++k) {
+    b.ns_baseline = std::min(b.ns_baseline, block_ns(run_base, 1) / n);
+    b.ns_single = std::min(b.ns_single, block_ns(run_single, 1) / n);
+    b.ns_batch = std::min(b.ns_batch, block_ns(run_batch, 1) / n);
+    const auto t0 = std::chrono::steady_clock::now();
+    mie::spheres(x.data(), b.m, b.count, batch.data(), all);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    b.ns_batch_threads = std::min(b.ns_batch_threads, wall / n * 1e9);
+  }
+  b.identical = std::memcmp(single.data(), batch.data(), sizeof(single[0]) * b.count) == 0;
+  return b;
+}
+
+std::string format_batch_speed(const BatchSpeed& b) {
+  std::ostringstream os;
+  char buf[200];
+  os << "many spheres: " << b.count << " x uniform in [" << b.x_min << ", " << b.x_max << "], m = "
+     << index_text(b.m) << " (ns per sphere, minimum over blocks)\n";
+  std::snprintf(buf, sizeof buf, "  baseline sphere() loop      %9.1f\n", b.ns_baseline);
+  os << buf;
+  std::snprintf(buf, sizeof buf, "  current sphere() loop       %9.1f  (%.2fx)\n", b.ns_single, b.ns_baseline / b.ns_single);
+  os << buf;
+  std::snprintf(buf, sizeof buf, "  current spheres(), 1 thread %9.1f  (%.2fx)\n", b.ns_batch, b.ns_baseline / b.ns_batch);
+  os << buf;
+  std::snprintf(buf, sizeof buf, "  current spheres(), %u threads %7.1f  (%.2fx, wall clock)\n", b.threads,
+                b.ns_batch_threads, b.ns_baseline / b.ns_batch_threads);
+  os << buf;
+  os << "  spheres() " << (b.identical ? "equals" : "DIFFERS FROM") << " sphere() bit for bit on every sphere\n";
+  return os.str();
 }
 
 std::string format_speed_vs_baseline(const std::vector<SpeedCell>& cells, const std::string& baseline_name) {

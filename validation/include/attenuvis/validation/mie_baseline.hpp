@@ -13,6 +13,7 @@
 #pragma once
 
 #include <complex>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,22 @@ struct SpeedCell {
 };
 
 std::vector<SpeedCell> mie_speed_vs_baseline(const MieBaseline& baseline, const SpeedOptions& options = {});
+
+/// Throughput over many spheres (x uniform in [x_min, x_max], one index):
+/// ns per sphere of the baseline's sphere() in a loop, the current sphere() in
+/// a loop, and the current spheres() on one thread and on all hardware
+/// threads; same alternating-block timing as above (the all-threads figure in
+/// wall-clock time).
+struct BatchSpeed {
+  double x_min = 0.01, x_max = 100;
+  std::complex<double> m{1.33, 1e-8};
+  std::size_t count = 20000;
+  double ns_baseline = 0, ns_single = 0, ns_batch = 0, ns_batch_threads = 0;
+  unsigned threads = 0;
+  bool identical = false;  ///< spheres() equal to sphere() bit for bit
+};
+BatchSpeed mie_batch_vs_baseline(const MieBaseline& baseline, BatchSpeed setup, int blocks = 5);
+std::string format_batch_speed(const BatchSpeed& b);
 
 /// Table: one row per x, per index: current ns, baseline ns, speed-up, errors.
 std::string format_speed_vs_baseline(const std::vector<SpeedCell>& cells, const std::string& baseline_name);
