@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "attenuvis/mie/series.hpp"
@@ -34,6 +35,63 @@ inline V splat(double v) { return V{} + v; }
 struct LaneInverse {
   V h1, h2, lo;
   V at(double k) const { return k * h1 + (k * h2 + k * lo); }
+  V at(V k) const { return k * h1 + (k * h2 + k * lo); }
+};
+
+// Lentz's continued fraction for ψ_{n-1}(z)/ψₙ(z) per lane, n = order[j]
+// (riccati_psi_ratio in lentz.hpp, the same operations): z = x (im == nullptr)
+// or z = mx.  A lane that has converged keeps its value while the others go on.
+struct LaneLentz {
+  V fr, fi;
+  LaneLentz(const LaneInverse& re, const LaneInverse* im, V order) {
+    const double eps = std::numeric_limits<double>::epsilon(), eps2 = eps * eps;
+    const V tiny = V{} + (std::numeric_limits<double>::min)() * 1e20, zero{}, one = V{} + 1.0;
+    const bool complex = im != nullptr;
+    const V k0 = 2 * order + 1;
+    fr = re.at(k0);
+    fi = complex ? im->at(k0) : zero;
+    M f_zero = (fr == zero) & (fi == zero);
+    fr = f_zero ? tiny : fr;
+    fi = f_zero ? zero : fi;
+    V cr = fr, ci = fi, dr = zero, di = zero;
+    M done = zero != zero;
+    for (long j = 1; j <= 400000000; ++j) {
+      const V k = k0 + 2.0 * double(j);
+      const V br = re.at(k), bi = complex ? im->at(k) : zero;
+      dr = br - dr, di = bi - di;
+      const M d_zero = (dr == zero) & (di == zero);
+      dr = d_zero ? tiny : dr, di = d_zero ? zero : di;
+      // c = b − 1/c
+      V icr, ici;
+      if (complex) {
+        const V sc = 1 / (cr * cr + ci * ci);
+        icr = cr * sc, ici = -ci * sc;
+      } else {
+        icr = one / cr, ici = zero;
+      }
+      cr = br - icr, ci = bi - ici;
+      const M c_zero = (cr == zero) & (ci == zero);
+      cr = c_zero ? tiny : cr, ci = c_zero ? zero : ci;
+      // d = 1/d
+      if (complex) {
+        const V sd = 1 / (dr * dr + di * di);
+        dr = dr * sd, di = -di * sd;
+      } else {
+        dr = one / dr;
+      }
+      const V er = cr * dr - ci * di, ei = complex ? cr * di + ci * dr : zero;  // δ = c d
+      const V nfr = complex ? fr * er - fi * ei : fr * er;
+      const V nfi = complex ? fr * ei + fi * er : zero;
+      fr = done ? fr : nfr, fi = done ? fi : nfi;
+      const V e1 = er - 1.0, e2 = ei - 0.0;
+      const V mag = complex ? e1 * e1 + e2 * e2 : e1 * e1;
+      done |= mag < eps2;
+      bool all = true;
+      for (int l = 0; l < L; ++l) all &= done[l] != 0;
+      if (all) return;
+    }
+    throw std::runtime_error("attenuvis::mie: Lentz continued fraction did not converge");
+  }
 };
 
 // Compensated sum per lane (KahanSum in series.hpp), advanced where `on`.
@@ -100,12 +158,8 @@ void run_lanes(const LaneProblems& in, LaneResults& out) {
     ox.h1[j] = over_x.split.h1, ox.h2[j] = over_x.split.h2, ox.lo[j] = over_x.split.lo;
     ozr.h1[j] = over_z.re.h1, ozr.h2[j] = over_z.re.h2, ozr.lo[j] = over_z.re.lo;
     ozi.h1[j] = over_z.im.h1, ozi.h2[j] = over_z.im.h2, ozi.lo[j] = over_z.im.lo;
-    yx0[j] = 1.0 / riccati_psi_ratio<double, double>(Nj[j] + 1, over_x);
     const C cd = (m - C(1.0)) * over_z(1.0);  // (m−1)/(m x), the δ recurrence's constant
     cdr[j] = cd.real(), cdi[j] = cd.imag();
-    const C yz = recip(riccati_psi_ratio<C, double>(Nj[j] + 1, over_z));
-    const C d = yz - C(yx0[j]);
-    yzr0[j] = yz.real(), yzi0[j] = yz.imag(), dr0[j] = d.real(), di0[j] = d.imag();
     const C m_minus_1 = m - C(1.0);
     const C c = m_minus_1 * (m + C(1.0)) * recip(m);
     const C e = m_minus_1 * (m + C(1.0));
@@ -115,6 +169,15 @@ void run_lanes(const LaneProblems& in, LaneResults& out) {
     Rr[j] = sx * sx, Ri[j] = sx * cx;
   }
   V s = splat(1.0);
+  // y_N(x) = 1/(ψ_N/ψ_{N+1}) and y_N(mx) at each lane's own N (downward_ratios).
+  {
+    const V order = Njd + 1.0;
+    const LaneLentz lx(ox, nullptr, order), lz(ozr, &ozi, order);
+    yx0 = 1.0 / lx.fr;
+    const V sz = 1 / (lz.fr * lz.fr + lz.fi * lz.fi);
+    yzr0 = lz.fr * sz, yzi0 = -lz.fi * sz;
+    dr0 = yzr0 - yx0, di0 = yzi0 - 0.0;  // yz − C(yx)
+  }
 
   // ---- downward pass: yₙ(x) and δₙ or yₙ(mx) (downward_ratios) ----
   thread_local LaneTables tables;
