@@ -189,10 +189,10 @@ void downward_ratios(const ScaledInverse<Real>& over_x, const ScaledInverseCompl
     C den_z = over_z(k) - yz;
     avoid_zero<Real, Real>(den_x);
     avoid_zero<C, Real>(den_z);
-    const C d_next = c * k + d;
     yx = Real(1) / den_x;
     yz = recip(den_z);
-    d = d_next * yz * yx;
+    // δ only where it is stored (Slot::value never reads it).
+    if (slot == Slot::difference) d = (c * k + d) * yz * yx;
   }
 }
 
