@@ -257,6 +257,87 @@ void block_terms(bool pec, const TermConstants<Real>& k, const TermInputs<Real>&
   }
 }
 
+// The compensated sums of the series and what is read from them.
+template <class Real>
+struct SeriesSums {
+  KahanSum<Real> ext, sca, abs, back_re, back_im, g_cross, g_self;
+  // Order n's terms (entry i of a block).
+  void add(const TermOutputs<Real>& t, std::size_t i, std::size_t n) {
+    ext.add(t.ext[i]);
+    sca.add(t.sca[i]);
+    abs.add(t.abs[i]);
+    back_re.add(t.back_re[i]);
+    back_im.add(t.back_im[i]);
+    // g (B&H 4.74): Σ n(n+2)/(n+1) Re(aₙa*ₙ₊₁ + bₙb*ₙ₊₁) + Σ (2n+1)/(n(n+1)) Re(aₙb*ₙ),
+    // with k(k+2)/(k+1) = n − 1/n for k = n − 1 and (2n+1)/(n(n+1)) = 1/n + 1/(n+1).
+    // Two sums, so that neither compensated chain waits for the other.
+    if (n >= 2) g_cross.add(t.g_cross[i]);
+    g_self.add(t.g_self[i]);
+  }
+  // The scale the convergence test compares a term with.
+  Real scale() const {
+    using std::abs;
+    return (std::min)(abs(ext.sum), abs(back_re.sum) + abs(back_im.sum));
+  }
+  void finish(const Real& x, bool pec, std::size_t terms, Efficiencies<Real>& q) const {
+    const Real inv_x = Real(1) / x;
+    const Real f = Real(2) * inv_x * inv_x;
+    q.terms = terms;
+    const Real br = back_re.value(), bi = back_im.value(), ssum = sca.value();
+    q.qext = f * ext.value();
+    q.qsca = f * ssum;
+    q.qabs = pec ? Real(0) : f * abs.value();
+    q.qback = (br * br + bi * bi) * inv_x * inv_x;
+    q.g = ssum > 0 ? Real(2) * (g_cross.value() + g_self.value()) / ssum : Real(0);
+    q.qpr = q.qext - q.g * q.qsca;
+  }
+};
+
+// Pass 1 of a block (serial, working precision): Rₙ = R_{n-1} ρₙ ψₙ/ψ_{n-1},
+// sₙ = 1/|ξₙ|², and each order's inputs for term_block.hpp.
+template <class Real, class Work, class Tables>
+void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bool pec, Slot slot,
+                  const ScaledInverseComplex<Work, Complex<Work>>& over_mxw,
+                  UpwardLogDerivative<Work, Complex<Work>>& upward, Complex<Work>& R_w, Work& s_w,
+                  TermInputs<Real>& in) {
+  using C = Complex<Real>;
+  using CW = Complex<Work>;
+  const auto& y = tables.y;
+  const auto& w = tables.w;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t n = first + i;
+    const CW rho_w(tables.rho[n].real(), tables.rho[n].imag());  // ρₙ = ξ_{n-1}/ξₙ
+    R_w = R_w * rho_w * y[n - 1];
+    s_w *= norm2(rho_w);
+    const Real yx = static_cast<Real>(y[n]);
+    in.rn[i] = Real(n);
+    in.yx[i] = yx;
+    in.R_re[i] = static_cast<Real>(R_w.real()), in.R_im[i] = static_cast<Real>(R_w.imag());
+    in.s[i] = static_cast<Real>(s_w);
+    in.rho_re[i] = static_cast<Real>(rho_w.real()), in.rho_im[i] = static_cast<Real>(rho_w.imag());
+    in.sign[i] = n % 2 == 0 ? Real(1) : Real(-1);
+    if (pec) continue;
+    if (slot == Slot::difference && !tables.is_value[n]) {
+      const C dy(w[n].real(), w[n].imag());
+      const C ymx = C(yx) + dy;
+      in.dy_re[i] = dy.real(), in.dy_im[i] = dy.imag();
+      in.ymx_re[i] = ymx.real(), in.ymx_im[i] = ymx.imag();
+      in.difference[i] = Real(1);
+    } else {
+      C ymx;
+      if (slot != Slot::none) {
+        ymx = C(w[n].real(), w[n].imag());
+      } else {
+        const CW v = over_mxw(Work(n + 1)) - upward.next(n);
+        ymx = C(static_cast<Real>(v.real()), static_cast<Real>(v.imag()));
+      }
+      in.ymx_re[i] = ymx.real(), in.ymx_im[i] = ymx.imag();
+      in.dy_re[i] = Real(0), in.dy_im[i] = Real(0);
+      in.difference[i] = Real(0);
+    }
+  }
+}
+
 // One summation of the series from tables of N + 1 entries into `out`.
 // Returns false if the converged rule asked for more than N terms.
 // Blocks of kTermBlock orders go through the three passes of term_block.hpp.
@@ -277,10 +358,6 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
     DownwardTables<Work>& t;
     ~Release() { t.release_large(); }
   } release_large_tables{tables};
-  const auto& y = tables.y;
-  const auto& rho_table = tables.rho;
-  const auto& w = tables.w;
-  const auto& is_value = tables.is_value;
   const ScaledInverse<Work> over_xw(xw);
   const ScaledInverseComplex<Work, CW> over_mxw(xw, mw);
   downward_ratios<Work, CW>(over_xw, over_mxw, mw, N, slot, tables.y, tables.rho, tables.w, tables.is_value);
@@ -309,7 +386,7 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
       }()};
   static const double tol_d = std::exp(-tail_log_tolerance<Real>());
   const Real tol(tol_d);
-  KahanSum<Real> ext, sca, abs_, back_re, back_im, g_cross, g_self;
+  SeriesSums<Real> sums;
   const Work sx = sin(xw), cx = cos(xw);
   CW R_w(sx * sx, sx * cx);  // R₀ = ψ₀/ξ₀
   Work s_w(1);               // 1/|ξ₀|²
@@ -320,40 +397,8 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   std::size_t n_last = N;
   for (std::size_t first = 1; first <= N && !stopped; first += kTermBlock) {
     const std::size_t count = std::min(kTermBlock, N + 1 - first);
-    // Pass 1 (serial, working precision): Rₙ = R_{n-1} ρₙ ψₙ/ψ_{n-1}, sₙ, and
-    // each order's inputs.
-    for (std::size_t i = 0; i < count; ++i) {
-      const std::size_t n = first + i;
-      const CW rho_w(rho_table[n].real(), rho_table[n].imag());  // ρₙ = ξ_{n-1}/ξₙ
-      R_w = R_w * rho_w * y[n - 1];
-      s_w *= norm2(rho_w);
-      const Real yx = static_cast<Real>(y[n]);
-      in.rn[i] = Real(n);
-      in.yx[i] = yx;
-      in.R_re[i] = static_cast<Real>(R_w.real()), in.R_im[i] = static_cast<Real>(R_w.imag());
-      in.s[i] = static_cast<Real>(s_w);
-      in.rho_re[i] = static_cast<Real>(rho_w.real()), in.rho_im[i] = static_cast<Real>(rho_w.imag());
-      in.sign[i] = n % 2 == 0 ? Real(1) : Real(-1);
-      if (pec) continue;
-      if (slot == Slot::difference && !is_value[n]) {
-        const C dy(w[n].real(), w[n].imag());
-        const C ymx = C(yx) + dy;
-        in.dy_re[i] = dy.real(), in.dy_im[i] = dy.imag();
-        in.ymx_re[i] = ymx.real(), in.ymx_im[i] = ymx.imag();
-        in.difference[i] = Real(1);
-      } else {
-        C ymx;
-        if (slot != Slot::none) {
-          ymx = C(w[n].real(), w[n].imag());
-        } else {
-          const CW v = over_mxw(Work(n + 1)) - upward.next(n);
-          ymx = C(static_cast<Real>(v.real()), static_cast<Real>(v.imag()));
-        }
-        in.ymx_re[i] = ymx.real(), in.ymx_im[i] = ymx.imag();
-        in.dy_re[i] = Real(0), in.dy_im[i] = Real(0);
-        in.difference[i] = Real(0);
-      }
-    }
+    // Pass 1 (serial, working precision).
+    block_inputs<Real, Work>(first, count, tables, pec, slot, over_mxw, upward, R_w, s_w, in);
     // Pass 2 (every order independently): aₙ, bₙ and their terms.  The count
     // is padded to a multiple of 8 with copies of the last order, so that a
     // short block (small x) runs in vector lanes too instead of a scalar
@@ -364,46 +409,23 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
     // Pass 3 (serial): compensated sums, extras, convergence.
     for (std::size_t i = 0; i < count; ++i) {
       const std::size_t n = first + i;
-      ext.add(terms.ext[i]);
-      sca.add(terms.sca[i]);
-      abs_.add(terms.abs[i]);
-      back_re.add(terms.back_re[i]);
-      back_im.add(terms.back_im[i]);
-      // g (B&H 4.74): Σ n(n+2)/(n+1) Re(aₙa*ₙ₊₁ + bₙb*ₙ₊₁) + Σ (2n+1)/(n(n+1)) Re(aₙb*ₙ),
-      // with k(k+2)/(k+1) = n − 1/n for k = n − 1 and (2n+1)/(n(n+1)) = 1/n + 1/(n+1).
-      // Two sums, so that neither compensated chain waits for the other.
-      if (n >= 2) g_cross.add(terms.g_cross[i]);
-      g_self.add(terms.g_self[i]);
+      sums.add(terms, i, n);
       const C a(terms.a_re[i], terms.a_im[i]), b(terms.b_re[i], terms.b_im[i]);
       if (extras.coefficients) {
         out.a.push_back(a);
         out.b.push_back(b);
       }
       if (any_angle) angular->add(n, a, b);
-      if (converged_rule && static_cast<double>(n) > xd) {
-        using std::abs;
-        const Real scale = (std::min)(abs(ext.sum), abs(back_re.sum) + abs(back_im.sum));
-        if (terms.size[i] <= tol * scale) {
-          converged = stopped = true;
-          n_last = n;
-          break;
-        }
+      if (converged_rule && static_cast<double>(n) > xd && terms.size[i] <= tol * sums.scale()) {
+        converged = stopped = true;
+        n_last = n;
+        break;
       }
     }
     a_prev = C(terms.a_re[count - 1], terms.a_im[count - 1]);
     b_prev = C(terms.b_re[count - 1], terms.b_im[count - 1]);
   }
-  Efficiencies<Real>& q = out.q;
-  const Real inv_x = Real(1) / x;
-  const Real f = Real(2) * inv_x * inv_x;
-  q.terms = n_last;
-  const Real br = back_re.value(), bi = back_im.value(), ssum = sca.value();
-  q.qext = f * ext.value();
-  q.qsca = f * ssum;
-  q.qabs = pec ? Real(0) : f * abs_.value();
-  q.qback = (br * br + bi * bi) * inv_x * inv_x;
-  q.g = ssum > 0 ? Real(2) * (g_cross.value() + g_self.value()) / ssum : Real(0);
-  q.qpr = q.qext - q.g * q.qsca;
+  sums.finish(x, pec, n_last, out.q);
   return converged;
 }
 
