@@ -24,6 +24,10 @@ using C = std::complex<double>;
 // AVX-512 registers by the clone that runs).  Arithmetic is element-wise
 // IEEE, so each lane computes what the scalar code computes.
 typedef double V __attribute__((vector_size(8 * kLanes)));
+
+// Helpers are inlined into each instruction-set clone of run_lanes (a call to
+// a shared copy would run its SSE2 code).
+#define ATTENUVIS_LANE_INLINE inline __attribute__((always_inline))
 typedef long long M __attribute__((vector_size(8 * kLanes)));
 
 // |v| by clearing the sign bit, as std::abs does.
@@ -43,7 +47,7 @@ struct LaneInverse {
 // or z = mx.  A lane that has converged keeps its value while the others go on.
 struct LaneLentz {
   V fr, fi;
-  LaneLentz(const LaneInverse& re, const LaneInverse* im, V order) {
+  ATTENUVIS_LANE_INLINE LaneLentz(const LaneInverse& re, const LaneInverse* im, V order) {
     const double eps = std::numeric_limits<double>::epsilon(), eps2 = eps * eps;
     const V tiny = V{} + (std::numeric_limits<double>::min)() * 1e20, zero{}, one = V{} + 1.0;
     const bool complex = im != nullptr;
@@ -135,82 +139,90 @@ inline void save(double* p, const T& v) {
 #define ATTENUVIS_MIE_CLONES
 #endif
 
-ATTENUVIS_MIE_CLONES
-void run_lanes(const LaneProblems& in, LaneResults& out) {
-  // ---- per-lane set-up (scalar, as mie_series/sum_series/downward_ratios) ----
-  std::size_t Nj[L];
-  std::size_t N = 0;
+// Per-lane constants and start values (as mie_series/sum_series/downward_ratios).
+struct LaneState {
+  std::size_t N = 0;  // longest table of the lanes
   V x, Njd, mr, mi, m1r, m1i, cr, ci, er, ei, cdr, cdi, yx0, yzr0, yzi0, dr0, di0, Rr, Ri;
   M diff_slot;
   LaneInverse ox{}, ozr{}, ozi{};
-  const double tiny = (std::numeric_limits<double>::min)() * 1e20;
+};
+
+ATTENUVIS_LANE_INLINE void lane_setup(const LaneProblems& in, LaneState& st) {
   for (int j = 0; j < L; ++j) {
-    x[j] = in.x[j];
+    st.x[j] = in.x[j];
+    const double x = in.x[j];
     const C m = in.m[j];
-    const double cbrt_x = std::cbrt(x[j]);
-    Nj[j] = first_terms<double>(x[j], cbrt_x);
-    N = std::max(N, Nj[j]);
-    Njd[j] = double(Nj[j]);
+    const std::size_t Nj = first_terms<double>(x, std::cbrt(x));
+    st.N = std::max(st.N, Nj);
+    st.Njd[j] = double(Nj);
     const C dm = m - 1.0;
-    diff_slot[j] = norm2(dm) < 0.25 ? -1 : 0;
-    const ScaledInverse<double> over_x(x[j]);
-    const ScaledInverseComplex<double, C> over_z(x[j], m);
-    ox.h1[j] = over_x.split.h1, ox.h2[j] = over_x.split.h2, ox.lo[j] = over_x.split.lo;
-    ozr.h1[j] = over_z.re.h1, ozr.h2[j] = over_z.re.h2, ozr.lo[j] = over_z.re.lo;
-    ozi.h1[j] = over_z.im.h1, ozi.h2[j] = over_z.im.h2, ozi.lo[j] = over_z.im.lo;
+    st.diff_slot[j] = norm2(dm) < 0.25 ? -1 : 0;
+    const ScaledInverse<double> over_x(x);
+    const ScaledInverseComplex<double, C> over_z(x, m);
+    st.ox.h1[j] = over_x.split.h1, st.ox.h2[j] = over_x.split.h2, st.ox.lo[j] = over_x.split.lo;
+    st.ozr.h1[j] = over_z.re.h1, st.ozr.h2[j] = over_z.re.h2, st.ozr.lo[j] = over_z.re.lo;
+    st.ozi.h1[j] = over_z.im.h1, st.ozi.h2[j] = over_z.im.h2, st.ozi.lo[j] = over_z.im.lo;
     const C cd = (m - C(1.0)) * over_z(1.0);  // (m−1)/(m x), the δ recurrence's constant
-    cdr[j] = cd.real(), cdi[j] = cd.imag();
+    st.cdr[j] = cd.real(), st.cdi[j] = cd.imag();
     const C m_minus_1 = m - C(1.0);
     const C c = m_minus_1 * (m + C(1.0)) * recip(m);
     const C e = m_minus_1 * (m + C(1.0));
-    mr[j] = m.real(), mi[j] = m.imag(), m1r[j] = m_minus_1.real(), m1i[j] = m_minus_1.imag();
-    cr[j] = c.real(), ci[j] = c.imag(), er[j] = e.real(), ei[j] = e.imag();
-    const double sx = std::sin(x[j]), cx = std::cos(x[j]);
-    Rr[j] = sx * sx, Ri[j] = sx * cx;
+    st.mr[j] = m.real(), st.mi[j] = m.imag(), st.m1r[j] = m_minus_1.real(), st.m1i[j] = m_minus_1.imag();
+    st.cr[j] = c.real(), st.ci[j] = c.imag(), st.er[j] = e.real(), st.ei[j] = e.imag();
+    const double sx = std::sin(x), cx = std::cos(x);
+    st.Rr[j] = sx * sx, st.Ri[j] = sx * cx;
   }
-  V s = splat(1.0);
   // y_N(x) = 1/(ψ_N/ψ_{N+1}) and y_N(mx) at each lane's own N (downward_ratios).
-  {
-    const V order = Njd + 1.0;
-    const LaneLentz lx(ox, nullptr, order), lz(ozr, &ozi, order);
-    yx0 = 1.0 / lx.fr;
-    const V sz = 1 / (lz.fr * lz.fr + lz.fi * lz.fi);
-    yzr0 = lz.fr * sz, yzi0 = -lz.fi * sz;
-    dr0 = yzr0 - yx0, di0 = yzi0 - 0.0;  // yz − C(yx)
-  }
+  const V order = st.Njd + 1.0;
+  const LaneLentz lx(st.ox, nullptr, order), lz(st.ozr, &st.ozi, order);
+  st.yx0 = 1.0 / lx.fr;
+  const V sz = 1 / (lz.fr * lz.fr + lz.fi * lz.fi);
+  st.yzr0 = lz.fr * sz, st.yzi0 = -lz.fi * sz;
+  st.dr0 = st.yzr0 - st.yx0, st.di0 = st.yzi0 - 0.0;  // yz − C(yx)
+}
 
-  // ---- downward pass: yₙ(x) and δₙ or yₙ(mx) (downward_ratios) ----
-  thread_local LaneTables tables;
-  tables.resize(N);
-  V yx = yx0, yzr = yzr0, yzi = yzi0, dr = dr0, di = di0;
-  const V zero{}, vtiny = splat(tiny);
-  for (std::size_t n = N;; --n) {
+// The downward pass: yₙ(x) and δₙ or yₙ(mx) (downward_ratios), each lane
+// from its own table length.
+ATTENUVIS_LANE_INLINE void lane_downward(const LaneState& st, LaneTables& tables) {
+  const V zero{}, vtiny = splat((std::numeric_limits<double>::min)() * 1e20);
+  V yx = st.yx0, yzr = st.yzr0, yzi = st.yzi0, dr = st.dr0, di = st.di0;
+  for (std::size_t n = st.N;; --n) {
     const double k = double(2 * n + 1);
-    const M start = Njd == double(n);  // the lane's own table starts here
-    yx = start ? yx0 : yx;
-    yzr = start ? yzr0 : yzr, yzi = start ? yzi0 : yzi;
-    dr = start ? dr0 : dr, di = start ? di0 : di;
+    const M start = st.Njd == double(n);  // the lane's own table starts here
+    yx = start ? st.yx0 : yx;
+    yzr = start ? st.yzr0 : yzr, yzi = start ? st.yzi0 : yzi;
+    dr = start ? st.dr0 : dr, di = start ? st.di0 : di;
     const M value = 64 * (yzr * yzr + yzi * yzi) < yx * yx;
-    const M use_d = diff_slot & ~value;
+    const M use_d = st.diff_slot & ~value;
     save(&tables.y[n * L], yx);
     save(&tables.w_re[n * L], use_d ? dr : yzr);
     save(&tables.w_im[n * L], use_d ? di : yzi);
     save(&tables.use_d[n * L], use_d);
     if (n == 0) break;
-    V den_x = ox.at(k) - yx;
-    V dzr = ozr.at(k) - yzr, dzi = ozi.at(k) - yzi;
+    V den_x = st.ox.at(k) - yx;
+    V dzr = st.ozr.at(k) - yzr, dzi = st.ozi.at(k) - yzi;
     den_x = den_x == zero ? vtiny : den_x;
     const M zero_z = (dzr == zero) & (dzi == zero);
     dzr = zero_z ? vtiny : dzr;
     dzi = zero_z ? zero : dzi;
-    const V dnr = cdr * k + dr, dni = cdi * k + di;
+    const V dnr = st.cdr * k + dr, dni = st.cdi * k + di;
     yx = 1 / den_x;
     const V sz = 1 / (dzr * dzr + dzi * dzi);
     yzr = dzr * sz, yzi = -dzi * sz;
     const V pr = dnr * yzr - dni * yzi, pi = dnr * yzi + dni * yzr;
     dr = pr * yx, di = pi * yx;
   }
+}
 
+// The series, order by order for all lanes (sum_series + term_block.hpp); one
+// function because it mirrors sphere_terms/sum_terms formula by formula.
+ATTENUVIS_LANE_INLINE void lane_series(LaneState& st, const LaneTables& tables, LaneResults& out) {
+  const V zero{};
+  const V x = st.x, Njd = st.Njd, mr = st.mr, mi = st.mi, m1r = st.m1r, m1i = st.m1i;
+  const V cr = st.cr, ci = st.ci, er = st.er, ei = st.ei;
+  const LaneInverse &ox = st.ox, &ozr = st.ozr, &ozi = st.ozi;
+  const std::size_t N = st.N;
+  V Rr = st.Rr, Ri = st.Ri, s = splat(1.0);
   // ---- the series, order by order for all lanes (sum_series + term_block) ----
   static const double tol = std::exp(-tail_log_tolerance<double>());
   LaneKahan ext, sca, abs_, back_re, back_im, g_cross, g_self;
@@ -302,6 +314,16 @@ void run_lanes(const LaneProblems& in, LaneResults& out) {
     q.qext = qext[j], q.qsca = qsca[j], q.qabs = qabs[j], q.qback = qback[j], q.g = g[j], q.qpr = qpr[j];
     out.converged[j] = converged_any[j] != 0;
   }
+}
+
+ATTENUVIS_MIE_CLONES
+void run_lanes(const LaneProblems& in, LaneResults& out) {
+  LaneState st;
+  lane_setup(in, st);
+  thread_local LaneTables tables;
+  tables.resize(st.N);
+  lane_downward(st, tables);
+  lane_series(st, tables, out);
 }
 
 }  // namespace
