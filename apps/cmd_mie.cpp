@@ -106,7 +106,7 @@ void register_mie(CLI::App& app) {
   cmd->add_option("--terms", args->terms, "term count: converged (default) or wiscombe")
       ->check(CLI::IsMember({"converged", "wiscombe"}));
   cmd->add_option("--working", args->working,
-                  "working precision: auto (default: long double recurrences, double terms), double (fast, less accurate at large x), extended")
+                  "working precision: auto (default: double, long double recurrences where double is not enough), double (fast, less accurate at large x), extended")
       ->check(CLI::IsMember({"auto", "double", "extended"}));
   cmd->callback([args, cmd]() { run(*args, *cmd); });
 }
