@@ -8,9 +8,10 @@
 //   double        attenuvis with Precision::double_precision (the fast mode)
 // The last column is default time / conventional time, both measured in this run.
 //
-// With --baseline LIB it then times the default mode against an earlier build
-// of the core (LIB from validation/bench/baseline/build_mie_baseline.sh, by
-// default commit 78ee94c), interleaved in the same run, and prints the
+// With --baseline LIB (default: build/mie_baseline_78ee94c/libmie_baseline.so
+// when present) it then times the default mode against an earlier build of the
+// core (LIB from validation/bench/baseline/build_mie_baseline.sh, by default
+// commit 78ee94c), interleaved in the same run, and prints the
 // speed-up per x and index, then the throughput of many spheres (x uniform in
 // [0.01, 100], m = 1.33+1e-8i): the baseline's sphere() in a loop against the
 // current sphere() and spheres() (see attenuvis/validation/mie_baseline.hpp).
@@ -23,6 +24,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <string>
 
@@ -56,6 +58,13 @@ int main(int argc, char** argv) {
         out = a;
       }
     }
+    if (baseline_path.empty()) {
+      // The library build_mie_baseline.sh leaves in the build tree, if it is there.
+      const auto guess = std::filesystem::path(argv[0]).parent_path() / ".." / "mie_baseline_78ee94c" /
+                         "libmie_baseline.so";
+      std::error_code ec;
+      if (std::filesystem::is_regular_file(guess, ec)) baseline_path = guess.lexically_normal().string();
+    }
     if (speed_only && baseline_path.empty()) {
       std::cerr << "mie_error_vs_time: --speed-only needs --baseline LIB\n";
       return 2;
@@ -69,7 +78,10 @@ int main(int argc, char** argv) {
       write_error_vs_time_csv(out, rows);
       std::cout << "\nwrote " << out << "\n";
     }
-    if (!baseline_path.empty()) {
+    if (baseline_path.empty()) {
+      std::cout << "\nno baseline core: build one with validation/bench/baseline/build_mie_baseline.sh "
+                   "(commit 78ee94c by default) and pass --baseline LIB\n";
+    } else {
       const MieBaseline baseline(baseline_path);
       SpeedOptions speed;
       speed.xs.erase(std::remove_if(speed.xs.begin(), speed.xs.end(), [&](double x) { return x > options.max_x; }),
