@@ -400,10 +400,11 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
     // Pass 1 (serial, working precision).
     block_inputs<Real, Work>(first, count, tables, pec, slot, over_mxw, upward, R_w, s_w, in);
     // Pass 2 (every order independently): aₙ, bₙ and their terms.  The count
-    // is padded to a multiple of 8 with copies of the last order, so that a
-    // short block (small x) runs in vector lanes too instead of a scalar
-    // remainder loop; the padded entries are not summed.
-    const std::size_t padded = std::min(kTermBlock, (count + 7) / 8 * 8);
+    // is padded to a multiple of 4 (the clones' vector width in doubles) with
+    // copies of the last order, so that a short block (small x) runs in
+    // vector lanes too instead of a scalar remainder loop; the padded entries
+    // are not summed.  (Multiples of 8 measured 4% slower at x = 0.1 and 1.)
+    const std::size_t padded = std::min(kTermBlock, (count + 3) / 4 * 4);
     for (std::size_t i = count; i < padded; ++i) in.copy_entry(count - 1, i);
     block_terms<Real>(pec, constants, in, padded, a_prev, b_prev, terms);
     // Pass 3 (serial): compensated sums, extras, convergence.
