@@ -27,8 +27,8 @@ struct MieArgs {
 mie::Options make_options(const MieArgs& a) {
   mie::Options o;
   if (a.terms == "wiscombe") o.terms = mie::TermRule::wiscombe;
-  if (a.working == "double") o.working = mie::Working::double_only;
-  if (a.working == "extended") o.working = mie::Working::extended;
+  if (a.working == "double") o.precision = mie::Precision::double_precision;
+  if (a.working == "extended") o.precision = mie::Precision::extended;
   return o;
 }
 
@@ -106,7 +106,7 @@ void register_mie(CLI::App& app) {
   cmd->add_option("--terms", args->terms, "term count: converged (default) or wiscombe")
       ->check(CLI::IsMember({"converged", "wiscombe"}));
   cmd->add_option("--working", args->working,
-                  "working precision: auto (default: long double recurrences, double terms), double (fast, less accurate at large x), extended")
+                  "working precision: auto (default: double, long double recurrences where double is not enough), double (fast, less accurate at large x), extended")
       ->check(CLI::IsMember({"auto", "double", "extended"}));
   cmd->callback([args, cmd]() { run(*args, *cmd); });
 }

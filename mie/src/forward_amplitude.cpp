@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "attenuvis/mie/complex_ops.hpp"
 #include "attenuvis/mie/lentz.hpp"
 
 namespace attenuvis::mie {
@@ -169,23 +170,23 @@ double ForwardAmplitude::rounding_bound() const {
          2 * std::numeric_limits<double>::epsilon() * std::abs(s0);
 }
 
-ForwardAmplitude forward_amplitude(std::complex<double> x, std::complex<double> m, Arithmetic arithmetic) {
+ForwardAmplitude forward_amplitude(std::complex<double> x, std::complex<double> m, Precision precision) {
   check(x, m);
   ForwardAmplitude out;
-  if (arithmetic == Arithmetic::extended) evaluate<long double, 1>(&x, m, &out);
+  if (precision == Precision::extended) evaluate<long double, 1>(&x, m, &out);
   else evaluate<double, 1>(&x, m, &out);
   return out;
 }
 
 void forward_amplitudes(const std::complex<double>* x, std::size_t count, std::complex<double> m,
-                        Arithmetic arithmetic, ForwardAmplitude* out) {
+                        Precision precision, ForwardAmplitude* out) {
   for (std::size_t k = 0; k < count; ++k) check(x[k], m);
   for (std::size_t k = 0; k < count; k += kBatch) {
     // A short last batch repeats its last point.
     std::complex<double> xs[kBatch];
     ForwardAmplitude res[kBatch];
     for (int j = 0; j < kBatch; ++j) xs[j] = x[std::min(k + j, count - 1)];
-    if (arithmetic == Arithmetic::extended) evaluate<long double, kBatch>(xs, m, res);
+    if (precision == Precision::extended) evaluate<long double, kBatch>(xs, m, res);
     else evaluate<double, kBatch>(xs, m, res);
     for (int j = 0; j < kBatch && k + j < count; ++j) out[k + j] = res[j];
   }

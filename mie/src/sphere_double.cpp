@@ -1,48 +1,27 @@
 // The double-precision Mie entry points (the product).  The series itself is
 // the template in attenuvis/mie/series.hpp, instantiated here for double.
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/series.hpp"
+#include "sphere_checks.hpp"
 
 namespace attenuvis::mie {
 namespace {
 
 void check_x(double x) {
-  if (!std::isfinite(x) || x <= 0.0 || x > 2e7) {
-    std::ostringstream os;
-    os.precision(17);
-    os << "mie: size parameter x must be finite and in (0, 2e7], got " << x;
-    throw std::invalid_argument(os.str());
-  }
+  const std::string e = detail::size_parameter_error(x);
+  if (!e.empty()) throw std::invalid_argument(e);
 }
 
 void check_m(std::complex<double> m) {
-  if (!std::isfinite(m.real()) || !std::isfinite(m.imag()) || m.real() < 0.0 || m.imag() < 0.0 ||
-      m == std::complex<double>(0.0)) {
-    std::ostringstream os;
-    os.precision(17);
-    os << "mie: refractive index m = n + ik needs finite n >= 0, k >= 0 (k > 0 absorbs) and m != 0, got "
-       << m.real() << (m.imag() < 0 ? " - " : " + ") << std::abs(m.imag()) << "i";
-    throw std::invalid_argument(os.str());
-  }
+  const std::string e = detail::refractive_index_error(m);
+  if (!e.empty()) throw std::invalid_argument(e);
 }
 
-// Above Options::extended_above the recurrences run in long double (x87
-// extended, 64-bit significand) and each term is evaluated in double.  Why:
-// at x ~ 1e4…1e6 the recurrences run through ~x oscillations and in double
-// their rounding errors accumulate to ~√N·ε ≈ 1e-13 in every aₙ; Qback, an
-// alternating sum that cancels by a factor ~x, would be off by up to 1e-8.
-bool use_extended(double x, const Options& options) {
-  switch (options.working) {
-    case Working::double_only: return false;
-    case Working::extended: return true;
-    case Working::automatic: break;
-  }
-  return x > options.extended_above;
-}
+using detail::use_extended;
 
 }  // namespace
 
@@ -62,14 +41,14 @@ Efficiencies<double> sphere(double x, PerfectConductor pec, const Options& optio
 Scattering<double> scatter(double x, std::complex<double> m, const Extras& extras, const Options& options) {
   check_x(x);
   check_m(m);
-  if (use_extended(x, options))
+  if (use_extended(x, m, false, options))
     return detail::mie_series<double, long double>(x, m, false, extras, options);
   return detail::mie_series<double>(x, m, false, extras, options);
 }
 
 Scattering<double> scatter(double x, PerfectConductor, const Extras& extras, const Options& options) {
   check_x(x);
-  if (use_extended(x, options))
+  if (use_extended(x, 1.0, true, options))
     return detail::mie_series<double, long double>(x, std::complex<double>(1.0), true, extras, options);
   return detail::mie_series<double>(x, std::complex<double>(1.0), true, extras, options);
 }

@@ -11,7 +11,7 @@
 
 #include "attenuvis/mie.hpp"
 
-using attenuvis::mie::Arithmetic;
+using attenuvis::mie::Precision;
 using attenuvis::mie::forward_amplitude;
 
 TEST_CASE("forward amplitude at complex x: 60-digit mpmath table", "[mie][complex-x]") {
@@ -30,15 +30,15 @@ TEST_CASE("forward amplitude at complex x: 60-digit mpmath table", "[mie][comple
     for (std::string cell; std::getline(s, cell, ',');) v.push_back(std::stod(cell));
     REQUIRE(v.size() == 6);
     const std::complex<double> x(v[0], v[1]), m(v[2], v[3]), ref(v[4], v[5]);
-    for (Arithmetic a : {Arithmetic::extended, Arithmetic::double_precision}) {
+    for (Precision a : {Precision::extended, Precision::double_precision}) {
       const auto fa = forward_amplitude(x, m, a);
       const double err = std::abs(fa.s0 - ref);
       // The bound the contour integral charges for rounding (contour_extinction.cpp):
       const double bound = fa.rounding_bound();
-      INFO("x = " << x << ", m = " << m << (a == Arithmetic::extended ? " (long double)" : " (double)") << ": S(0) "
+      INFO("x = " << x << ", m = " << m << (a == Precision::extended ? " (long double)" : " (double)") << ": S(0) "
                   << fa.s0 << " vs " << ref << ", |error| " << err << ", rounding bound " << bound);
       CHECK(err <= bound);
-      if (a == Arithmetic::extended) {
+      if (a == Precision::extended) {
         CHECK(err <= 1e-13 * std::abs(ref));
         worst = std::max(worst, err / std::abs(ref));
       } else {
@@ -62,7 +62,7 @@ TEST_CASE("forward amplitudes in batches agree with one-by-one calls", "[mie][co
   const std::vector<std::complex<double>> x{{0.5, 0.1}, {1500.0, 4.0}, {5.0, 1.0}, {80.0, 4.0},
                                             {300.0, 0.0}, {20.0, 2.0}, {700.0, 3.0}};
   for (std::complex<double> m : {std::complex<double>(1.333, 1.96e-9), {1.5, 0.1}, {10.0, 10.0}})
-    for (Arithmetic a : {Arithmetic::extended, Arithmetic::double_precision}) {
+    for (Precision a : {Precision::extended, Precision::double_precision}) {
       std::vector<attenuvis::mie::ForwardAmplitude> batch(x.size());
       attenuvis::mie::forward_amplitudes(x.data(), x.size(), m, a, batch.data());
       for (std::size_t k = 0; k < x.size(); ++k) {
@@ -75,7 +75,7 @@ TEST_CASE("forward amplitudes in batches agree with one-by-one calls", "[mie][co
   // A bad point anywhere in the batch is rejected before any work.
   const std::vector<std::complex<double>> bad{{10.0, 1.0}, {10.0, -1.0}};
   std::vector<attenuvis::mie::ForwardAmplitude> out(bad.size());
-  CHECK_THROWS_WITH(attenuvis::mie::forward_amplitudes(bad.data(), bad.size(), {1.33, 0.0}, Arithmetic::double_precision,
+  CHECK_THROWS_WITH(attenuvis::mie::forward_amplitudes(bad.data(), bad.size(), {1.33, 0.0}, Precision::double_precision,
                                                        out.data()),
                     Catch::Contains("0 <= Im x <= 20"));
 }

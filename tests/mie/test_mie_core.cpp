@@ -148,8 +148,8 @@ TEST_CASE("term rules: converged goes beyond Wiscombe's N; wiscombe uses exactly
 
 TEST_CASE("working precisions agree where double is accurate", "[mie][core]") {
   mie::Options d, e;
-  d.working = mie::Working::double_only;
-  e.working = mie::Working::extended;
+  d.precision = mie::Precision::double_precision;
+  e.precision = mie::Precision::extended;
   for (double x : {0.1, 30.0, 90.0}) {
     const auto qd = mie::sphere(x, cd(1.33, 1e-5), d);
     const auto qe = mie::sphere(x, cd(1.33, 1e-5), e);

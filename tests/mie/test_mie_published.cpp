@@ -114,56 +114,33 @@ namespace mie = attenuvis::mie;
 using cd = std::complex<double>;
 
 // ------------------------------------------------------- documented exceptions
-// Entries where the SOURCE is not exact to the digits it prints.  Each was found
-// with the 50-digit referee (test_mie_referee.cpp checks attenuvis against it to
-// 1e-10 everywhere) and with an independent 50-digit evaluation written for this
-// purpose; the reason is the source's own method, stated in the source.  For these
-// entries the published value must still agree with attenuvis to `rel` times the
-// entry's magnitude, which is the accuracy the source's method actually delivers.
-// Every other entry must agree to half a unit in its last printed digit.
+// Entries where the SOURCE is not exact to the digits it prints, with the
+// reason (the source's own method) and the accuracy that method delivers:
+// tests/data/mie/documented_inaccuracies.csv, the one list this test and the
+// reproduction report share.  Every other entry must agree to half a unit in
+// its last printed digit.
 struct Exception {
-  const char* table;
-  const char* row;    // case number / label / angle
-  const char* field;  // column name, or "amplitudes" for the whole angle table of a case
+  std::string table;
+  std::string row;    // case number / label / angle
+  std::string field;  // column name, or "*" for every field of the row
   double rel;
-  const char* reason;
+  std::string reason;
 };
 
-const Exception kExceptions[] = {
-    // MIEV0 uses its small-particle formulas when x*max(1,|m|) <= 0.1 (MIEV0.f;
-    // MVTstNew.f notes that the lower of two close x uses them).
-    {"miev0", "1", "*", 1e-2,
-     "MIEV0 small-particle formulas (SMALL1, perfect conductor, x = 0.099); worst where S2 nearly "
-     "vanishes (60 deg): Qext off by 5e-5 relative, S2(60) by 6e-3"},
-    {"miev0", "5", "*", 1e-5, "MIEV0 small-particle formulas (SMALL2, x|m| <= 0.1)"},
-    {"miev0", "12", "*", 1e-5, "MIEV0 small-particle formulas (SMALL2, x|m| <= 0.1)"},
-    // Just above the switch MIEV0 sums NTRM = x + 4x^(1/3) + 1 terms, i.e. 2 or 3
-    // (MIEV0.f eq. R50), which truncates at the 1e-6..1e-4 level where S nearly cancels.
-    {"miev0", "2", "*", 1e-4, "MIEV0 sums only NTRM = 3 terms at x = 0.101 (perfect conductor)"},
-    {"miev0", "6", "*", 1e-5,
-     "MIEV0 sums only NTRM = 2 terms at x = 0.101: Qext 8.033542E-06 vs 8.0335381e-06 (Du 2004 "
-     "prints 8.033538e-06)"},
-    {"miev0", "13", "*", 1e-5, "MIEV0 sums only NTRM = 2 terms at x = 0.056"},
-    // Wiscombe's N at large x leaves up to ~1e-5 in backscattering (issue 2, trap 1).
-    {"miev0", "11", "*", 1e-5,
-     "Wiscombe's N at x = 1e4: S(180) = -182.1194 - 951.9122i published vs -182.1162 - 951.9097i "
-     "(MIEV0's conjugate convention), 4e-6 relative"},
-    {"miev0", "19", "*", 1e-6, "Wiscombe's N at x = 1e4 (S(180) off by 0.7 units)"},
-    {"miev0", "4", "*", 1e-6, "Wiscombe's N at x = 1e4 (S(180) off by 1.0 unit)"},
-    {"miev0", "3", "*", 1e-6, "Wiscombe's N at x = 100 (S(180) off by 0.6 units)"},
-    // Du's Table 2 shows the same truncation at x = 1e4 and one rounding slip.
-    {"du2", "f", "s1_180", 1e-5, "same truncation as MIEV0 case 11 (x = 1e4)"},
-    {"du2", "k", "s1_180", 2e-6, "-0.791236 printed for -0.79123651 (rounding, 0.51 units)"},
-    // Bohren & Huffman's BHMIE ran in single precision.
-    {"bh", "99", "s33", 2e-6, "single-precision BHMIE: -0.717397E-02 for -0.7173975e-02"},
-    {"bh", "126", "s34", 2e-6, "single-precision BHMIE: 0.795798E-01 for 0.7957986e-01"},
-};
+const std::vector<Exception>& exceptions() {
+  static const std::vector<Exception> list = [] {
+    std::vector<Exception> out;
+    for (const Row& r : read_table("documented_inaccuracies.csv"))
+      out.push_back({r.at("source"), r.at("row"), r.at("field"), num(r, "rel"), r.at("reason")});
+    return out;
+  }();
+  return list;
+}
 
 const Exception* find_exception(const std::string& table, const std::string& row,
                                  const std::string& field) {
-  for (const auto& e : kExceptions)
-    if (table == e.table && row == e.row && (std::string(e.field) == "*" || field == e.field))
-      return &e;
+  for (const auto& e : exceptions())
+    if (table == e.table && row == e.row && (e.field == "*" || field == e.field)) return &e;
   return nullptr;
 }
 

@@ -1,8 +1,9 @@
-// One test per numerical trap of issue 2 (each seen in a widely used Mie code).
+// One test per Mie trap (the named numerical pitfalls listed in
+// attenuvis/mie/series.hpp, each seen in a widely used Mie code).
 // Reference: the same problem solved by the 50-digit referee
 // (attenuvis/mie/referee.hpp), i.e. the series in cpp_bin_float_50 for exactly
 // the double inputs; 50 digits leave every cancellation below 1e-30.  The
-// requirement (issue 2) is |q − q_ref| <= max(1e-10 |q_ref|, 1e-14 Qext_ref) for
+// requirement is |q − q_ref| <= max(1e-10 |q_ref|, 1e-14 Qext_ref) for
 // Qext, Qsca, Qabs, g and Qback.
 #include <catch2/catch.hpp>
 
@@ -50,7 +51,7 @@ void check_against_referee(double x, cd m, const mie::Options& options = {}) {
 
 }  // namespace
 
-TEST_CASE("trap 1: the series is summed until converged, not to Wiscombe's N", "[mie][trap]") {
+TEST_CASE("trap truncation: the series is summed until converged, not to Wiscombe's N", "[mie][trap]") {
   // Guards against stopping at N = x + 4.05 x^{1/3} + 2, which leaves ~1e-10 in
   // Qext and ~1e-8 in Qback for absorbing spheres.  Both rules are compared with
   // the converged 50-digit referee: ours must pass, and the test must be able to
@@ -67,10 +68,10 @@ TEST_CASE("trap 1: the series is summed until converged, not to Wiscombe's N", "
   }
 }
 
-TEST_CASE("trap 2: D_n(mx) starts from Lentz's continued fraction, not from 0", "[mie][trap]") {
+TEST_CASE("trap start-value: D_n(mx) starts from Lentz's continued fraction, not from 0", "[mie][trap]") {
   // Guards against the downward recurrence started at max(N, |mx|) + 15 from
   // zero, which at x = 1e4, m = 1.33 + 1e-5 i gives Qsca = 1.718034 instead of
-  // 1.723857 (issue 2), because the recurrence has not forgotten its start.
+  // 1.723857, because the recurrence has not forgotten its start.
   const double x = 1e4;
   const cd m(1.33, 1e-5);
   check_against_referee(x, m);
@@ -79,13 +80,13 @@ TEST_CASE("trap 2: D_n(mx) starts from Lentz's continued fraction, not from 0", 
   check_against_referee(x, cd(1.5, 1000));
 }
 
-TEST_CASE("trap 2: k = 1000 at x = 1e6 (|mx| = 1e9) against the referee", "[mie][trap][slow]") {
+TEST_CASE("trap start-value: k = 1000 at x = 1e6 (|mx| = 1e9) against the referee", "[mie][trap][slow]") {
   // A downward start at |mx| would need 1e9 steps; the Lentz start at N ≈ x
   // converges in a few hundred because Im(mx) is large.  (~40 s: referee.)
   check_against_referee(1e6, cd(1.5, 1000));
 }
 
-TEST_CASE("trap 3: small x keeps Qext positive and accurate (no psi_1 = sin x/x - cos x)", "[mie][trap]") {
+TEST_CASE("trap small-x: small x keeps Qext positive and accurate (no psi_1 = sin x/x - cos x)", "[mie][trap]") {
   // Guards against the cancellation in ψ₁(x) = sin x/x − cos x (and in the
   // leading 1/x terms of m Dₙ(mx) − Dₙ(x)), which makes one code return
   // negative Qext below x ≈ 3e-3.  Non-absorbing m is the hard case: Qext = Qsca
@@ -100,12 +101,15 @@ TEST_CASE("trap 3: small x keeps Qext positive and accurate (no psi_1 = sin x/x 
   }
 }
 
-TEST_CASE("trap 4: m -> 1 keeps full relative accuracy (difference recurrence)", "[mie][trap]") {
+TEST_CASE("trap m-near-1: m -> 1 keeps full relative accuracy (difference recurrence)", "[mie][trap]") {
   // Guards against forming m² − 1 and the numerators Dₙ(mx)/m − Dₙ(x) by
   // cancellation (two codes have a 6e-13 floor at n = 1.0001).  Every quantity
   // scales like (m−1)² or (m−1), so an absolute floor would hide the trap.
   for (double x : {1e-6, 0.1, 3.0, 40.0, 1000.0})
     for (cd m : {cd(1 + 1e-6, 0), cd(1.0001, 0), cd(1 + 1e-6, 1e-8), cd(1 - 1e-6, 0)}) check_against_referee(x, m);
+}
+
+TEST_CASE("trap psi-zero: m -> 1 at a zero of psi_n(x)", "[mie][trap]") {
   // At a zero of ψₙ(x) (doubles nearest the zeros of J_{3/2}, J_{5/2}: 4.4934…,
   // 6.9879…, mpmath 40 digits) yₙ(x) = ψₙ₊₁/ψₙ comes from a cancelling
   // difference; in all-double arithmetic m = 1 + 1e-7 then misses by 3× the
@@ -114,7 +118,7 @@ TEST_CASE("trap 4: m -> 1 keeps full relative accuracy (difference recurrence)",
     for (cd m : {cd(1 + 1e-7, 0), cd(1 + 1e-6, 0), cd(1 - 1e-6, 0)}) check_against_referee(x, m);
 }
 
-TEST_CASE("trap 5: large k x neither overflows nor loses accuracy", "[mie][trap]") {
+TEST_CASE("trap large-kx: large k x neither overflows nor loses accuracy", "[mie][trap]") {
   // Guards against unscaled ψₙ(mx) ~ e^{kx} (k x up to 1e9 here).
   for (double x : {0.01, 1.0, 100.0, 2000.0})
     for (cd m : {cd(1.5, 1000), cd(10, 1000), cd(10, 10), cd(0.75, 30)}) check_against_referee(x, m);

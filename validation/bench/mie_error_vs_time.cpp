@@ -1,28 +1,43 @@
-// Error against run time of the Mie core (issue 2): for x in the decades
+// Error against run time of the Mie core: for x in the decades
 // 1e-3 ... 1e6 and m in {1.0001, 1.33+1e-8i, 1.5+0.1i, 10+10i}, the median time
 // per call and the largest relative error against the 50-digit referee of
 //   default       attenuvis::mie::sphere (terms until converged)
 //   wiscombe      attenuvis with Wiscombe's term count N = x + 4.05 x^(1/3) + 2
 //   conventional  a textbook Bohren–Huffman double loop (Wiscombe's N, D_n downward
 //                 from |mx| + 15), see mie_conventional.hpp — not MIEV0 itself
+//   double        attenuvis with Precision::double_precision (the fast mode)
 // The last column is default time / conventional time, both measured in this run.
 //
-// Usage: mie_error_vs_time [out.csv] [--quick] [--max-x X]
-//   out.csv   default out/mie_error_vs_time.csv (written atomically)
-//   --quick   stop at x = 1e4 (a few seconds); the full table needs the 50-digit
-//             referee at x = 1e5 and 1e6, about 30 s per m at 1e6.
+// With --baseline LIB (default: build/mie_baseline_78ee94c/libmie_baseline.so
+// when present) it then times the default mode against an earlier build of the
+// core (LIB from validation/bench/baseline/build_mie_baseline.sh, by default
+// commit 78ee94c), interleaved in the same run, and prints the
+// speed-up per x and index, then the throughput of many spheres (x uniform in
+// [0.01, 100], m = 1.33+1e-8i): the baseline's sphere() in a loop against the
+// current sphere() and spheres() (see attenuvis/validation/mie_baseline.hpp).
+//
+// Usage: mie_error_vs_time [out.csv] [--quick] [--max-x X] [--baseline LIB] [--speed-only]
+//   out.csv       default out/mie_error_vs_time.csv (written atomically)
+//   --quick       stop at x = 1e4 (a few seconds); the full table needs the 50-digit
+//                 referee at x = 1e5 and 1e6, about 30 s per m at 1e6.
+//   --speed-only  skip the error-vs-time table (with --baseline)
+#include <algorithm>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <string>
 
 #include "attenuvis/validation/mie_accuracy.hpp"
+#include "attenuvis/validation/mie_baseline.hpp"
 
 int main(int argc, char** argv) {
   using namespace attenuvis::validation;
   try {
     std::string out = "out/mie_error_vs_time.csv";
     ErrorTimeOptions options;
+    std::string baseline_path;
+    bool speed_only = false;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
       if (a == "--quick") {
@@ -31,21 +46,50 @@ int main(int argc, char** argv) {
         if (keep < options.max_x) options.max_x = keep;
       } else if (a == "--max-x" && i + 1 < argc) {
         options.max_x = std::stod(argv[++i]);
+      } else if (a == "--baseline" && i + 1 < argc) {
+        baseline_path = argv[++i];
+      } else if (a == "--speed-only") {
+        speed_only = true;
       } else if (!a.empty() && a[0] == '-') {
         std::cerr << "mie_error_vs_time: unknown option " << a
-                  << "\nusage: mie_error_vs_time [out.csv] [--quick] [--max-x X]\n";
+                  << "\nusage: mie_error_vs_time [out.csv] [--quick] [--max-x X] [--baseline LIB] [--speed-only]\n";
         return 2;
       } else {
         out = a;
       }
     }
-    const auto rows = mie_error_vs_time(options);
-    std::cout << "Mie error against run time (" << timing_machine_description() << ")\n"
-              << "error: max over Qext, Qsca, Qabs, g, Qback of |q - q_ref| / max(|q_ref|, 1e-4 Qext)"
-                 " against the 50-digit referee\n\n"
-              << format_error_vs_time(rows);
-    write_error_vs_time_csv(out, rows);
-    std::cout << "\nwrote " << out << "\n";
+    if (baseline_path.empty()) {
+      // The library build_mie_baseline.sh leaves in the build tree, if it is there.
+      const auto guess = std::filesystem::path(argv[0]).parent_path() / ".." / "mie_baseline_78ee94c" /
+                         "libmie_baseline.so";
+      std::error_code ec;
+      if (std::filesystem::is_regular_file(guess, ec)) baseline_path = guess.lexically_normal().string();
+    }
+    if (speed_only && baseline_path.empty()) {
+      std::cerr << "mie_error_vs_time: --speed-only needs --baseline LIB\n";
+      return 2;
+    }
+    std::cout << "Mie core timings (" << timing_machine_description() << ")\n";
+    if (!speed_only) {
+      const auto rows = mie_error_vs_time(options);
+      std::cout << "\nerror: max over Qext, Qsca, Qabs, g, Qback of |q - q_ref| / max(|q_ref|, 1e-4 Qext)"
+                   " against the 50-digit referee\n\n"
+                << format_error_vs_time(rows);
+      write_error_vs_time_csv(out, rows);
+      std::cout << "\nwrote " << out << "\n";
+    }
+    if (baseline_path.empty()) {
+      std::cout << "\nno baseline core: build one with validation/bench/baseline/build_mie_baseline.sh "
+                   "(commit 78ee94c by default) and pass --baseline LIB\n";
+    } else {
+      const MieBaseline baseline(baseline_path);
+      SpeedOptions speed;
+      speed.xs.erase(std::remove_if(speed.xs.begin(), speed.xs.end(), [&](double x) { return x > options.max_x; }),
+                     speed.xs.end());
+      std::cout << "\nper call, default accuracy, against " << baseline_path << "\n"
+                << format_speed_vs_baseline(mie_speed_vs_baseline(baseline, speed), "baseline") << "\n"
+                << format_batch_speed(mie_batch_vs_baseline(baseline, BatchSpeed{}));
+    }
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "mie_error_vs_time: error: " << e.what() << "\n";

@@ -113,6 +113,8 @@ std::vector<ErrorTimeRow> mie_error_vs_time(const ErrorTimeOptions& options) {
   std::vector<ErrorTimeRow> rows;
   mie::Options wiscombe;
   wiscombe.terms = mie::TermRule::wiscombe;
+  mie::Options fast;
+  fast.precision = mie::Precision::double_precision;
   for (const auto& m : options.ms)
     for (double x : options.xs) {
       if (!(x > 0) || x > options.max_x) continue;
@@ -123,6 +125,12 @@ std::vector<ErrorTimeRow> mie_error_vs_time(const ErrorTimeOptions& options) {
                       median_ns_per_call([&] { return mie::sphere(x, m).qext; },
                                          options.min_sample_seconds, options.samples),
                       mie_max_relative_error(from(def), ref), static_cast<int>(def.terms)});
+
+      const auto dbl = mie::sphere(x, m, fast);
+      rows.push_back({x, m, "double",
+                      median_ns_per_call([&] { return mie::sphere(x, m, fast).qext; },
+                                         options.min_sample_seconds, options.samples),
+                      mie_max_relative_error(from(dbl), ref), static_cast<int>(dbl.terms)});
 
       const auto wis = mie::sphere(x, m, wiscombe);
       rows.push_back({x, m, "wiscombe",
@@ -178,11 +186,11 @@ std::string format_error_vs_time(const std::vector<ErrorTimeRow>& rows) {
     if (by.find(key) == by.end()) keys.emplace_back(r.m, r.x);
     by[key][r.mode] = &r;
   }
-  const char* modes[] = {"default", "wiscombe", "conventional"};
+  const char* modes[] = {"default", "double", "wiscombe", "conventional"};
   std::ostringstream os;
   char line[256];
-  std::snprintf(line, sizeof line, "%-12s %8s | %10s %9s | %10s %9s | %10s %9s | %8s\n", "m", "x",
-                "default ns", "error", "wiscombe", "error", "convent.", "error", "def/conv");
+  std::snprintf(line, sizeof line, "%-12s %8s | %10s %9s | %10s %9s | %10s %9s | %10s %9s | %8s\n", "m", "x",
+                "default ns", "error", "double ns", "error", "wiscombe", "error", "convent.", "error", "def/conv");
   os << line << std::string(std::string(line).size() - 1, '-') << '\n';
   for (const auto& [m, x] : keys) {
     const auto& cols = by[{format_index(m), x}];

@@ -7,7 +7,7 @@
 //     larger part (the source rounded both parts relative to the larger one);
 //   * entries where the SOURCE is not exact to the digits it prints (its own
 //     small-particle formulas, Wiscombe's term count, single precision) are
-//     listed with the reason in kDocumentedInaccuracies (mie_published.cpp) and
+//     listed with the reason in documented_inaccuracies.csv beside the tables and
 //     must still agree to the accuracy that method delivers.
 // Nothing here is tuned to the results: the rule and the list are the test's.
 #pragma once

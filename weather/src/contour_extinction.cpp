@@ -38,8 +38,8 @@ std::optional<double> path_angle(const SizeDistribution& d) {
 // S(0) in double arithmetic where its rounding bound (~1e-11 |S(0)| at height
 // 4 and x <= 1000, mie/forward_amplitude.hpp) leaves the tolerance a 100-fold
 // margin; long double (4x slower) otherwise.
-mie::Arithmetic arithmetic_for(const ContourSettings& s) {
-  return s.rel_tolerance >= 1e-9 && s.height <= 4 ? mie::Arithmetic::double_precision : mie::Arithmetic::extended;
+mie::Precision arithmetic_for(const ContourSettings& s) {
+  return s.rel_tolerance >= 1e-9 && s.height <= 4 ? mie::Precision::double_precision : mie::Precision::extended;
 }
 
 // Relative amplitude left of the resonance ripple at height h above the real
@@ -64,7 +64,7 @@ struct PanelResult {
 class PathIntegrand {
  public:
   PathIntegrand(const SizeDistribution& d, double wavelength, Complex m, double height, double angle,
-                mie::Arithmetic arithmetic)
+                mie::Precision arithmetic)
       : d_(d), k_(2 * kPi / wavelength), m_(m), h_(height), theta_(angle), arithmetic_(arithmetic) {}
 
   // Point of the path and dx/dt:  x(t) = t + i H tanh(theta t / H).
@@ -96,7 +96,7 @@ class PathIntegrand {
   double k_;
   Complex m_;
   double h_, theta_;
-  mie::Arithmetic arithmetic_;
+  mie::Precision arithmetic_;
 };
 
 // Gauss-Kronrod on [a, b] of F(point(t)) * jacobian(t) dt.
@@ -161,7 +161,7 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
   if (!(x_max <= s.max_x)) return std::nullopt;
 
   const detail::Rule rule = detail::rule_for(s.kronrod_points);
-  const mie::Arithmetic arithmetic = arithmetic_for(s);
+  const mie::Precision arithmetic = arithmetic_for(s);
   const PathIntegrand f(d, wavelength_m, m, s.height, *angle, arithmetic);
   const auto on_path = [&](double t) { return f.x(t); };
   const auto path_jacobian = [&](double t) { return f.dxdt(t); };
@@ -327,7 +327,7 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
   method << "contour integral of 4 Re S(0)/x^2 along x = t + i h(t), h <= " << significant(s.height, 3)
          << ", arg x <= " << significant(*angle, 3) << " (resonances smoothed out; contour_extinction.hpp), "
          << "adaptive Gauss-Kronrod " << s.kronrod_points << " (Boost.Math)" << (verify ? ", verified by halving" : "")
-         << ", S(0) in " << (arithmetic == mie::Arithmetic::double_precision ? "double" : "long double")
+         << ", S(0) in " << (arithmetic == mie::Precision::double_precision ? "double" : "long double")
          << ", rel. tol " << significant(s.rel_tolerance, 3)
          << ", tail cut at " << significant(tail_fraction, 3) << " of the r^2 moment, " << evaluations
          << " evaluations, x <= " << significant(x_max, 3);

@@ -28,15 +28,19 @@
 //    |m| → ∞ : aₙ = ψₙ'(x)/ξₙ'(x), bₙ = ψₙ(x)/ξₙ(x).
 //
 // Everything is computed from ratio/logarithmic-derivative recurrences, so
-// nothing overflows or underflows for 1e-8 <= x <= 1e7 and any 0 < n, 0 <= k.
-// The numerical method and its traps are described in mie/series.hpp.
+// nothing overflows or underflows for 1e-8 <= x <= 1e7 and any n >= 0, k >= 0
+// (m != 0).
+// The numerical method and its traps (named pitfalls) are described in
+// mie/series.hpp.
 #pragma once
 
 #include <complex>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "attenuvis/mie/forward_amplitude.hpp"
+#include "attenuvis/mie/precision.hpp"
 
 namespace attenuvis::mie {
 
@@ -63,29 +67,33 @@ enum class TermRule {
   converged,
   // Wiscombe (1980, Appl. Opt. 19:1505, eq. 19) / MIEV0: N = x + 4.05 x^{1/3} + 2
   // (truncated to an integer).  Provided to reproduce other codes and to
-  // measure its truncation error; it is NOT accurate to 1e-10 (trap 1).
+  // measure its truncation error; it is NOT accurate to 1e-10 (trap truncation,
+  // mie/series.hpp).
   wiscombe,
 };
 
-// Working precision.
-enum class Working {
-  // Default: the recurrences that run over all n (ψ, ξ and Dₙ ratios) in x87
-  // extended precision (long double, 64-bit significand), each term's own
-  // arithmetic in double ("mixed"), for x > extended_above (default: all x).
-  // Why: in double the rounding errors of the recurrences add up to ~√N·ε in
-  // every aₙ, and Qback (an alternating sum cancelling by a factor ~x)
-  // amplifies them: ~1e-10 at x = 1e4, ~1e-8 at x = 1e6; and at a zero of
-  // ψₙ(x) (e.g. x = 4.493409457909064) with m = 1 + 1e-7 the ratio ψₙ₊₁/ψₙ
-  // is formed by cancellation, giving 3e-10 in Qext.  Mixed costs ~1.5× double.
-  automatic,
-  double_only,  // fast mode: everything in double (error grows with x, see the benchmark)
-  extended,     // mixed precision at every x (what automatic does by default)
-};
-
+// Working precision of the recurrences for ψₙ(x), ψₙ(mx) ratios (Precision,
+// attenuvis/mie/precision.hpp); each term's own arithmetic is always double.
+// Unset (the default, "automatic"): double where the 50-digit referee shows
+// double to be enough, x87 extended (long double, 64-bit significand)
+// elsewhere, i.e. extended for
+//   * x > 1e4: the rounding errors of the recurrences add up to ~√N·ε in
+//     every aₙ and Qback, an alternating sum cancelling by ~x, amplifies them
+//     (double: ~1e-11 at x = 1e5, m = 1.33, against 2e-13);
+//   * |m − 1| < 5e-5: at a zero of ψₙ(x) (e.g. x = 4.493409457909064) with
+//     m = 1 + 1e-6 the difference recurrence inherits the cancellation of
+//     ψₙ₊₁/ψₙ (double: 8e-11 in Qext);
+//   * |m − 1| < 1e-2 and x > 1e3: Qback ~ 1e-9 Qext, whose relative error in
+//     double grows with x (1e-11 at x = 1e4);
+// and never below x <= extended_above.  The thresholds and measurements are
+// in src/sphere_checks.hpp.
+//   Precision::double_precision  fast mode: everything in double (error grows
+//                                with x, see the benchmark)
+//   Precision::extended          extended recurrences at every x
 struct Options {
   TermRule terms = TermRule::converged;
-  Working working = Working::automatic;
-  double extended_above = 0.0;  // automatic: double-only at x <= this
+  std::optional<Precision> precision;  // unset: automatic (see above)
+  double extended_above = 0.0;         // automatic: double-only at x <= this
 };
 
 // Extra outputs of scatter(): the Mie coefficients and/or the amplitude
@@ -107,8 +115,11 @@ struct Scattering {
 struct PerfectConductor {};
 
 // Efficiencies of a homogeneous sphere with size parameter x > 0 and relative
-// refractive index m = n + ik (n > 0, k >= 0).  Throws std::invalid_argument
-// for x <= 0, x > 2e7, non-finite input, n <= 0 or k < 0.
+// refractive index m = n + ik (n >= 0, k >= 0, m != 0; n = 0 is a purely
+// imaginary index, e.g. a lossless Drude metal below its plasma frequency).
+// Throws std::invalid_argument for x <= 0, x > 2e7, non-finite input, n < 0,
+// k < 0 or m = 0.  For many spheres, spheres() (attenuvis/mie/spheres.hpp)
+// returns the same values several times faster.
 Efficiencies<double> sphere(double x, std::complex<double> m, const Options& options = {});
 Efficiencies<double> sphere(double x, PerfectConductor, const Options& options = {});
 

@@ -33,7 +33,8 @@ std::string csv_row(const Problem& p, const Efficiencies<double>& q);
 
 // Reads `in` to the end, writes the header and one row per good line to
 // `out`, one "line N: <why>" message per bad line to `err`.  Returns the
-// number of bad lines.
+// number of bad lines.  The spheres are evaluated in chunks by spheres()
+// (attenuvis/mie/spheres.hpp), with the same results as sphere().
 std::size_t run(std::istream& in, std::ostream& out, std::ostream& err, const Options& options = {});
 
 // "1.33,1e-8" or "1.33" (k = 0) -> m; throws std::invalid_argument.

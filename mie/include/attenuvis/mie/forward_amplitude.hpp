@@ -19,9 +19,9 @@
 // (bounded above through |Re| + |Im| of the factors of aₙ and bₙ), from which
 // rounding_bound() = terms × unit roundoff × magnitude + 2 ε |S(0)| bounds the
 // rounding error (a worst-case linear accumulation; the measured errors are
-// 10-100x smaller, tests/mie/test_forward_amplitude.cpp).  Two arithmetics:
-//   extended  long double (64-bit significand, ε = 1.1e-19), the default;
-//   double    ~4x faster (the x87 unit is slow).  At Im x = 4 the bound is
+// 10-100x smaller, tests/mie/test_forward_amplitude.cpp).  Two precisions:
+//   extended          long double (64-bit significand, ε = 1.1e-19), the default;
+//   double_precision  ~4x faster (the x87 unit is slow).  At Im x = 4 the bound is
 //             ~1e-11 |S(0)| for x ≤ 1000, enough for a 1e-9 size integral;
 //             keep Im x below ~4 here (the cancellation grows like e^{2 Im x}).
 // In extended arithmetic keep Im x below ~8 (e^{16} ≈ 1e7) for double-level
@@ -42,9 +42,9 @@
 #include <complex>
 #include <cstddef>
 
-namespace attenuvis::mie {
+#include "attenuvis/mie/precision.hpp"
 
-enum class Arithmetic { extended, double_precision };
+namespace attenuvis::mie {
 
 struct ForwardAmplitude {
   std::complex<double> s0;  // S(0) = ½ Σ (2n+1)(aₙ + bₙ)
@@ -58,13 +58,13 @@ struct ForwardAmplitude {
 // Throws std::invalid_argument unless 0 < |x| <= 1e5, Re x > 0, 0 <= Im x <= 20,
 // Re m > 0, Im m >= 0 and |m - 1| >= 1e-6 (all finite).
 ForwardAmplitude forward_amplitude(std::complex<double> x, std::complex<double> m,
-                                   Arithmetic arithmetic = Arithmetic::extended);
+                                   Precision precision = Precision::extended);
 
 // S(0) at x[0..count) for one m, the same values as forward_amplitude() one by
 // one, about 2x faster in double: four series run side by side (their
 // divisions overlap and vectorise).  Points of similar |x| batch best (the
 // tables run to the largest).  Same argument checks, before any work.
 void forward_amplitudes(const std::complex<double>* x, std::size_t count, std::complex<double> m,
-                        Arithmetic arithmetic, ForwardAmplitude* out);
+                        Precision precision, ForwardAmplitude* out);
 
 }  // namespace attenuvis::mie

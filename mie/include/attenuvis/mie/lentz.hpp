@@ -11,8 +11,9 @@
 // Phys. 64:490) replaces a zero denominator by a tiny number.  For Riccati–
 // Bessel functions ψₙ(z) = z jₙ(z) = √(πz/2) J_{n+½}(z), so with ν = n + ½ this
 // gives ψ_{n-1}(z)/ψₙ(z) = Dₙ(z) + n/z, the quantity every recurrence in the
-// core starts from (trap 2: a wrong start value for the downward recurrence
-// of Dₙ(mx) is not forgotten for large, weakly absorbing spheres).
+// core starts from (trap start-value in series.hpp: a wrong start value for
+// the downward recurrence of Dₙ(mx) is not forgotten for large, weakly
+// absorbing spheres).
 #pragma once
 
 #include <cmath>
@@ -20,49 +21,16 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
+
+#include "attenuvis/mie/complex_ops.hpp"
 
 namespace attenuvis::mie::detail {
-
-template <class Real>
-inline Real abs2(const Real& v) { return v * v; }
-
-// |z|² of a complex number, without the square root.
-template <class C>
-inline auto norm2(const C& z) { return z.real() * z.real() + z.imag() * z.imag(); }
-
-// 1/z for complex z by conj(z)/|z|²: one real division, no library call
-// (std::complex division goes through __divdc3).  Safe here because every
-// quantity inverted in the core stays within 1e±150.
-template <class C>
-inline C recip(const C& z) {
-  const auto s = 1 / norm2(z);
-  return C(z.real() * s, -z.imag() * s);
-}
-
-// 1/v and |v|² for T = Real or T = complex of Real.
-template <class Real, class T>
-inline T inv(const T& v) {
-  if constexpr (std::is_same_v<T, Real>) return Real(1) / v;
-  else return recip(v);
-}
-template <class Real, class T>
-inline Real mag2(const T& v) {
-  if constexpr (std::is_same_v<T, Real>) return v * v;
-  else return norm2(v);
-}
-
-// Number of steps the continued fraction needed; a diagnostic for tests and
-// benchmarks only.
-struct LentzResult {
-  std::size_t iterations = 0;
-};
 
 // ψ_{n-1}(z)/ψₙ(z) for complex or real z (type T), n >= 1.  z enters only
 // through k_over_z(k) = k/z for integer k (see ScaledInverse in
 // log_derivative.hpp: it keeps the phase of large z accurate).
 template <class T, class Real, class KOverZ>
-T riccati_psi_ratio(std::size_t n, const KOverZ& k_over_z, LentzResult* info = nullptr) {
+T riccati_psi_ratio(std::size_t n, const KOverZ& k_over_z) {
   const Real eps = std::numeric_limits<Real>::epsilon();
   const Real eps2 = eps * eps;
   const Real tiny = (std::numeric_limits<Real>::min)() * Real(1e20);
@@ -83,10 +51,7 @@ T riccati_psi_ratio(std::size_t n, const KOverZ& k_over_z, LentzResult* info = n
     d = inv<Real>(d);
     const T delta = c * d;
     f *= delta;
-    if (mag2<Real>(delta - T(Real(1))) < eps2) {
-      if (info) info->iterations = j;
-      return f;
-    }
+    if (mag2<Real>(delta - T(Real(1))) < eps2) return f;
   }
   throw std::runtime_error("attenuvis::mie: Lentz continued fraction did not converge for n=" +
                            std::to_string(n));

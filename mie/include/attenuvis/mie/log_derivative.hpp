@@ -10,9 +10,9 @@
 //     Dₙ(z) = 1/(n/z − D_{n-1}(z)) − n/z,   D₀(z) = cot z           (upward)
 // Writing Dₙ through yₙ removes the leading (n+1)/z exactly, so
 // m Dₙ(mx) − Dₙ(x) = −m yₙ(mx) + yₙ(x) is formed without the 1/x² cancellation
-// that ruins bₙ at x = 1e-8 (trap 3).
+// that ruins bₙ at x = 1e-8 (trap small-x; the traps are listed in series.hpp).
 //
-// Trap 4 (m → 1).  The numerators of aₙ, bₙ are O(m−1) and would be formed by
+// Trap m-near-1.  The numerators of aₙ, bₙ are O(m−1) and would be formed by
 // cancellation.  We carry the difference δₙ = yₙ(mx) − yₙ(x) through its own
 // downward recurrence, obtained by subtracting the two y recurrences:
 //     δₙ = ((2n+3) c + δ_{n+1}) · yₙ(mx) · yₙ(x),   c = (m−1)/(m x),
@@ -21,9 +21,9 @@
 // recurrences.  The start δ_N = y_N(mx) − y_N(x) has an error ε|y_N| that the
 // factor Π yₖ(x) (≪ 1 above n ≈ x) damps long before it matters.
 //
-// Trap 2 (start value).  Both recurrences start at the top index N from the
+// Trap start-value.  Both recurrences start at the top index N from the
 // exact values given by Lentz's continued fraction (lentz.hpp), never from 0.
-// Trap 5 (large k·x).  Only ratios appear; nothing grows like e^{kx}.
+// Trap large-kx.  Only ratios appear; nothing grows like e^{kx}.
 #pragma once
 
 #include <cmath>
@@ -33,6 +33,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "attenuvis/mie/complex_ops.hpp"
 #include "attenuvis/mie/lentz.hpp"
 #include "attenuvis/mie/scratch.hpp"
 
@@ -46,28 +47,49 @@ namespace attenuvis::mie::detail {
 // So the coefficients k/z are formed from 1/z carried in two parts (hi + lo,
 // from extended precision), which makes their rounding errors independent
 // from step to step; they then add up only like a random walk.
+//
+// k/z is wanted correctly rounded (measured: rounding k·hi first and then
+// adding k·lo, two roundings, leaves 10-80× more error in Qback at x = 100,
+// m = 10, and at x = 2041, m = 1.33).  std::fma would do it, but on a baseline
+// x86-64 build it is a library call that spills every live register.  Instead
+// hi is split into two halves of 26 significant bits (Veltkamp/Dekker): for an
+// integer k < 2^26 (every index the core uses: k <= 2N + 3 with x <= 2e7)
+// k·h₁ and k·h₂ are exact, and k/z = k·h₁ + (k·h₂ + k·lo) is rounded once up
+// to the rounding of the small bracket, ~2^-26 ulp.
+struct SplitInverse {
+  double h1 = 0, h2 = 0, lo = 0;
+  SplitInverse() = default;
+  SplitInverse(double hi, double low) : lo(low) {
+    const double t = hi * 134217729.0;  // 2^27 + 1
+    h1 = t - (t - hi);
+    h2 = hi - h1;
+  }
+  double operator()(double k) const { return k * h1 + (k * h2 + k * lo); }
+};
+
 template <class Real>
 struct ScaledInverse {  // k/x for real x
-  Real hi, lo;
+  Real hi;
+  SplitInverse split;  // double only
   explicit ScaledInverse(const Real& x) {
     if constexpr (std::is_same_v<Real, double>) {
       const long double inv = 1.0L / static_cast<long double>(x);
       hi = static_cast<double>(inv);
-      lo = static_cast<double>(inv - hi);
+      split = SplitInverse(hi, static_cast<double>(inv - hi));
     } else {
       hi = Real(1) / x;
-      lo = Real(0);
     }
   }
   Real operator()(const Real& k) const {
-    if constexpr (std::is_same_v<Real, double>) return std::fma(k, hi, k * lo);
+    if constexpr (std::is_same_v<Real, double>) return split(k);
     else return k * hi;
   }
 };
 
 template <class Real, class C>
 struct ScaledInverseComplex {  // k/z for z = m x, formed without rounding m x first
-  C hi, lo;
+  C hi;
+  SplitInverse re, im;  // double only
   ScaledInverseComplex(const Real& x, const C& m) {
     if constexpr (std::is_same_v<Real, double>) {
       using LC = std::complex<long double>;
@@ -75,15 +97,14 @@ struct ScaledInverseComplex {  // k/z for z = m x, formed without rounding m x f
       const long double n2 = z.real() * z.real() + z.imag() * z.imag();
       const LC inv(z.real() / n2, -z.imag() / n2);
       hi = C(static_cast<double>(inv.real()), static_cast<double>(inv.imag()));
-      lo = C(static_cast<double>(inv.real() - hi.real()), static_cast<double>(inv.imag() - hi.imag()));
+      re = SplitInverse(hi.real(), static_cast<double>(inv.real() - hi.real()));
+      im = SplitInverse(hi.imag(), static_cast<double>(inv.imag() - hi.imag()));
     } else {
       hi = recip(C(m * x));
-      lo = C(Real(0));
     }
   }
   C operator()(const Real& k) const {
-    if constexpr (std::is_same_v<Real, double>)
-      return C(std::fma(k, hi.real(), k * lo.real()), std::fma(k, hi.imag(), k * lo.imag()));
+    if constexpr (std::is_same_v<Real, double>) return C(re(k), im(k));
     else return hi * k;
   }
 };
@@ -97,13 +118,27 @@ inline void avoid_zero(T& v) {
 
 // What the complex slot of the downward pass holds.
 enum class Slot {
-  difference,  // δₙ = yₙ(mx) − yₙ(x)   (|m−1| small: trap 4)
+  difference,  // δₙ = yₙ(mx) − yₙ(x)   (|m−1| small: trap m-near-1)
   value,       // yₙ(mx)              (m far from 1: δ would only add rounding)
   none,        // nothing (Dₙ(mx) goes upward, or perfect conductor)
 };
 
-// Downward pass from index N: fills y[n] = yₙ(x) for n = 0..N and, according
-// to `slot`, w[n] = δₙ or yₙ(mx).  Returns the Lentz iteration count.
+// ρₙ = ξ_{n-1}(x)/ξₙ(x) upward from ρ₀ = ξ₋₁/ξ₀ = i by 1/ρₙ = (2n−1)/x − ρ_{n-1}
+// (stable: ξ is the dominant solution).  It runs in the same loop as the
+// downward recurrences below: the chains are independent, so their division
+// latencies overlap instead of adding up.
+template <class Real, class C>
+struct HankelRatio {
+  C rho{Real(0), Real(1)};
+  template <class OverX>
+  const C& next(std::size_t n, const OverX& over_x) {
+    rho = recip(C(over_x(Real(2 * n - 1))) - rho);
+    return rho;
+  }
+};
+
+// Downward pass from index N: fills y[n] = yₙ(x) for n = 0..N, rho[n] = ρₙ
+// for n = 1..N and, according to `slot`, w[n] = δₙ or yₙ(mx).
 // W is the stored complex type: it may be narrower than C (see SlotStore in
 // series.hpp), since each wₙ is used once and not fed into a product.
 //
@@ -112,33 +147,34 @@ enum class Slot {
 // that m does not share, it holds yₙ(mx) itself and is_value[n] = 1.  Without
 // this, a single term near such a pole loses ε|yₙ(x)/yₙ(mx)| (1e-8 at
 // x = 116.78455902863854, m = 1.33+1e-5i, i.e. 9e-9 in Qback).
-template <class Real, class C, class YArray, class WArray, class FlagArray>
-std::size_t downward_ratios(const Real& x, const C& m, std::size_t N, Slot slot, YArray& y, WArray& w,
-                            FlagArray& is_value) {
-  // Every entry 0..N is written below before it is read.
+template <class Real, class C, class YArray, class RhoArray, class WArray, class FlagArray>
+void downward_ratios(const ScaledInverse<Real>& over_x, const ScaledInverseComplex<Real, C>& over_z, const C& m,
+                     std::size_t N, Slot slot, YArray& y, RhoArray& rho, WArray& w, FlagArray& is_value) {
+  // Every entry is written below before it is read.
   is_value.resize(slot == Slot::difference ? N + 1 : 0);
   y.resize(N + 1);
+  rho.resize(N + 2);
   w.resize(slot == Slot::none ? 0 : N + 1);
-  const ScaledInverse<Real> over_x(x);
-  LentzResult info_x, info_z;
+  HankelRatio<Real, C> hankel;
   // y_N = ψ_{N+1}/ψ_N = 1/(ψ_N/ψ_{N+1}).
-  Real yx = Real(1) / riccati_psi_ratio<Real, Real>(N + 1, over_x, &info_x);
+  Real yx = Real(1) / riccati_psi_ratio<Real, Real>(N + 1, over_x);
   if (slot == Slot::none) {
     for (std::size_t n = N;; --n) {
       y[n] = yx;
+      store(rho[N + 1 - n], hankel.next(N + 1 - n, over_x));
       if (n == 0) break;
       Real den = over_x(Real(2 * n + 1)) - yx;
       avoid_zero<Real, Real>(den);
       yx = Real(1) / den;
     }
-    return info_x.iterations;
+    return;
   }
-  const ScaledInverseComplex<Real, C> over_z(x, m);
   const C c = (m - C(Real(1))) * over_z(Real(1));  // (m−1)/(m x)
-  C yz = recip(riccati_psi_ratio<C, Real>(N + 1, over_z, &info_z));
+  C yz = recip(riccati_psi_ratio<C, Real>(N + 1, over_z));
   C d = yz - C(yx);
   for (std::size_t n = N;; --n) {
     y[n] = yx;
+    store(rho[N + 1 - n], hankel.next(N + 1 - n, over_x));
     if (slot == Slot::difference) {
       const bool value = 64 * norm2(yz) < yx * yx;
       is_value[n] = value;
@@ -153,12 +189,11 @@ std::size_t downward_ratios(const Real& x, const C& m, std::size_t N, Slot slot,
     C den_z = over_z(k) - yz;
     avoid_zero<Real, Real>(den_x);
     avoid_zero<C, Real>(den_z);
-    const C d_next = c * k + d;
     yx = Real(1) / den_x;
     yz = recip(den_z);
-    d = d_next * yz * yx;
+    // δ only where it is stored (Slot::value never reads it).
+    if (slot == Slot::difference) d = (c * k + d) * yz * yx;
   }
-  return info_x.iterations + info_z.iterations;
 }
 
 // cot z for Im z >= 0 without overflow: cot z = i(E+1)/(E−1), E = e^{2iz},
@@ -197,8 +232,8 @@ struct UpwardLogDerivative {
   ScaledInverseComplex<Real, C> over_z;
   C d;  // D_n(z) for the current n
   // active = false: an unused placeholder (skips the cot evaluation).
-  UpwardLogDerivative(const Real& x, const C& m, bool active)
-      : over_z(x, m), d(active ? cot_upper<Real, C>(x, m) : C(Real(0))) {}
+  UpwardLogDerivative(const Real& x, const C& m, const ScaledInverseComplex<Real, C>& over, bool active)
+      : over_z(over), d(active ? cot_upper<Real, C>(x, m) : C(Real(0))) {}
   const C& next(std::size_t n) {
     const C n_over_z = over_z(Real(n));
     C den = n_over_z - d;

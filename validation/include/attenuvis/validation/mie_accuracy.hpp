@@ -1,9 +1,9 @@
 // Accuracy and speed of the attenuvis Mie core measured against its own
 // 50-digit referee: the error map over (x, m) and the error-against-run-time
-// table of issue 2.  The reproduction report and the benchmark
+// table.  The reproduction report and the benchmark
 // validation/bench/mie_error_vs_time.cpp both call these functions.
 //
-// Error measure (issue 2): for each of Qext, Qsca, Qabs, g, Qback,
+// Error measure: for each of Qext, Qsca, Qabs, g, Qback,
 //     e_q = |q_double - q_ref| / max(|q_ref|, 1e-4 * Qext_ref),
 // i.e. the relative error, except that where q itself is below 1e-4 Qext the
 // error is taken relative to 1e-4 Qext; e_q <= 1e-10 is then exactly the
@@ -48,7 +48,7 @@ std::vector<ErrorMapCell> mie_error_map(const std::vector<double>& xs,
 struct ErrorTimeOptions {
   /// Size parameters; default: the decades 1e-3 ... 1e6.
   std::vector<double> xs = {1e-3, 1e-2, 1e-1, 1, 10, 100, 1e3, 1e4, 1e5, 1e6};
-  /// Refractive indices; default: issue 2's {1.0001, 1.33+1e-8i, 1.5+0.1i, 10+10i}.
+  /// Refractive indices; default: the stress set {1.0001, 1.33+1e-8i, 1.5+0.1i, 10+10i}.
   std::vector<std::complex<double>> ms = {
       {1.0001, 0.0}, {1.33, 1e-8}, {1.5, 0.1}, {10.0, 10.0}};
   /// Points with x above this are skipped (referee cost, see file comment).
@@ -67,8 +67,9 @@ ErrorTimeOptions quick_error_time_options();
 struct ErrorTimeRow {
   double x = 0;
   std::complex<double> m;
-  /// "default", "wiscombe" (attenuvis with Wiscombe's term count), any faster
-  /// mode the core offers, and "conventional" (the textbook baseline).
+  /// "default", "double" (Precision::double_precision, the fast mode),
+  /// "wiscombe" (attenuvis with Wiscombe's term count) and "conventional"
+  /// (the textbook baseline).
   std::string mode;
   double ns_per_call = 0;     ///< median over the samples
   double max_rel_error = 0;   ///< against the 50-digit referee

@@ -1,0 +1,46 @@
+// Efficiencies of many spheres in one call (size distributions, tables,
+// Monte Carlo): the same values as sphere() one by one, faster.
+//
+// How: the spheres that sphere() evaluates in double with Dₙ(mx) going
+// downward (the default precision rule, attenuvis/mie.hpp, up to x = 1e4)
+// are sorted by x and evaluated kLanes = 8 at a time, one sphere per vector
+// lane: the serial recurrences that bound a single call by their latency then
+// advance eight spheres per instruction (SSE2, AVX2 or AVX-512, chosen at run
+// time).  Each lane performs the very operations of sphere(), so its results
+// are bit for bit those of sphere() (the library is built without fused
+// multiply-add contraction).  Every other sphere (extended precision, upward
+// Dₙ(mx), non-default options) goes through sphere() itself.  The work is
+// split over threads.
+//
+// Bad input never throws: each bad element is reported with its index and the
+// reason, its output is left as NaN, and every good element is computed.
+#pragma once
+
+#include <complex>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "attenuvis/mie.hpp"
+
+namespace attenuvis::mie {
+
+struct SpheresOptions {
+  Options options;       // term rule and precision, as for sphere()
+  unsigned threads = 0;  // 0: std::thread::hardware_concurrency(); 1: the calling thread only
+};
+
+struct SphereError {
+  std::size_t index;    // position in the input arrays
+  std::string message;  // what is wrong with it (as sphere() would throw)
+};
+
+// out[i] = sphere(x[i], m[i]) for i < count.  Returns the bad elements, in
+// index order (empty when all are good).
+std::vector<SphereError> spheres(const double* x, const std::complex<double>* m, std::size_t count,
+                                 Efficiencies<double>* out, const SpheresOptions& options = {});
+// out[i] = sphere(x[i], m) for i < count.
+std::vector<SphereError> spheres(const double* x, std::complex<double> m, std::size_t count,
+                                 Efficiencies<double>* out, const SpheresOptions& options = {});
+
+}  // namespace attenuvis::mie

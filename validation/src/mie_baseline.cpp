@@ -1,0 +1,228 @@
+// The current Mie core against an earlier build of itself (see
+// attenuvis/validation/mie_baseline.hpp).
+#include "attenuvis/validation/mie_baseline.hpp"
+
+#include <dlfcn.h>
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <random>
+#include <thread>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "attenuvis/mie.hpp"
+#include "attenuvis/mie/spheres.hpp"
+
+namespace attenuvis::validation {
+namespace {
+
+namespace mie = attenuvis::mie;
+volatile double g_sink = 0;
+
+// CPU time of the calling thread, in seconds: on a shared machine the time
+// the thread waits for a core is not charged to either core under test.
+double thread_seconds() {
+  timespec t{};
+  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// Calls per block so that one block of f() lasts about min_seconds.
+template <class F>
+long calls_per_block(F&& f, double min_seconds) {
+  long reps = 1;
+  for (;;) {
+    const double t0 = thread_seconds();
+    double acc = 0;
+    for (long i = 0; i < reps; ++i) acc += f();
+    g_sink = g_sink + acc;
+    const double dt = thread_seconds() - t0;
+    if (dt >= min_seconds || reps > (1L << 30)) return reps;
+    reps = dt > 0 ? std::max(reps * 2, static_cast<long>(reps * 1.2 * min_seconds / dt)) : reps * 16;
+  }
+}
+
+template <class F>
+double block_ns(F&& f, long reps) {
+  const double t0 = thread_seconds();
+  double acc = 0;
+  for (long i = 0; i < reps; ++i) acc += f();
+  const double dt = thread_seconds() - t0;
+  g_sink = g_sink + acc;
+  return dt / static_cast<double>(reps) * 1e9;
+}
+
+std::string index_text(std::complex<double> m) {
+  std::ostringstream os;
+  os << m.real();
+  if (m.imag() != 0) os << "+" << m.imag() << "i";
+  return os.str();
+}
+
+}  // namespace
+
+MieBaseline::MieBaseline(const std::string& library_path) : path_(library_path) {
+  handle_ = ::dlopen(library_path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle_) throw std::runtime_error("cannot load the baseline Mie library " + library_path + ": " + ::dlerror());
+  entry_ = reinterpret_cast<Entry>(::dlsym(handle_, "attenuvis_mie_baseline_sphere"));
+  if (!entry_) {
+    ::dlclose(handle_);
+    throw std::runtime_error(library_path + " has no attenuvis_mie_baseline_sphere (build it with "
+                             "validation/bench/baseline/build_mie_baseline.sh)");
+  }
+}
+
+MieBaseline::~MieBaseline() { ::dlclose(handle_); }
+
+MieQuantities MieBaseline::sphere(double x, std::complex<double> m, int* terms) const {
+  double q[6];
+  if (entry_(x, m.real(), m.imag(), q) != 0) throw std::runtime_error("baseline Mie core threw");
+  if (terms) *terms = static_cast<int>(q[5]);
+  return {q[0], q[1], q[2], q[4], q[3]};
+}
+
+std::vector<SpeedCell> mie_speed_vs_baseline(const MieBaseline& baseline, const SpeedOptions& options) {
+  std::vector<SpeedCell> cells;
+  for (double x : options.xs)
+    for (const auto& m : options.ms) {
+      SpeedCell c;
+      c.x = x;
+      c.m = m;
+      auto current = [&] { return mie::sphere(x, m).qext; };
+      auto base = [&] { return baseline.sphere(x, m).qext; };
+      const long reps_c = calls_per_block(current, options.min_block_seconds);
+      const long reps_b = calls_per_block(base, options.min_block_seconds);
+      c.ns_current = c.ns_baseline = std::numeric_limits<double>::infinity();
+      for (int b = 0; b < std::max(1, options.blocks); ++b) {
+        c.ns_current = std::min(c.ns_current, block_ns(current, reps_c));
+        c.ns_baseline = std::min(c.ns_baseline, block_ns(base, reps_b));
+      }
+      const auto e = mie::sphere(x, m);
+      c.terms_current = static_cast<int>(e.terms);
+      const MieQuantities got{e.qext, e.qsca, e.qabs, e.g, e.qback};
+      const MieQuantities old = baseline.sphere(x, m, &c.terms_baseline);
+      if (x <= options.max_referee_x) {
+        const MieQuantities ref = mie_referee_quantities(x, m);
+        c.err_current = mie_max_relative_error(got, ref);
+        c.err_baseline = mie_max_relative_error(old, ref);
+      }
+      cells.push_back(c);
+    }
+  return cells;
+}
+
+BatchSpeed mie_batch_vs_baseline(const MieBaseline& baseline, BatchSpeed b, int blocks) {
+  std::mt19937_64 rng(20240601);
+  std::uniform_real_distribution<double> u(b.x_min, b.x_max);
+  std::vector<double> x(b.count);
+  for (double& v : x) v = u(rng);
+  std::vector<mie::Efficiencies<double>> single(b.count), batch(b.count);
+  mie::SpheresOptions one;
+  one.threads = 1;
+  mie::SpheresOptions all;
+  b.threads = std::max(1u, std::thread::hardware_concurrency());
+  const double n = static_cast<double>(b.count);
+  auto run_base = [&] {
+    double acc = 0;
+    for (double xi : x) acc += baseline.sphere(xi, b.m).qext;
+    return acc;
+  };
+  auto run_single = [&] {
+    for (std::size_t i = 0; i < b.count; ++i) single[i] = mie::sphere(x[i], b.m);
+    return single[0].qext;
+  };
+  auto run_batch = [&] {
+    mie::spheres(x.data(), b.m, b.count, batch.data(), one);
+    return batch[0].qext;
+  };
+  b.ns_baseline = b.ns_single = b.ns_batch = b.ns_batch_threads = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < std::max(1, blocks); ++k) {
+    b.ns_baseline = std::min(b.ns_baseline, block_ns(run_base, 1) / n);
+    b.ns_single = std::min(b.ns_single, block_ns(run_single, 1) / n);
+    b.ns_batch = std::min(b.ns_batch, block_ns(run_batch, 1) / n);
+    const auto t0 = std::chrono::steady_clock::now();
+    mie::spheres(x.data(), b.m, b.count, batch.data(), all);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    b.ns_batch_threads = std::min(b.ns_batch_threads, wall / n * 1e9);
+  }
+  b.identical = std::memcmp(single.data(), batch.data(), sizeof(single[0]) * b.count) == 0;
+  return b;
+}
+
+std::string format_batch_speed(const BatchSpeed& b) {
+  std::ostringstream os;
+  char buf[200];
+  os << "many spheres: " << b.count << " x uniform in [" << b.x_min << ", " << b.x_max << "], m = "
+     << index_text(b.m) << " (ns per sphere, minimum over blocks)\n";
+  std::snprintf(buf, sizeof buf, "  baseline sphere() loop      %9.1f\n", b.ns_baseline);
+  os << buf;
+  std::snprintf(buf, sizeof buf, "  current sphere() loop       %9.1f  (%.2fx)\n", b.ns_single, b.ns_baseline / b.ns_single);
+  os << buf;
+  std::snprintf(buf, sizeof buf, "  current spheres(), 1 thread %9.1f  (%.2fx)\n", b.ns_batch, b.ns_baseline / b.ns_batch);
+  os << buf;
+  std::snprintf(buf, sizeof buf, "  current spheres(), %u threads %7.1f  (%.2fx, wall clock)\n", b.threads,
+                b.ns_batch_threads, b.ns_baseline / b.ns_batch_threads);
+  os << buf;
+  os << "  spheres() " << (b.identical ? "equals" : "DIFFERS FROM") << " sphere() bit for bit on every sphere\n";
+  return os.str();
+}
+
+std::string format_speed_vs_baseline(const std::vector<SpeedCell>& cells, const std::string& baseline_name) {
+  std::vector<std::complex<double>> ms;
+  std::vector<double> xs;
+  std::map<std::pair<double, std::string>, const SpeedCell*> at;
+  for (const auto& c : cells) {
+    if (std::find(ms.begin(), ms.end(), c.m) == ms.end()) ms.push_back(c.m);
+    if (std::find(xs.begin(), xs.end(), c.x) == xs.end()) xs.push_back(c.x);
+    at[{c.x, index_text(c.m)}] = &c;
+  }
+  std::ostringstream os;
+  char buf[256];
+  os << "speed-up = " << baseline_name << " time / current time per call (same run, alternating blocks, "
+     << "thread CPU time, minimum over blocks); err = max relative error against the 50-digit referee (current / baseline)\n";
+  for (const auto& m : ms) {
+    std::snprintf(buf, sizeof buf, "\nm = %s\n%8s %12s %12s %9s %10s %10s %7s\n", index_text(m).c_str(), "x",
+                  "current ns", "baseline ns", "speed-up", "err", "err base", "terms");
+    os << buf;
+    for (double x : xs) {
+      const auto it = at.find({x, index_text(m)});
+      if (it == at.end()) continue;
+      const SpeedCell& c = *it->second;
+      char e1[16] = "-", e2[16] = "-";
+      if (c.err_current >= 0) std::snprintf(e1, sizeof e1, "%.1e", c.err_current);
+      if (c.err_baseline >= 0) std::snprintf(e2, sizeof e2, "%.1e", c.err_baseline);
+      std::snprintf(buf, sizeof buf, "%8.0e %12.4g %12.4g %9.2f %10s %10s %7d\n", x, c.ns_current, c.ns_baseline,
+                    c.speedup(), e1, e2, c.terms_current);
+      os << buf;
+    }
+  }
+  os << "\nspeed-up by x (rows) and index (columns)\n";
+  std::snprintf(buf, sizeof buf, "%8s", "x");
+  os << buf;
+  for (const auto& m : ms) {
+    std::snprintf(buf, sizeof buf, " %12s", index_text(m).c_str());
+    os << buf;
+  }
+  os << '\n';
+  for (double x : xs) {
+    std::snprintf(buf, sizeof buf, "%8.0e", x);
+    os << buf;
+    for (const auto& m : ms) {
+      const auto it = at.find({x, index_text(m)});
+      if (it == at.end()) std::snprintf(buf, sizeof buf, " %12s", "-");
+      else std::snprintf(buf, sizeof buf, " %11.2fx", it->second->speedup());
+      os << buf;
+    }
+    os << '\n';
+  }
+  return os.str();
+}
+
+}  // namespace attenuvis::validation
