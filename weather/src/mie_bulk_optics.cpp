@@ -7,7 +7,7 @@ namespace attenuvis::weather {
 
 EfficiencyFunction mie_efficiencies(std::complex<double> m) {
   mie::Options options;
-  if (std::abs(m - 1.0) >= 0.01) options.extended_above = 3e4;  // Working::automatic: double-only up to there
+  if (std::abs(m - 1.0) >= 0.01) options.extended_above = 3e4;  // automatic precision: double-only up to there
   return [m, options](double x) {
     auto e = mie::sphere(x, m, options);
     return Efficiency{e.qext, e.qsca, e.qabs, e.g};
