@@ -17,8 +17,9 @@ int& exit_status() {
 
 namespace {
 
-// A message with every word longer than 60 characters cut (a 300-digit
-// number echoed by a range check should not fill the terminal).
+// CLI11's own message with every word longer than 60 characters cut (a
+// 300-digit number echoed by its range check should not fill the terminal).
+// Only CLI11's messages: the libraries' messages name files, which are shown whole.
 std::string shortened(const std::string& message) {
   std::string out, word;
   const auto flush = [&] {
@@ -38,17 +39,18 @@ std::string shortened(const std::string& message) {
   return out;
 }
 
-std::string error_line(const std::string& what) { return "attenuvis: error: " + shortened(what) + "\n"; }
+std::string error_line(const std::string& what) { return "attenuvis: error: " + what + "\n"; }
 
 }  // namespace
 }  // namespace attenuvis::cli
 
 int main(int argc, char** argv) {
   using attenuvis::cli::error_line;
+  using attenuvis::cli::shortened;
   CLI::App app{"attenuvis: Lorenz-Mie reference, ITU-R P.1817 attenuation and weather-weighted visibility graphs"};
   app.require_subcommand(1);
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return error_line(std::string(e.what()) + " (--help lists the options)");
+    return error_line(shortened(e.what()) + " (--help lists the options)");
   });
   attenuvis::cli::register_mie(app);
   attenuvis::cli::register_weather(app);

@@ -83,10 +83,11 @@ void sigma_table(Context& ctx, Section& s, SeedConditions& seed) {
     s.summary.push_back(row.name + ": itu " + sig(a.per_m, 5) + ", seed " + sig(b.per_m, 5) + " 1/m (paper " +
                         sig(row.seed_published, 7) + ") -> " + verdict);
     if (power_law)
-      ctx.conclude(verdict.find("seed") != std::string::npos ? "agree" : "disagree",
-                   row.name + ": the seed's sigma " + sig(row.seed_published, 4) + " 1/m is reproduced only with "
-                   "the power law read as 1/km (seed convention: " + sig(b.per_m, 5) +
-                   " 1/m); ITU-R P.1817-1's dB/km gives " + sig(a.per_m, 4) + " 1/m, 4.34x smaller.");
+      ctx.closing->push_back(::attenuvis::validation::verdict(
+          verdict.find("seed") != std::string::npos ? "agree" : "disagree",
+          row.name + ": sigma = " + sig(row.seed_published, 4) + " 1/m (Sec. Methodology)",
+          sig(b.per_m, 5) + " 1/m read as 1/km (seed); " + sig(a.per_m, 4) + " 1/m read as dB/km (ITU-R P.1817-1)",
+          "Reproduced only with the power law read as 1/km; the Recommendation's dB/km gives 4.34x less."));
   }
   add_table(ctx, s, t);
 }
@@ -179,16 +180,15 @@ void fog_seed_quadrature(Context& ctx, Section& s, const SeedConditions& seed) {
     ctx.set("weather.fog_seed_quadrature." + std::string(name) + ".midpoint_worst_rel", worst);
     ctx.set("weather.fog_seed_quadrature." + std::string(name) + ".converged_rel_error",
             converged.error_per_m / converged.per_m);
-    ctx.conclude(
-        "disagree",
-        row->name + ": the seed's sigma " + sig(row->seed_published, 8) + " 1/m differs from the converged integral " +
-            sig(converged.per_m, 8) + " +- " + sig(converged.error_per_m, 2) + " 1/m (m = 1.33) by " +
-            sig(seed_rel, 2) + " relative: not reproduced to the 7 digits it prints, only to its 4th. " +
+    ctx.closing->push_back(verdict(
+        "disagree", row->name + ": sigma = " + sig(row->seed_published, 8) + " 1/m (Sec. Methodology)",
+        sig(converged.per_m, 8) + " +- " + sig(converged.error_per_m, 2) + " 1/m (m = 1.33): " + sig(seed_rel, 2) +
+            " relative, agreement to the 4th digit",
             (explained ? "Fixed-step midpoint sums at steps " + sig(steps_um.back(), 2) + "-" + sig(steps_um.front(), 2) +
                              " um err by up to " + sig(worst, 2) + ", which covers the seed's difference: a coarse "
                              "quadrature of the Q_ext ripple explains it; the water index does not."
                        : "Neither the water index nor fixed-step midpoint sums (up to " + sig(worst, 2) +
-                             ") explain a difference this large."));
+                             ") explain a difference this large.")));
   }
   add_table(ctx, s, t);
 }
