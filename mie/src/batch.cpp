@@ -82,7 +82,7 @@ std::string csv_row(const Problem& p, const Efficiencies<double>& q) {
 // Good lines are collected in chunks and evaluated together by spheres()
 // (several spheres per vector instruction, threads over cores); rows are
 // written in input order.  Messages for lines that fail to parse are written
-// as they are read, those for lines the core rejects (x > 2e7, m = 0) when
+// as they are read, those for lines the core rejects (outside the domain of attenuvis/mie.hpp) when
 // their chunk is evaluated.
 std::size_t run(std::istream& in, std::ostream& out, std::ostream& err, const Options& options) {
   constexpr std::size_t kChunk = 4096;
