@@ -48,12 +48,23 @@ void append_number(std::string& out, double v) {
   out.append(buf, r.ptr);
 }
 
+// The output's own header (all of it, or its first three names "x m_re
+// m_im"), so that a CSV written by `attenuvis mie` can be fed back.
+bool is_header(const std::vector<std::string>& f) {
+  static const std::vector<std::string> names = {"x", "m_re", "m_im", "qext", "qsca", "qabs", "qback", "g"};
+  if (f.size() != 3 && f.size() != names.size()) return false;
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (f[i] != names[i]) return false;
+  return true;
+}
+
 }  // namespace
 
 std::optional<Problem> parse_line(const std::string& line) {
   const std::string content = line.substr(0, line.find('#'));
   const std::vector<std::string> f = split_fields(content);
   if (f.empty()) return std::nullopt;
+  if (is_header(f)) return std::nullopt;
   if (f.size() != 3)
     throw std::invalid_argument("expected 3 fields 'x m_re m_im', got " + std::to_string(f.size()));
   Problem p;
