@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <streambuf>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -14,6 +15,31 @@
 
 namespace attenuvis::cli {
 namespace {
+
+// Writes to `target` with "attenuvis: error: " before each line, so that the
+// batch's "line N: why" messages read like every other error of the program
+// (apps/main.cpp).
+class ErrorPrefixBuf : public std::streambuf {
+ public:
+  explicit ErrorPrefixBuf(std::ostream& target) : target_(target) {}
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
+    if (at_line_start_) target_ << "attenuvis: error: ";
+    target_.put(traits_type::to_char_type(c));
+    at_line_start_ = traits_type::to_char_type(c) == '\n';
+    return c;
+  }
+  int sync() override {
+    target_.flush();
+    return 0;
+  }
+
+ private:
+  std::ostream& target_;
+  bool at_line_start_ = true;
+};
 
 struct MieArgs {
   double x = 0;
@@ -79,7 +105,9 @@ void run(const MieArgs& a, const CLI::App& cmd) {
   if (cmd.count("--x") == 0) {
     // Batch mode: stdin -> CSV on stdout, bad lines on stderr, exit 1 if any.
     if (!a.angles.empty() || a.json) throw std::invalid_argument("mie: --angles and --json need --x");
-    const std::size_t bad = mie::batch::run(std::cin, std::cout, std::cerr, options);
+    ErrorPrefixBuf prefix(std::cerr);
+    std::ostream errors(&prefix);
+    const std::size_t bad = mie::batch::run(std::cin, std::cout, errors, options);
     if (bad) exit_status() = 1;
     return;
   }

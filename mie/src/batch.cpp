@@ -48,12 +48,23 @@ void append_number(std::string& out, double v) {
   out.append(buf, r.ptr);
 }
 
+// The output's own header (all of it, or its first three names "x m_re
+// m_im"), so that a CSV written by `attenuvis mie` can be fed back.
+bool is_header(const std::vector<std::string>& f) {
+  static const std::vector<std::string> names = {"x", "m_re", "m_im", "qext", "qsca", "qabs", "qback", "g"};
+  if (f.size() != 3 && f.size() != names.size()) return false;
+  for (std::size_t i = 0; i < f.size(); ++i)
+    if (f[i] != names[i]) return false;
+  return true;
+}
+
 }  // namespace
 
 std::optional<Problem> parse_line(const std::string& line) {
   const std::string content = line.substr(0, line.find('#'));
   const std::vector<std::string> f = split_fields(content);
   if (f.empty()) return std::nullopt;
+  if (is_header(f)) return std::nullopt;
   if (f.size() != 3)
     throw std::invalid_argument("expected 3 fields 'x m_re m_im', got " + std::to_string(f.size()));
   Problem p;
@@ -82,7 +93,7 @@ std::string csv_row(const Problem& p, const Efficiencies<double>& q) {
 // Good lines are collected in chunks and evaluated together by spheres()
 // (several spheres per vector instruction, threads over cores); rows are
 // written in input order.  Messages for lines that fail to parse are written
-// as they are read, those for lines the core rejects (x > 2e7, m = 0) when
+// as they are read, those for lines the core rejects (outside the domain of attenuvis/mie.hpp) when
 // their chunk is evaluated.
 std::size_t run(std::istream& in, std::ostream& out, std::ostream& err, const Options& options) {
   constexpr std::size_t kChunk = 4096;

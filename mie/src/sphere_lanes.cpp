@@ -169,8 +169,8 @@ ATTENUVIS_LANE_INLINE void lane_setup(const LaneProblems& in, LaneState& st) {
     const C e = m_minus_1 * (m + C(1.0));
     st.mr[j] = m.real(), st.mi[j] = m.imag(), st.m1r[j] = m_minus_1.real(), st.m1i[j] = m_minus_1.imag();
     st.cr[j] = c.real(), st.ci[j] = c.imag(), st.er[j] = e.real(), st.ei[j] = e.imag();
-    const double sx = std::sin(x), cx = std::cos(x);
-    st.Rr[j] = sx * sx, st.Ri[j] = sx * cx;
+    // 1/ξ₀ = sin x + i cos x; lane_series multiplies by ψ₁ (riccati_psi1).
+    st.Rr[j] = std::sin(x), st.Ri[j] = std::cos(x);
   }
   // y_N(x) = 1/(ψ_N/ψ_{N+1}) and y_N(mx) at each lane's own N (downward_ratios).
   const V order = st.Njd + 1.0;
@@ -222,7 +222,12 @@ ATTENUVIS_LANE_INLINE void lane_series(LaneState& st, const LaneTables& tables, 
   const V cr = st.cr, ci = st.ci, er = st.er, ei = st.ei;
   const LaneInverse &ox = st.ox, &ozr = st.ozr, &ozi = st.ozi;
   const std::size_t N = st.N;
+  // ψ₁/ξ₀ per lane, ψ₁ from y₀ as in sum_series (trap sin-zero); R₁ = ρ₁ ψ₁/ξ₀.
   V Rr = st.Rr, Ri = st.Ri, s = splat(1.0);
+  for (int j = 0; j < L; ++j) {
+    const double psi1 = riccati_psi1(st.Rr[j], st.Ri[j], tables.y[j], ScaledInverse<double>(st.x[j])(1.0));
+    Rr[j] = st.Rr[j] * psi1, Ri[j] = st.Ri[j] * psi1;
+  }
   // ---- the series, order by order for all lanes (sum_series + term_block) ----
   static const double tol = std::exp(-tail_log_tolerance<double>());
   LaneKahan ext, sca, abs_, back_re, back_im, g_cross, g_self;
@@ -236,7 +241,7 @@ ATTENUVIS_LANE_INLINE void lane_series(LaneState& st, const LaneTables& tables, 
     const V su = 1 / (ur * ur + ui * ui);
     rhor = ur * su, rhoi = -ui * su;
     const V t1r = Rr * rhor - Ri * rhoi, t1i = Rr * rhoi + Ri * rhor;
-    const V yprev = load<V>(&tables.y[(n - 1) * L]);
+    const V yprev = n == 1 ? splat(1.0) : load<V>(&tables.y[(n - 1) * L]);
     Rr = t1r * yprev, Ri = t1i * yprev;
     s *= rhor * rhor + rhoi * rhoi;
     const V y_x = load<V>(&tables.y[n * L]);

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "attenuvis/mie.hpp"
+#include "attenuvis/mie/batch.hpp"
 
 namespace {
 
@@ -148,5 +149,32 @@ TEST_CASE("mie single mode: bad arguments give an error and non-zero exit", "[mi
     INFO(args << " -> " << r.err);
     CHECK(r.status != 0);
     CHECK(!r.err.empty());
+  }
+}
+
+TEST_CASE("mie batch: error lines start with 'attenuvis: error:'; its own header is skipped", "[mie][cli]") {
+  const Run r = run_cli("mie", "x,m_re,m_im,qext,qsca,qabs,qback,g\n2 1.5 0.01\nabc 1 0\nx m_re m_im\n1 2 0\n");
+  CHECK(r.status != 0);
+  CHECK(lines(r.out).size() == 3);  // header + two rows
+  const auto err = lines(r.err);
+  REQUIRE(err.size() == 1);
+  CHECK(err[0].rfind("attenuvis: error: line 3: ", 0) == 0);
+  // A header alone is not an error.
+  const Run header = run_cli("mie", std::string(mie::batch::csv_header()) + "\n");
+  CHECK(header.status == 0);
+  CHECK(header.err.empty());
+}
+
+TEST_CASE("mie batch: the fuzzer's regression lines are errors, not NaN rows", "[mie][cli][domain]") {
+  // fuzz/regressions/mie_line/: x below 1e-8, |m| of 1e154 or 1e172, |m| of 1e-300.
+  const Run r = run_cli("mie", "1 1e172 0\n1e-200 1.5 0.1\n1e4 1e154 0\n1 1e-300 0\n");
+  CHECK(r.status != 0);
+  CHECK(lines(r.out).size() == 1);  // the header only
+  const auto err = lines(r.err);
+  REQUIRE(err.size() == 4);
+  for (std::size_t i = 0; i < err.size(); ++i) {
+    INFO(err[i]);
+    CHECK(err[i].rfind("attenuvis: error: line " + std::to_string(i + 1) + ": mie: ", 0) == 0);
+    CHECK_THAT(err[i], Catch::Contains("must") || Catch::Contains("needs"));
   }
 }

@@ -134,3 +134,12 @@ TEST_CASE("trap large-kx: large k x neither overflows nor loses accuracy", "[mie
     CHECK(q.qabs < 1);
   }
 }
+
+TEST_CASE("trap sin-zero: x at a zero of psi_0 = sin x keeps R_n = psi_n/xi_n accurate", "[mie][trap]") {
+  // Guards against reaching ψ₁ as sin x · y₀ with y₀ = ψ₁/ψ₀ from the downward
+  // recurrence, where 1/y₀ = 3/x − y₁ cancels: at x = 182.21237390820801 (58π
+  // to sin x = 2.5e-18, mpmath) that gave NaN Qext; at 6.283185307179585 (2π,
+  // sin x = −1.1e-15) Qext 5.04 for 3.92.  Dense sweeps: test_mie_sweep.cpp.
+  for (double x : {6.283185307179585, 94.24777960769377, 182.21237390820801})
+    for (cd m : {cd(1.33, 0), cd(1.5, 0.1), cd(1.0001, 0)}) check_against_referee(x, m);
+}

@@ -1,7 +1,8 @@
 // Batch evaluation and the small text grammar of the `attenuvis mie` command.
 //
 // Batch input: one problem per line, "x m_re m_im" separated by whitespace
-// and/or commas; '#' starts a comment; blank lines are skipped.  Output: CSV
+// and/or commas; '#' starts a comment; blank lines and the output's own
+// header line (x,m_re,m_im[,qext,...]) are skipped.  Output: CSV
 // with the header x,m_re,m_im,qext,qsca,qabs,qback,g and 17 significant
 // digits (round-trip for double).  A bad line (parse error, x <= 0, k < 0,
 // non-finite value, wrong number of fields) is reported with its line number
@@ -24,7 +25,7 @@ struct Problem {
   std::complex<double> m;
 };
 
-// One input line: nullopt for a blank or comment-only line; throws
+// One input line: nullopt for a blank, comment-only or header line; throws
 // std::invalid_argument (message without the line number) for a bad one.
 std::optional<Problem> parse_line(const std::string& line);
 

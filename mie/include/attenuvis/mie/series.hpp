@@ -14,8 +14,9 @@
 //     ψ_{n-1}/ψₙ from the downward recurrence (Lentz start), and ξₙ through
 //     ρₙ = ξ_{n-1}/ξₙ from 1/ρₙ = (2n−1)/x − ρ_{n-1}, ρ₀ = ξ₋₁/ξ₀ = i (upward,
 //     stable since ξ is the dominant solution).  Rₙ = R_{n-1} ρₙ/Pₙ with
-//     R₀ = ψ₀/ξ₀ = sin²x + i sin x cos x.  No ψ₁ = sin x/x − cos x anywhere,
-//     and Gₙ + n/x = ρₙ is never formed by subtraction.
+//     R₁ = ρ₁ ψ₁/ξ₀, 1/ξ₀ = sin x + i cos x, ψ₁ = ψ₀ y₀ (riccati_psi1, trap
+//     sin-zero).  No ψ₁ = sin x/x − cos x anywhere, and Gₙ + n/x = ρₙ is
+//     never formed by subtraction.
 //   * Absorption (trap weak-absorption): Re aₙ − |aₙ|² = −Im(T) / (|ξₙ|²
 //     |T − Gₙ|²) with T = Dₙ(mx)/m (bₙ: T = m Dₙ(mx)), from the Wronskian
 //     ψₙ'χₙ − ψₙχₙ' = 1.  Summing this gives Qabs to full relative accuracy
@@ -47,6 +48,16 @@
 //                       m Dₙ(mx) − Dₙ(x) cancel catastrophically for x ≪ 1
 //                       (negative Qext below x ≈ 3e-3 in one code); only
 //                       ratios yₙ = ψₙ₊₁/ψₙ appear, with (n+1)/x removed exactly.
+//   sin-zero            Rₙ = ψₙ/ξₙ as the product ψ₀/ξ₀ · Π ρₖ yₖ₋₁ divides
+//                       by ψ₀ = sin x through y₀ = ψ₁/ψ₀; at x ≈ jπ (x =
+//                       182.21237390820801 = 58π to 2.5e-18 in sin x) y₀ comes
+//                       from 3/x − y₁ formed by cancellation, exactly 0 in
+//                       double there, and every Rₙ is wrong: NaN Qext there,
+//                       Qext 2.203 for 2.134 at x = 94.24777960769377 (sin x
+//                       = −2.5e-14), 5.04 for 3.92 at x = 6.283185307179585.
+//                       Poles of yₖ with k >= 1 are
+//                       harmless (yₖ₋₁ yₖ is accurate); ψ₁ is formed without
+//                       sin x where it is small (riccati_psi1).
 //   m-near-1            The numerators of aₙ, bₙ and m² − 1 are O(m − 1) and
 //                       cancel as m → 1; the difference δₙ = yₙ(mx) − yₙ(x)
 //                       has its own recurrence (log_derivative.hpp).
@@ -293,6 +304,23 @@ struct SeriesSums {
   }
 };
 
+// ψ₁(x) = ψ₀ y₀ from y₀ = ψ₁/ψ₀ of the downward pass, without the small-x
+// cancellation of sin x/x − cos x and without dividing by ψ₀ = sin x where it
+// is small (trap sin-zero).  At x ≈ jπ the recurrence forms 1/y₀ = 3/x − y₁ =
+// ψ₀/ψ₁ by cancellation, so y₀ carries a relative error ~ε(3/x)|ψ₁/ψ₀| (or is
+// the avoid_zero() stand-in 1/tiny when the difference is exactly zero), and
+// ψ₀·y₀ = sin x · y₀ inherits it.  There we go one order further down:
+// ψ₁ = ψ₋₁ y₋₁ y₀ with ψ₋₁ = cos x and y₋₁ = ψ₀/ψ₋₁ = 1/(1/x − y₀), i.e.
+// ψ₁ = cos x · y₀/(1/x − y₀), whose sensitivity to the error of y₀ is
+// |(1/x)/(1/x − y₀)| = |tan x|/x < 1 when |sin x| < |cos x|.  (Errors of y₀ in
+// the other branch are ~ε(3/x + |y₁|)|ψ₁|/|sin x| with |sin x| >= 1/√2.)
+template <class Work>
+Work riccati_psi1(const Work& sx, const Work& cx, const Work& y0, const Work& inv_x) {
+  using std::abs;
+  if (abs(sx) >= abs(cx)) return sx * y0;
+  return cx * (y0 / (inv_x - y0));
+}
+
 // Pass 1 of a block (serial, working precision): Rₙ = R_{n-1} ρₙ ψₙ/ψ_{n-1},
 // sₙ = 1/|ξₙ|², and each order's inputs for term_block.hpp.
 template <class Real, class Work, class Tables>
@@ -307,7 +335,8 @@ void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bo
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t n = first + i;
     const CW rho_w(tables.rho[n].real(), tables.rho[n].imag());  // ρₙ = ξ_{n-1}/ξₙ
-    R_w = R_w * rho_w * y[n - 1];
+    // R₁ = (ψ₁/ξ₀) ρ₁ with ψ₁/ξ₀ given as R_w (trap sin-zero: no y₀ here).
+    R_w = n == 1 ? R_w * rho_w : R_w * rho_w * y[n - 1];
     s_w *= norm2(rho_w);
     const Real yx = static_cast<Real>(y[n]);
     in.rn[i] = Real(n);
@@ -388,7 +417,8 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   const Real tol(tol_d);
   SeriesSums<Real> sums;
   const Work sx = sin(xw), cx = cos(xw);
-  CW R_w(sx * sx, sx * cx);  // R₀ = ψ₀/ξ₀
+  const Work psi1 = riccati_psi1(sx, cx, tables.y[0], over_xw(Work(1)));
+  CW R_w(sx * psi1, cx * psi1);  // ψ₁/ξ₀ (1/ξ₀ = sin x + i cos x); R₁ = ρ₁ ψ₁/ξ₀
   Work s_w(1);               // 1/|ξ₀|²
   C a_prev(Real(0)), b_prev(Real(0));
   thread_local TermInputs<Real> in;
