@@ -8,28 +8,39 @@
 // up to 1.1e-16 in absolute terms, i.e. by 1e-10 of the peak width at x = 1e3
 // (1e-8 at x = 1e4), and the integral inherits that relative error.  Here each
 // node is held as s = (1 − μ)/2 = sin²(θ/2) for the half μ >= 0 (the other half is
-// its mirror μ → −μ), which keeps its full relative accuracy as θ → 0; every
-// recurrence that uses the node takes μ·v as v − 2s·v.
+// its mirror μ → −μ), which keeps its full relative accuracy as θ → 0.
 //
 // Boost.Math provides Gauss–Legendre rules only at compile-time orders
 // (boost::math::quadrature::gauss<Real, N>) and legendre_p_zeros(n) returns μ,
 // which is exactly the representation avoided here; so the nodes are found by
 // Newton's method in θ on Pₙ(cos θ):
 //   θ ← θ − Pₙ sin θ / (n (μ Pₙ − Pₙ₋₁))        (dPₙ/dθ = n(μPₙ − Pₙ₋₁)/sin θ)
-// from Tricomi's first guess θₖ = π(4k − 1)/(4n + 2) (the guess of Numerical
-// Recipes' gauleg; Newton converges from it for every k and n), and the weights
-// are wₖ = 2 sin²θₖ / (n Pₙ₋₁(μₖ))²  (Abramowitz & Stegun 25.4.29).  Pₙ and Pₙ₋₁
-// come from the three-term recurrence (Bonnet) in the s-form, O(n) per
-// evaluation, O(n²) per rule: a rule is built once per order and cached by the
-// callers (legendre_moments_impl.hpp).  For a wider Real (the referee) the nodes
-// start from the double rule and Newton runs until the correction is below the
-// Real's ε, typically two steps.
+// from Tricomi's guess θₖ ≈ φₖ + cot φₖ/(8n²), φₖ = π(4k − 1)/(4n + 2) (A&S 22.16.6
+// to second order; Newton converges from it in ~3 steps), eight nodes at a time so
+// that the O(n) evaluations of independent nodes overlap.  For a wider Real (the
+// referee) the nodes start from the double rule.
 //
-// Accuracy (measured in tests/mie/test_legendre_moments.cpp against the 50-digit
-// rule): nodes θ within a few ulps relative, Σw = 2 to ~1e-15, at orders up to
-// 2·10⁴ + 1.
+// Evaluation of Pₙ near μ = 1: Bonnet's recurrence (k+1)Pₖ₊₁ = (2k+1)μPₖ − kPₖ₋₁
+// adds rounding that grows like n·ε there (7e-13 at n = 2001: 6e-13 relative in
+// the first node θ₁ ≈ 2.4/n, 6e-9 in its weight), so for s <= ¼ it runs on the
+// differences Dₖ = Pₖ − Pₖ₋₁ (Reinsch's modification):
+//     Dₖ₊₁ = (k Dₖ − 2s (2k+1) Pₖ) / (k+1),   Pₖ₊₁ = Pₖ + Dₖ₊₁,
+// obtained by subtracting (k+1)Pₖ from both sides.
+//
+// Weights: w = 2/(dPₙ/dθ)² (A&S 25.4.29 written in θ) at the computed node.  At an
+// exact node this equals 2 sin²θ/(n Pₙ₋₁)², but the latter changes by n·δθ/|Pₙ₋₁|
+// relative under a node error δθ (1e-12 at the first node of order 2001, where
+// Pₙ₋₁ ~ 1e-3), whereas dPₙ/dθ is stationary up to cot θ·δθ (Legendre's equation
+// gives d²Pₙ/dθ² = −cot θ dPₙ/dθ at a zero).  The weight pass runs in x87
+// extended precision for double, so the recurrence's rounding stays out of it.
+//
+// Accuracy (tests/mie/test_legendre_moments.cpp, against the 50-digit rule): at
+// order 2001 the nodes θ within 3e-16 relative and the weights within 7e-16 (order
+// 4001: 8e-16 and 1.7e-15).
+// Cost O(n²); a rule is built once per order and cached by the callers.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -51,115 +62,118 @@ struct HalfGaussLegendre {
   std::vector<Real> w;  // weights (the middle node's halved, see above)
 };
 
-// Pₙ(μ) and Pₙ₋₁(μ) at μ = 1 − 2s by Bonnet's recurrence.  For μ >= ½ it runs on
-// the differences Dₖ = Pₖ − Pₖ₋₁ (Reinsch's modification for arguments near 1):
-//     Dₖ₊₁ = (k Dₖ − 2s (2k+1) Pₖ) / (k+1),   Pₖ₊₁ = Pₖ + Dₖ₊₁,
-// which follows from Bonnet's form by subtracting (k+1)Pₖ.  The plain form
-// subtracts terms ~2k·Pₖ and ~k·Pₖ₋₁ to leave ~Pₖ, and its rounding then grows
-// to ~n·ε near μ = 1 — 7e-13 at n = 2001, i.e. 6e-13 relative in the first
-// node θ₁ ≈ 2.4/n and 6e-9 in its weight; the difference form keeps both at
-// the level of a few ε.
-// Also returns μPₙ − Pₙ₋₁ (= sin θ/n · dPₙ/dθ), formed without cancellation.
+inline constexpr std::size_t kNodeBlock = 8;
+
+// Pₙ, Pₙ₋₁ and μPₙ − Pₙ₋₁ (= sin θ/n · dPₙ/dθ) at `count` <= kNodeBlock nodes
+// s[j] = sin²(θⱼ/2), all on the same side of s = ¼ (`near`: s <= ¼).
 template <class Real>
-void legendre_pair(std::size_t n, const Real& s, Real& pn, Real& pn1, Real& mu_pn_minus_pn1) {
-  if (n == 0) {
-    pn = 1;
-    pn1 = 0;
-    mu_pn_minus_pn1 = 1;
-    return;
+void legendre_block(std::size_t n, const Real* s, std::size_t count, bool near, Real* pn, Real* pn1,
+                    Real* dn) {
+  Real p[kNodeBlock], q[kNodeBlock], d[kNodeBlock], ts[kNodeBlock];
+  for (std::size_t j = 0; j < kNodeBlock; ++j) {
+    ts[j] = j < count ? 2 * s[j] : Real(0);
+    q[j] = 1;          // P₀
+    p[j] = 1 - ts[j];  // P₁
+    d[j] = -ts[j];     // D₁
   }
-  Real p_prev = 1, p = 1 - 2 * s;  // P₀, P₁
-  if (s <= Real(0.25)) {
-    Real d = -2 * s;  // D₁ = P₁ − P₀
-    for (std::size_t k = 1; k < n; ++k) {
-      d = (Real(k) * d - 2 * s * Real(2 * k + 1) * p) / Real(k + 1);
-      p_prev = p;
-      p += d;
-    }
-    pn = p;
-    pn1 = p_prev;
-    mu_pn_minus_pn1 = d - 2 * s * p;  // μPₙ − Pₙ₋₁ = Dₙ − 2sPₙ
-    return;
-  }
-  {
-    for (std::size_t k = 1; k < n; ++k) {
-      const Real mu_p = p - 2 * s * p;
-      const Real next = (Real(2 * k + 1) * mu_p - Real(k) * p_prev) / Real(k + 1);
-      p_prev = p;
-      p = next;
+  for (std::size_t k = 1; k < n; ++k) {
+    const Real a = Real(2 * k + 1) / Real(k + 1), b = Real(k) / Real(k + 1);
+    if (near) {
+      for (std::size_t j = 0; j < kNodeBlock; ++j) {
+        d[j] = b * d[j] - a * ts[j] * p[j];
+        q[j] = p[j];
+        p[j] += d[j];
+      }
+    } else {
+      for (std::size_t j = 0; j < kNodeBlock; ++j) {
+        const Real next = a * (p[j] - ts[j] * p[j]) - b * q[j];
+        q[j] = p[j];
+        p[j] = next;
+      }
     }
   }
-  pn = p;
-  pn1 = p_prev;
-  mu_pn_minus_pn1 = (p - 2 * s * p) - p_prev;
+  for (std::size_t j = 0; j < count; ++j) {
+    pn[j] = n == 0 ? Real(1) : p[j];
+    pn1[j] = n == 0 ? Real(0) : q[j];
+    // μPₙ − Pₙ₋₁ = Dₙ − 2sPₙ, without the cancellation of the plain form near μ = 1
+    dn[j] = n == 0 ? Real(1) : (near ? d[j] - ts[j] * p[j] : (p[j] - ts[j] * p[j]) - q[j]);
+  }
 }
 
-// One node by Newton's method in θ, starting from theta; returns the final θ and
-// sets the weight.
-//
-// The weight is taken as w = 2/(dPₙ/dθ)² with dPₙ/dθ = n(μPₙ − Pₙ₋₁)/sin θ
-// (A&S 25.4.29 written in θ), evaluated at the computed node.  At an exact node
-// this equals 2 sin²θ/(n Pₙ₋₁)², but the latter changes by n·δθ/|Pₙ₋₁| relative
-// under a node error δθ (1e-12 at the first node of order 2001, where
-// Pₙ₋₁ ~ 1e-3), whereas dPₙ/dθ is stationary up to cot θ·δθ (Legendre's equation
-// gives d²Pₙ/dθ² = −cot θ dPₙ/dθ at a zero), i.e. a few ε relative.  The final
-// evaluation runs in x87 extended precision for double (one more O(n) pass) so
-// that the rounding of the recurrence does not enter the weight either.
+// Newton's method in θ for `count` nodes at once (theta in/out), then their weights.
 template <class Real>
-Real newton_node(std::size_t n, Real theta, Real& weight) {
+void newton_block(std::size_t n, Real* theta, std::size_t count, bool near, Real* s_out, Real* w_out) {
   using std::abs;
   using std::sin;
   const Real eps = std::numeric_limits<Real>::epsilon();
   const int max_steps = std::is_same_v<Real, double> ? 12 : 8;
-  Real pn, pn1, dn;
-  for (int step = 0;; ++step) {
-    const Real half_sin = sin(theta / 2);
-    const Real s = half_sin * half_sin;
-    legendre_pair(n, s, pn, pn1, dn);
-    const Real delta = pn * sin(theta) / (Real(n) * dn);
-    theta -= delta;
-    if (abs(delta) <= 4 * eps * theta || step == max_steps) break;
+  Real s[kNodeBlock]{}, pn[kNodeBlock]{}, pn1[kNodeBlock]{}, dn[kNodeBlock]{};
+  for (int step = 0; step <= max_steps; ++step) {
+    for (std::size_t j = 0; j < count; ++j) {
+      const Real h = sin(theta[j] / 2);
+      s[j] = h * h;
+    }
+    legendre_block(n, s, count, near, pn, pn1, dn);
+    bool done = true;
+    for (std::size_t j = 0; j < count; ++j) {
+      const Real delta = pn[j] * sin(theta[j]) / (Real(n) * dn[j]);
+      theta[j] -= delta;
+      done = done && abs(delta) <= 4 * eps * theta[j];
+    }
+    if (done) break;
   }
   using Wide = std::conditional_t<std::is_same_v<Real, double>, long double, Real>;
-  const Wide half_sin = sin(Wide(theta) / 2), s = half_sin * half_sin;
-  Wide wn, wn1, wd;
-  legendre_pair<Wide>(n, s, wn, wn1, wd);
-  const Wide sin2 = 4 * s * (1 - s);
-  weight = Real(2 * sin2 / (Wide(n) * Wide(n) * wd * wd));
-  return theta;
+  Wide ws[kNodeBlock]{}, wn[kNodeBlock]{}, wn1[kNodeBlock]{}, wd[kNodeBlock]{};
+  for (std::size_t j = 0; j < count; ++j) {
+    const Wide h = sin(Wide(theta[j]) / 2);
+    ws[j] = h * h;
+  }
+  legendre_block<Wide>(n, ws, count, near, wn, wn1, wd);
+  for (std::size_t j = 0; j < count; ++j) {
+    const Wide sin2 = 4 * ws[j] * (1 - ws[j]);
+    w_out[j] = Real(2 * sin2 / (Wide(n) * Wide(n) * wd[j] * wd[j]));
+    const Real h = sin(theta[j] / 2);
+    s_out[j] = h * h;
+  }
 }
 
 template <class Real>
 HalfGaussLegendre<Real> half_gauss_legendre(std::size_t n) {
   if (n == 0) throw std::invalid_argument("Gauss-Legendre rule: order must be >= 1");
+  using std::cos;
+  using std::sin;
   HalfGaussLegendre<Real> rule;
   rule.order = n;
   const std::size_t half = n / 2;
   rule.s.resize(half + (n % 2));
   rule.w.resize(half + (n % 2));
-  std::vector<double> start(half);
+  std::vector<Real> theta(half);
   if constexpr (std::is_same_v<Real, double>) {
-    for (std::size_t k = 1; k <= half; ++k)
-      start[k - 1] = boost::math::constants::pi<double>() * double(4 * k - 1) / double(4 * n + 2);
+    const double pi = boost::math::constants::pi<double>(), nn = double(n);
+    for (std::size_t k = 1; k <= half; ++k) {
+      const double phi = pi * double(4 * k - 1) / (4 * nn + 2);
+      theta[k - 1] = phi + cos(phi) / (sin(phi) * 8 * nn * nn);
+    }
   } else {
     // Double nodes first: Newton in Real then needs ~2 steps instead of ~6.
     const HalfGaussLegendre<double> d = half_gauss_legendre<double>(n);
-    for (std::size_t k = 0; k < half; ++k) start[k] = 2 * std::asin(std::sqrt(d.s[k]));
+    for (std::size_t k = 0; k < half; ++k) theta[k] = 2 * std::asin(std::sqrt(d.s[k]));
   }
-  for (std::size_t k = 0; k < half; ++k) {
-    // Tricomi's guess numbers the nodes from θ ≈ 0 upwards.
-    Real w;
-    const Real theta = newton_node<Real>(n, Real(start[k]), w);
-    using std::sin;
-    const Real half_sin = sin(theta / 2);
-    rule.s[k] = half_sin * half_sin;
-    rule.w[k] = w;
+  // θ < π/3 is s < ¼: the nodes are ascending, so each block is on one side.
+  const double third = boost::math::constants::pi<double>() / 3;
+  for (std::size_t k0 = 0; k0 < half;) {
+    const bool near = double(theta[k0]) < third;
+    std::size_t count = 0;
+    while (count < kNodeBlock && k0 + count < half && (double(theta[k0 + count]) < third) == near) ++count;
+    newton_block<Real>(n, theta.data() + k0, count, near, rule.s.data() + k0, rule.w.data() + k0);
+    k0 += count;
   }
   if (n % 2) {
     // μ = 0 is a node of every odd order: w = 2/(n Pₙ₋₁(0))², halved (see above).
     using Wide = std::conditional_t<std::is_same_v<Real, double>, long double, Real>;
+    const Wide s_mid = Wide(0.5);
     Wide pn, pn1, dn;
-    legendre_pair<Wide>(n, Wide(0.5), pn, pn1, dn);
+    legendre_block<Wide>(n, &s_mid, 1, false, &pn, &pn1, &dn);
     rule.s[half] = Real(0.5);
     rule.w[half] = Real(1 / (Wide(n) * Wide(n) * pn1 * pn1));
   }

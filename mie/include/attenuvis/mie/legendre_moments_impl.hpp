@@ -80,74 +80,127 @@ Real scattering_norm(const std::vector<Complex<Real>>& a, const std::vector<Comp
   return w;
 }
 
+// The Mie coefficients arranged for the node loop: per n the coefficients of the
+// even and odd parts (in μ) of S1; S2's are the same pair swapped.  n odd: uₙ is
+// even in μ and tₙ odd (πₙ(−μ) = (−1)^{n−1} πₙ(μ), τₙ(−μ) = (−1)ⁿ τₙ(μ)); n even:
+// the reverse.  With S1 = Σ (2n+1)/2 (aₙuₙ + bₙtₙ), S2 = Σ (2n+1)/2 (aₙtₙ + bₙuₙ):
+//   n odd:  S1 even part += A·u, odd part += B·t;  S2 even += B·u, odd += A·t,
+//   n even: S1 even part += B·t, odd part += A·u;  S2 even += A·t, odd += B·u,
+// i.e. S1_even += P·ev, S1_odd += Q·od, S2_even += Q·ev, S2_odd += P·od with
+// (ev, od) = (u, t), (P, Q) = (A, B) for odd n and (ev, od) = (t, u), (P, Q) = (B, A)
+// for even n; A, B = (2n+1)/2 · aₙ, bₙ.
+template <class Real>
+struct AmplitudeSeries {
+  std::vector<Real> pr, pi, qr, qi, k_prev, k_cur;  // index n−1
+  AmplitudeSeries(const std::vector<Complex<Real>>& a, const std::vector<Complex<Real>>& b)
+      : pr(a.size()), pi(a.size()), qr(a.size()), qi(a.size()), k_prev(a.size()), k_cur(a.size()) {
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const std::size_t n = i + 1;
+      const Real f = Real(2 * n + 1) / 2;
+      const Complex<Real>& p = n % 2 ? a[i] : b[i];
+      const Complex<Real>& q = n % 2 ? b[i] : a[i];
+      pr[i] = f * p.real();
+      pi[i] = f * p.imag();
+      qr[i] = f * q.real();
+      qi[i] = f * q.imag();
+      k_prev[i] = Real(n - 1) / Real(n + 2);
+      k_cur[i] = Real(2 * n + 1) / Real(n + 2);
+    }
+  }
+};
+
+inline constexpr std::size_t kChunk = 32;
+
+// S1, S2 (even and odd parts) at `len` <= kChunk consecutive nodes, added to out[k][j0 + j].
+// The angular functions are carried normalised to 1 at μ = 1:
+//   uₙ = πₙ/cₙ,  tₙ = τₙ/cₙ,  cₙ = n(n+1)/2 = πₙ(1) = τₙ(1).  From B&H 4.47:
+//   (n+2) uₙ₊₁ = (2n+1) μ uₙ − (n−1) uₙ₋₁,      tₙ = n μ uₙ − (n−1) uₙ₋₁.
+// Near μ = 1 both lose ~log₁₀ n digits (the terms are ~n times the result, and the
+// rounding of the forward recurrence grows like n·ε: 2e-13 in χ₀ at x = 1000);
+// there (NearForward: s <= ¼) they run on the differences Eₙ = uₙ − uₙ₋₁ instead
+// (Reinsch's modification):
+//   Eₙ₊₁ = ((n−1) Eₙ − 2s (2n+1) uₙ)/(n+2),  uₙ₊₁ = uₙ + Eₙ₊₁,
+//   tₙ = uₙ₋₁ + n (Eₙ − 2s uₙ),
+// obtained by subtracting the μ = 1 identity (n+2) = (2n+1) − (n−1).
+template <class Real, bool NearForward>
+void amplitude_chunk(const AmplitudeSeries<Real>& c, const Real* two_s, std::size_t len, Real* const out[8],
+                     std::size_t j0) {
+  Real ts[kChunk], u0[kChunk], u1[kChunk], e[kChunk];
+  Real s1e_r[kChunk], s1e_i[kChunk], s1o_r[kChunk], s1o_i[kChunk];
+  Real s2e_r[kChunk], s2e_i[kChunk], s2o_r[kChunk], s2o_i[kChunk];
+  for (std::size_t j = 0; j < kChunk; ++j) {
+    ts[j] = j < len ? two_s[j] : Real(0);
+    u0[j] = 1;  // u₀ is arbitrary (its coefficient is zero); 1 makes E₁ = 0
+    u1[j] = 1;
+    e[j] = 0;
+    s1e_r[j] = s1e_i[j] = s1o_r[j] = s1o_i[j] = s2e_r[j] = s2e_i[j] = s2o_r[j] = s2o_i[j] = Real(0);
+  }
+  const std::size_t nt = c.pr.size();
+  for (std::size_t i = 0; i < nt; ++i) {
+    const bool odd = i % 2 == 0;  // n = i+1
+    const Real pr = c.pr[i], pi = c.pi[i], qr = c.qr[i], qi = c.qi[i];
+    const Real rn = Real(i + 1), rn1 = Real(i), kp = c.k_prev[i], kc = c.k_cur[i];
+    for (std::size_t j = 0; j < kChunk; ++j) {
+      const Real u = u1[j];
+      Real t;
+      if constexpr (NearForward) {
+        t = u0[j] + rn * (e[j] - ts[j] * u);
+        e[j] = kp * e[j] - kc * ts[j] * u;
+        u0[j] = u;
+        u1[j] = u + e[j];
+      } else {
+        const Real mu_u = u - ts[j] * u;
+        t = rn * mu_u - rn1 * u0[j];
+        u1[j] = kc * mu_u - kp * u0[j];
+        u0[j] = u;
+      }
+      const Real ev = odd ? u : t, od = odd ? t : u;
+      s1e_r[j] += pr * ev;
+      s1e_i[j] += pi * ev;
+      s1o_r[j] += qr * od;
+      s1o_i[j] += qi * od;
+      s2e_r[j] += qr * ev;
+      s2e_i[j] += qi * ev;
+      s2o_r[j] += pr * od;
+      s2o_i[j] += pi * od;
+    }
+  }
+  for (std::size_t j = 0; j < len; ++j) {
+    out[0][j0 + j] = s1e_r[j];
+    out[1][j0 + j] = s1e_i[j];
+    out[2][j0 + j] = s1o_r[j];
+    out[3][j0 + j] = s1o_i[j];
+    out[4][j0 + j] = s2e_r[j];
+    out[5][j0 + j] = s2e_i[j];
+    out[6][j0 + j] = s2o_r[j];
+    out[7][j0 + j] = s2o_i[j];
+  }
+}
+
 template <class Real>
 WeightedProducts<Real> weighted_products(const std::vector<Complex<Real>>& a,
                                          const std::vector<Complex<Real>>& b,
                                          const HalfGaussLegendre<Real>& rule, bool full_matrix) {
-  const std::size_t nt = a.size(), m = rule.s.size();
-  // The angular functions are carried normalised to 1 at μ = 1:
-  //   uₙ = πₙ/cₙ,  tₙ = τₙ/cₙ,  cₙ = n(n+1)/2 = πₙ(1) = τₙ(1),
-  // so S1 = Σ (2n+1)/2 (aₙuₙ + bₙtₙ), S2 = Σ (2n+1)/2 (aₙtₙ + bₙuₙ).  From B&H 4.47:
-  //   (n+2) uₙ₊₁ = (2n+1) μ uₙ − (n−1) uₙ₋₁,      tₙ = n μ uₙ − (n−1) uₙ₋₁.
-  // Near μ = 1 both lose ~log₁₀ n digits (the terms are ~n times the result, and
-  // the rounding of the forward recurrence grows like n·ε); there (s <= ¼) they run
-  // on the differences Eₙ = uₙ − uₙ₋₁ instead (Reinsch's modification):
-  //   Eₙ₊₁ = ((n−1) Eₙ − 2s (2n+1) uₙ)/(n+2),  uₙ₊₁ = uₙ + Eₙ₊₁,
-  //   tₙ = uₙ₋₁ + n (Eₙ − 2s uₙ),
-  // obtained by subtracting the μ = 1 identity (n+2) = (2n+1) − (n−1).
-  std::vector<Real> ar(nt), ai(nt), br(nt), bi(nt), k_prev(nt + 1), k_cur(nt + 1);
-  for (std::size_t i = 0; i < nt; ++i) {
-    const Real f = Real(2 * i + 3) / 2;  // (2n+1)/2, n = i+1
-    ar[i] = f * a[i].real();
-    ai[i] = f * a[i].imag();
-    br[i] = f * b[i].real();
-    bi[i] = f * b[i].imag();
-  }
-  for (std::size_t n = 1; n <= nt; ++n) {
-    k_prev[n] = Real(n - 1) / Real(n + 2);
-    k_cur[n] = Real(2 * n + 1) / Real(n + 2);
-  }
-  // Per node: uₙ₋₁, uₙ, Eₙ; even and odd parts (in μ) of S1 and S2.
-  std::vector<Real> u0(m, Real(1)), u1(m, Real(1)), e(m, Real(0));
-  std::vector<Real> e1r(m, Real(0)), e1i(m, Real(0)), o1r(m, Real(0)), o1i(m, Real(0));
-  std::vector<Real> e2r(m, Real(0)), e2i(m, Real(0)), o2r(m, Real(0)), o2i(m, Real(0));
-  std::vector<Real> two_s(m);
+  const std::size_t m = rule.s.size();
+  AmplitudeSeries<Real> c(a, b);
+  std::vector<Real> e1r(m), e1i(m), o1r(m), o1i(m), e2r(m), e2i(m), o2r(m), o2i(m), two_s(m);
   std::size_t split = 0;  // nodes [0, split) have s <= 1/4 (ascending s)
   for (std::size_t j = 0; j < m; ++j) {
     two_s[j] = 2 * rule.s[j];
     if (rule.s[j] <= Real(0.25)) split = j + 1;
   }
-  for (std::size_t n = 1; n <= nt; ++n) {
-    const Real Ar = ar[n - 1], Ai = ai[n - 1], Br = br[n - 1], Bi = bi[n - 1];
-    const bool odd = n % 2 == 1;
-    // n odd: πₙ even in μ, τₙ odd; n even: the reverse.  S1 = Σ Au + Bt, S2 = Σ At + Bu.
-    const Real s1_ev_r = odd ? Ar : Br, s1_ev_i = odd ? Ai : Bi;
-    const Real s1_od_r = odd ? Br : Ar, s1_od_i = odd ? Bi : Ai;
-    const Real rn = Real(n), rn1 = Real(n - 1), kp = k_prev[n], kc = k_cur[n];
-    auto accumulate = [&](std::size_t j, const Real& u, const Real& t) {
-      const Real ev = odd ? u : t, od = odd ? t : u;
-      e1r[j] += s1_ev_r * ev;
-      e1i[j] += s1_ev_i * ev;
-      o1r[j] += s1_od_r * od;
-      o1i[j] += s1_od_i * od;
-      e2r[j] += s1_od_r * ev;
-      e2i[j] += s1_od_i * ev;
-      o2r[j] += s1_ev_r * od;
-      o2i[j] += s1_ev_i * od;
-    };
-    for (std::size_t j = 0; j < split; ++j) {
-      const Real u = u1[j], t = u0[j] + rn * (e[j] - two_s[j] * u);
-      accumulate(j, u, t);
-      e[j] = kp * e[j] - kc * two_s[j] * u;
-      u0[j] = u;
-      u1[j] = u + e[j];
-    }
-    for (std::size_t j = split; j < m; ++j) {
-      const Real u = u1[j], mu_u = u - two_s[j] * u, t = rn * mu_u - rn1 * u0[j];
-      accumulate(j, u, t);
-      u1[j] = kc * mu_u - kp * u0[j];
-      u0[j] = u;
-    }
+  // Chunks of nodes small enough for the per-node state to stay in L1 (and, for
+  // double, to let the compiler vectorise across nodes without aliasing doubts).
+  Real* const parts[8] = {e1r.data(), e1i.data(), o1r.data(), o1i.data(),
+                          e2r.data(), e2i.data(), o2r.data(), o2i.data()};
+  for (std::size_t j0 = 0; j0 < m;) {
+    const bool near = j0 < split;
+    const std::size_t len = std::min(kChunk, (near ? split : m) - j0);
+    if (near)
+      amplitude_chunk<Real, true>(c, two_s.data() + j0, len, parts, j0);
+    else
+      amplitude_chunk<Real, false>(c, two_s.data() + j0, len, parts, j0);
+    j0 += len;
   }
   const Real inv_w = 1 / scattering_norm<Real>(a, b);
   WeightedProducts<Real> out;
