@@ -22,6 +22,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -303,6 +304,83 @@ TEST_CASE("Legendre moments: the reconstruction of B&H appendix A's S11", "[mie]
     INFO("theta = " << angles[j] << ": " << p[j] / p[0] << " vs printed " << s11[j]);
     CHECK(std::abs(p[j] / p[0] - s11[j]) <= tol);
   }
+}
+
+// The scattering matrix summed back from α1…β2 with the recurrences of Mishchenko's
+// subroutine MATR (MTL 2002; d²_{22} = (1+μ)²/4, d²_{2,−2} = (1−μ)²/4,
+// d²_{02} = (√6/4)(μ²−1)), written here independently of the library's sweeps.
+// Returns a1, a2, a3, a4, b1, b2 at cos θ = mu.
+std::array<double, 6> matr_sum(const mie::ScatteringMatrixExpansion<double>& e, double mu) {
+  double f11 = 0, f2 = 0, f3 = 0, f44 = 0, f12 = 0, f34 = 0;
+  double p1 = 0, p2 = 0, p3 = 0, p4 = 0;
+  double pp1 = 1, pp2 = 0.25 * (1 + mu) * (1 + mu), pp3 = 0.25 * (1 - mu) * (1 - mu);
+  double pp4 = std::sqrt(6.0) * 0.25 * (mu * mu - 1);
+  for (std::size_t l = 0; l < e.alpha1.size(); ++l) {
+    const double dl = double(l), pl1 = 2 * dl + 1;
+    f11 += e.alpha1[l] * pp1;
+    f44 += e.alpha4[l] * pp1;
+    const double p = (pl1 * mu * pp1 - dl * p1) / (dl + 1);
+    p1 = pp1;
+    pp1 = p;
+    if (l < 2) continue;
+    f2 += (e.alpha2[l] + e.alpha3[l]) * pp2;
+    f3 += (e.alpha2[l] - e.alpha3[l]) * pp3;
+    f12 += e.beta1[l] * pp4;
+    f34 += e.beta2[l] * pp4;
+    const double pl2 = dl * (dl + 1) * mu, pl3 = (dl + 1) * (dl * dl - 4), pl4 = 1 / (dl * ((dl + 1) * (dl + 1) - 4));
+    const double q2 = (pl1 * (pl2 - 4) * pp2 - pl3 * p2) * pl4;
+    p2 = pp2;
+    pp2 = q2;
+    const double q3 = (pl1 * (pl2 + 4) * pp3 - pl3 * p3) * pl4;
+    p3 = pp3;
+    pp3 = q3;
+    const double q4 = (pl1 * mu * pp4 - std::sqrt(dl * dl - 4) * p4) / std::sqrt((dl + 1) * (dl + 1) - 4);
+    p4 = pp4;
+    pp4 = q4;
+  }
+  return {f11, 0.5 * (f2 + f3), 0.5 * (f2 - f3), f44, f12, f34};
+}
+
+TEST_CASE("Scattering-matrix expansion sums back to B&H appendix A", "[mie][moments][published]") {
+  // Bohren & Huffman (1983) appendix A, p. 482, x = 2π·0.525/0.6328, m = 1.55: the
+  // printed −S12/S11, S33/S11, S34/S11 (tests/data/mie/bohren_huffman_appendix_a.csv)
+  // from the matrix rebuilt out of α1…β2 in MTL's convention: a1 = a2, a3 = a4,
+  // −b1/a1 = −S12/S11, a3/a1 = S33/S11, −b2/a1 = S34/S11 (legendre_moments.hpp).
+  // Tolerance: half a unit of the printed digit, plus 2e-6 relative for the two
+  // single-precision roundings of BHMIE noted in test_scattering_matrix.cpp.
+  std::ifstream in(std::string(ATTENUVIS_TEST_DATA_DIR) + "/mie/bohren_huffman_appendix_a.csv");
+  REQUIRE(in);
+  const double x = 2.0 * 3.14159265358979323846 * 0.525 / 0.6328;
+  const auto e = mie::scattering_matrix_expansion(with_coefficients(x, cd(1.55, 0.0)));
+  std::string line;
+  bool header = true;
+  int rows = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    if (header) {
+      header = false;
+      continue;
+    }
+    std::stringstream ss(line);
+    std::vector<std::string> cells;
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+    REQUIRE(cells.size() == 5);
+    const double theta = std::stod(cells[0]);
+    const auto f = matr_sum(e, std::cos(theta * 3.14159265358979323846 / 180));
+    CHECK(std::abs(f[1] - f[0]) <= 1e-12 * std::abs(f[0]));  // a2 = a1 for a sphere
+    CHECK(std::abs(f[3] - f[2]) <= 1e-12 * std::abs(f[0]));  // a4 = a3
+    const double got[3] = {-f[4] / f[0], f[2] / f[0], -f[5] / f[0]};
+    for (int c = 0; c < 3; ++c) {
+      const std::string& text = cells[c + 2];
+      const double printed = std::stod(text);
+      double tol = 0.5e-6 * std::pow(10.0, std::stoi(text.substr(text.find_first_of("eE") + 1)));
+      if ((cells[0] == "99" && c == 1) || (cells[0] == "126" && c == 2)) tol = 2e-6 * std::abs(printed);
+      INFO("theta = " << cells[0] << ", column " << c + 2 << ": " << got[c] << " vs printed " << printed);
+      CHECK(std::abs(got[c] - printed) <= tol);
+    }
+    ++rows;
+  }
+  CHECK(rows == 21);
 }
 
 TEST_CASE("Legendre moments: bad input", "[mie][moments]") {
