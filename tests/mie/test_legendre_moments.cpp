@@ -82,7 +82,7 @@ double max_scaled_error(const std::vector<double>& d, const std::vector<mie::Ref
 // The same algorithm in x87 extended precision (64-bit significand) on the
 // referee's coefficients: the second rung of a precision ladder for x = 1e4, where
 // the 50-digit run costs ~40 CPU-minutes.  Its own error is checked against the
-// 50-digit referee at x <= 1000 (below 1e-17).
+// 50-digit referee at x <= 1000 (measured <= 2.2e-18; checked below 1e-17).
 struct Extended {
   std::vector<long double> chi;
   mie::ScatteringMatrixExpansion<long double> gsf;
