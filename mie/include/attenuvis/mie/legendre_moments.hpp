@@ -52,15 +52,15 @@
 // the same algorithm in extended precision on the referee's coefficients (that
 // rung agrees with the 50-digit referee to 2.2e-18 for x <= 1000), <= 1.2e-14.
 //
-// Cost: at x = 1000 (N ≈ 1085) the moments take ~20 ms and the full expansion
-// ~40-70 ms against ~0.3 ms for the efficiencies — 55-75x, not the 2x one might
-// hope for: the efficiencies are O(N) sums, whereas 2N+1 moments that each
-// depend on all N coefficient pairs cost O(N²) even by this quadrature (2N+1
-// nodes × N terms), and more by Dave's double sums (O(N²) per moment).  Only a
-// fast Legendre transform (O(N log² N)) could close the gap; not done.  Building the
-// rule of 2N+1 nodes costs another ~140 ms once per order; it is cached per
-// thread and reused for any sphere whose N is within ~6%.  Measured by
-// validation/bench/mie_moments_speed.cpp on the shared development machine.
+// Cost: at x = 1000 (N ≈ 1085) the moments take ~5.7 ms and the full expansion
+// ~21 ms against ~0.1 ms for the efficiencies: 56-60x and ~200x (one core of the
+// shared development machine, validation/bench/mie_moments_speed.cpp), not the
+// 2x one might hope for.  The efficiencies are O(N) sums, whereas 2N+1 moments
+// that each depend on all N coefficient pairs cost O(N²) even by this quadrature
+// (2N+1 nodes × N terms), and more by Dave's double sums (O(N²) per moment); only
+// a fast Legendre transform (O(N log² N)) could close the gap — not done.
+// Building the rule of 2N+1 nodes adds ~35 ms once per order; it is cached per
+// thread and reused for any sphere whose N is within ~6%.
 //
 // Example (DISORT input for one water droplet, x = 50, m = 1.33 + 1e-8i):
 //     namespace mie = attenuvis::mie;
