@@ -242,8 +242,10 @@ TEST_CASE("reproduce --quick: report files and key numbers", "[validation][slow]
     // -1.3e-4 and +5.3e-4 relative.  The report states (a) that the difference is real
     // (above our error), (b) that the water index does not explain it (the spread of
     // the indices it tries, table weather_fog_refractive_index, is far smaller), and
-    // (c) that a fixed-step midpoint sum of the same integral with the seed's n' = 1.33
-    // errs by as much (table weather_fog_seed_quadrature).  Each claim is checked here.
+    // (c) whether a fixed-step midpoint sum of the same integral with the seed's
+    // n' = 1.33 errs by as much (table weather_fog_seed_quadrature): with the quick
+    // run's steps it does for radiation fog (3.5e-3) but not quite for advection fog
+    // (1.1e-4 against 1.3e-4), and the verdict must say which.  Each claim is checked here.
     const auto variants = read_csv(quick_run().dir / "weather_fog_refractive_index.csv");
     REQUIRE(!variants.empty());
     struct Fog {
@@ -273,7 +275,8 @@ TEST_CASE("reproduce --quick: report files and key numbers", "[validation][slow]
       CHECK(key(q + ".converged_rel_error") <= 1e-9);
       CHECK(std::abs(ours - f.seed) > 100 * err);         // (a) the difference is real
       CHECK(spread < 0.5 * std::abs(ours - f.seed));      // (b) the index does not explain it
-      CHECK(std::abs(seed_rel) <= midpoint);              // (c) a coarse quadrature errs as much
+      CHECK(key(q + ".midpoint_explains") == (std::abs(seed_rel) <= midpoint ? 1.0 : 0.0));  // (c) as stated
+      CHECK(midpoint > 0.1 * std::abs(seed_rel));         // same order: a coarse quadrature is a candidate
       CHECK(std::abs(seed_rel) < 1e-3);                   // agreement in the 4th significant digit
     }
   }

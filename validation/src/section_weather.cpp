@@ -178,6 +178,7 @@ void fog_seed_quadrature(Context& ctx, Section& s, const SeedConditions& seed) {
     const bool explained = std::fabs(seed_rel) <= worst;
     ctx.set("weather.fog_seed_quadrature." + std::string(name) + ".seed_rel", seed_rel);
     ctx.set("weather.fog_seed_quadrature." + std::string(name) + ".midpoint_worst_rel", worst);
+    ctx.set("weather.fog_seed_quadrature." + std::string(name) + ".midpoint_explains", explained ? 1.0 : 0.0);
     ctx.set("weather.fog_seed_quadrature." + std::string(name) + ".converged_rel_error",
             converged.error_per_m / converged.per_m);
     ctx.closing->push_back(verdict(
