@@ -1,6 +1,8 @@
 // End-to-end tests of `attenuvis sigma | table | distribution`.
 #include <catch2/catch.hpp>
 
+#include "cli_run.hpp"
+
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -15,17 +17,8 @@
 using Catch::Matchers::Contains;
 
 namespace {
-struct Result { int status; std::string out; };
-
-Result run(const std::string& args) {
-  std::string cmd = std::string(ATTENUVIS_CLI) + " " + args + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe.get())) out += buf.data();
-  int raw = pclose(pipe.release());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
-}
+using weather_cli::Result;
+using weather_cli::run;
 std::string data(const std::string& name) { return std::string(ATTENUVIS_TEST_DATA_DIR) + "/weather/" + name; }
 bool exists(const std::string& path) { return std::ifstream(path).good(); }
 }  // namespace

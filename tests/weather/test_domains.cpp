@@ -4,6 +4,8 @@
 // carries inf or NaN.
 #include <catch2/catch.hpp>
 
+#include "cli_run.hpp"
+
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -24,19 +26,8 @@ using Catch::Matchers::StartsWith;
 
 namespace {
 
-struct Result {
-  int status;
-  std::string out;
-};
-Result run(const std::string& args) {
-  std::string cmd = std::string(ATTENUVIS_CLI) + " " + args + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe.get())) out += buf.data();
-  int raw = pclose(pipe.release());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
-}
+using weather_cli::Result;
+using weather_cli::run;
 
 std::string temp_path(const std::string& name) { return "/tmp/attenuvis_test_domains_" + name; }
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
