@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -33,6 +34,26 @@ std::string significant(double value, int digits) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
   return buffer;
+}
+
+double half_unit_in_last_digit(std::string_view literal) {
+  std::string_view mantissa = literal;
+  int exponent = 0;
+  const auto e = literal.find_first_of("eE");
+  if (e != std::string_view::npos) {
+    mantissa = literal.substr(0, e);
+    exponent = std::stoi(std::string(literal.substr(e + 1)));
+  }
+  const auto dot = mantissa.find('.');
+  const int decimals = dot == std::string_view::npos ? 0 : static_cast<int>(mantissa.size() - dot - 1);
+  return 0.5 * std::pow(10.0, exponent - decimals);
+}
+
+std::string index_text(std::complex<double> m) {
+  std::ostringstream os;
+  os << m.real();
+  if (m.imag() != 0) os << "+" << m.imag() << "i";
+  return os.str();
 }
 
 }  // namespace attenuvis::io

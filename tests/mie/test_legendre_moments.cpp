@@ -25,6 +25,10 @@
 // x = 1000 (~30 s per index) and the x = 1e4 ladder (~7 s) are tagged [slow].
 #include <catch2/catch.hpp>
 
+#include <boost/math/constants/constants.hpp>
+
+#include "csv_rows.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -283,28 +287,15 @@ TEST_CASE("Scattering-matrix expansion: Rayleigh limit at x = 1e-3", "[mie][mome
 TEST_CASE("Legendre moments: the reconstruction of B&H appendix A's S11", "[mie][moments][published]") {
   // Bohren & Huffman (1983) appendix A, p. 482: S11(θ)/S11(0) for x = 2π·0.525/0.6328,
   // m = 1.55, six significant digits (tests/data/mie/bohren_huffman_appendix_a.csv).
-  std::ifstream in(std::string(ATTENUVIS_TEST_DATA_DIR) + "/mie/bohren_huffman_appendix_a.csv");
-  REQUIRE(in);
   std::vector<double> angles, s11;
   std::vector<std::string> s11_text;
-  std::string line;
-  bool header = true;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (header) {
-      header = false;
-      continue;
-    }
-    std::stringstream ss(line);
-    std::string a, v;
-    std::getline(ss, a, ',');
-    std::getline(ss, v, ',');
-    angles.push_back(std::stod(a));
-    s11.push_back(std::stod(v));
-    s11_text.push_back(v);
+  for (const auto& cells : mie_test::read_csv_rows("bohren_huffman_appendix_a.csv")) {
+    angles.push_back(std::stod(cells.at(0)));
+    s11.push_back(std::stod(cells.at(1)));
+    s11_text.push_back(cells.at(1));
   }
   REQUIRE(angles.size() == 21);
-  const double x = 2.0 * 3.14159265358979323846 * 0.525 / 0.6328;
+  const double x = 2.0 * boost::math::constants::pi<double>() * 0.525 / 0.6328;
   const auto p = mie::phase_function_from_moments(mie::phase_function_moments(x, cd(1.55, 0.0)), angles);
   for (std::size_t j = 0; j < angles.size(); ++j) {
     // Half a unit in the last printed digit of the 0.dddddd E±ee mantissa.
@@ -358,25 +349,13 @@ TEST_CASE("Scattering-matrix expansion sums back to B&H appendix A", "[mie][mome
   // −b1/a1 = −S12/S11, a3/a1 = S33/S11, −b2/a1 = S34/S11 (legendre_moments.hpp).
   // Tolerance: half a unit of the printed digit, plus 2e-6 relative for the two
   // single-precision roundings of BHMIE noted in test_scattering_matrix.cpp.
-  std::ifstream in(std::string(ATTENUVIS_TEST_DATA_DIR) + "/mie/bohren_huffman_appendix_a.csv");
-  REQUIRE(in);
-  const double x = 2.0 * 3.14159265358979323846 * 0.525 / 0.6328;
+  const double x = 2.0 * boost::math::constants::pi<double>() * 0.525 / 0.6328;
   const auto e = mie::scattering_matrix_expansion(with_coefficients(x, cd(1.55, 0.0)));
-  std::string line;
-  bool header = true;
   int rows = 0;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (header) {
-      header = false;
-      continue;
-    }
-    std::stringstream ss(line);
-    std::vector<std::string> cells;
-    for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+  for (const auto& cells : mie_test::read_csv_rows("bohren_huffman_appendix_a.csv")) {
     REQUIRE(cells.size() == 5);
     const double theta = std::stod(cells[0]);
-    const auto f = matr_sum(e, std::cos(theta * 3.14159265358979323846 / 180));
+    const auto f = matr_sum(e, std::cos(theta * boost::math::constants::pi<double>() / 180));
     CHECK(std::abs(f[1] - f[0]) <= 1e-12 * std::abs(f[0]));  // a2 = a1 for a sphere
     CHECK(std::abs(f[3] - f[2]) <= 1e-12 * std::abs(f[0]));  // a4 = a3
     const double got[3] = {-f[4] / f[0], f[2] / f[0], -f[5] / f[0]};

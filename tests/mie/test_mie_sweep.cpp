@@ -13,6 +13,7 @@
 // NaN Qext and infinite Qback before ψ₁ was formed without dividing by sin x.
 #include <catch2/catch.hpp>
 
+#include <boost/math/constants/constants.hpp>
 #include <cmath>
 #include <complex>
 #include <sstream>
@@ -28,7 +29,7 @@ namespace {
 namespace mie = attenuvis::mie;
 using cd = std::complex<double>;
 
-const double kPi = 3.14159265358979323846264338327950288;
+const double kPi = boost::math::constants::pi<double>();
 
 // The report's midpoint grid.
 std::vector<double> midpoint_grid() {
@@ -41,7 +42,7 @@ std::vector<double> midpoint_grid() {
 // rounded once), for j = 1 .. while jπ <= x_max.
 std::vector<double> multiples_of_pi(double x_max) {
   std::vector<double> xs;
-  const long double pi = 3.141592653589793238462643383279502884L;
+  const long double pi = boost::math::constants::pi<long double>();
   for (int j = 1; static_cast<double>(j * pi) <= x_max; ++j) xs.push_back(static_cast<double>(j * pi));
   return xs;
 }

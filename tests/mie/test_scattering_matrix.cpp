@@ -14,6 +14,8 @@
 //    S33 = −S11 (S2(π) = −S1(π), B&H 4.75), Qback/(4π) = Qsca p(π)/(4π).
 #include <catch2/catch.hpp>
 
+#include "csv_rows.hpp"
+
 #include <cmath>
 #include <complex>
 #include <fstream>
@@ -42,31 +44,12 @@ Printed printed(const std::string& text) {
   return {std::stod(text), 0.5e-6 * std::pow(10.0, std::stoi(text.substr(e + 1)))};
 }
 
-std::vector<std::vector<std::string>> read_csv(const std::string& name) {
-  std::ifstream in(std::string(ATTENUVIS_TEST_DATA_DIR) + "/mie/" + name);
-  REQUIRE(in);
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  bool header = true;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (header) {
-      header = false;
-      continue;
-    }
-    std::vector<std::string> row;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) row.push_back(cell);
-    rows.push_back(row);
-  }
-  return rows;
-}
+using mie_test::read_csv_rows;
 
 }  // namespace
 
 TEST_CASE("Scattering matrix: Bohren & Huffman appendix A", "[mie][scattering_matrix][published]") {
-  const auto rows = read_csv("bohren_huffman_appendix_a.csv");
+  const auto rows = read_csv_rows("bohren_huffman_appendix_a.csv");
   REQUIRE(rows.size() == 21);
   std::vector<double> angles;
   for (const auto& r : rows) angles.push_back(std::stod(r[0]));

@@ -1,5 +1,6 @@
 // Error map and error-against-run-time table of the Mie core (see
 // attenuvis/validation/mie_accuracy.hpp for the definitions and costs).
+#include "attenuvis/io/number_text.hpp"
 #include "attenuvis/validation/mie_accuracy.hpp"
 
 #include <algorithm>
@@ -53,13 +54,6 @@ double median_ns_per_call(F&& f, double min_seconds, int samples) {
   }
   std::sort(per_call.begin(), per_call.end());
   return per_call[per_call.size() / 2];
-}
-
-std::string format_index(std::complex<double> m) {
-  std::ostringstream os;
-  os << m.real();
-  if (m.imag() != 0) os << "+" << m.imag() << "i";
-  return os.str();
 }
 
 }  // namespace
@@ -182,7 +176,7 @@ std::string format_error_vs_time(const std::vector<ErrorTimeRow>& rows) {
   std::vector<std::pair<std::complex<double>, double>> keys;
   std::map<std::pair<std::string, double>, std::map<std::string, const ErrorTimeRow*>> by;
   for (const auto& r : rows) {
-    const auto key = std::make_pair(format_index(r.m), r.x);
+    const auto key = std::make_pair(io::index_text(r.m), r.x);
     if (by.find(key) == by.end()) keys.emplace_back(r.m, r.x);
     by[key][r.mode] = &r;
   }
@@ -193,8 +187,8 @@ std::string format_error_vs_time(const std::vector<ErrorTimeRow>& rows) {
                 "default ns", "error", "double ns", "error", "wiscombe", "error", "convent.", "error", "def/conv");
   os << line << std::string(std::string(line).size() - 1, '-') << '\n';
   for (const auto& [m, x] : keys) {
-    const auto& cols = by[{format_index(m), x}];
-    std::snprintf(line, sizeof line, "%-12s %8.0e |", format_index(m).c_str(), x);
+    const auto& cols = by[{io::index_text(m), x}];
+    std::snprintf(line, sizeof line, "%-12s %8.0e |", io::index_text(m).c_str(), x);
     os << line;
     for (const char* mode : modes) {
       const auto it = cols.find(mode);

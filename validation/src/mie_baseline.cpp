@@ -1,5 +1,6 @@
 // The current Mie core against an earlier build of itself (see
 // attenuvis/validation/mie_baseline.hpp).
+#include "attenuvis/io/number_text.hpp"
 #include "attenuvis/validation/mie_baseline.hpp"
 
 #include <dlfcn.h>
@@ -57,13 +58,6 @@ double block_ns(F&& f, long reps) {
   const double dt = thread_seconds() - t0;
   g_sink = g_sink + acc;
   return dt / static_cast<double>(reps) * 1e9;
-}
-
-std::string index_text(std::complex<double> m) {
-  std::ostringstream os;
-  os << m.real();
-  if (m.imag() != 0) os << "+" << m.imag() << "i";
-  return os.str();
 }
 
 }  // namespace
@@ -160,7 +154,7 @@ std::string format_batch_speed(const BatchSpeed& b) {
   std::ostringstream os;
   char buf[200];
   os << "many spheres: " << b.count << " x uniform in [" << b.x_min << ", " << b.x_max << "], m = "
-     << index_text(b.m) << " (ns per sphere, minimum over blocks)\n";
+     << io::index_text(b.m) << " (ns per sphere, minimum over blocks)\n";
   std::snprintf(buf, sizeof buf, "  baseline sphere() loop      %9.1f\n", b.ns_baseline);
   os << buf;
   std::snprintf(buf, sizeof buf, "  current sphere() loop       %9.1f  (%.2fx)\n", b.ns_single, b.ns_baseline / b.ns_single);
@@ -181,18 +175,18 @@ std::string format_speed_vs_baseline(const std::vector<SpeedCell>& cells, const 
   for (const auto& c : cells) {
     if (std::find(ms.begin(), ms.end(), c.m) == ms.end()) ms.push_back(c.m);
     if (std::find(xs.begin(), xs.end(), c.x) == xs.end()) xs.push_back(c.x);
-    at[{c.x, index_text(c.m)}] = &c;
+    at[{c.x, io::index_text(c.m)}] = &c;
   }
   std::ostringstream os;
   char buf[256];
   os << "speed-up = " << baseline_name << " time / current time per call (same run, alternating blocks, "
      << "thread CPU time, minimum over blocks); err = max relative error against the 50-digit referee (current / baseline)\n";
   for (const auto& m : ms) {
-    std::snprintf(buf, sizeof buf, "\nm = %s\n%8s %12s %12s %9s %10s %10s %7s\n", index_text(m).c_str(), "x",
+    std::snprintf(buf, sizeof buf, "\nm = %s\n%8s %12s %12s %9s %10s %10s %7s\n", io::index_text(m).c_str(), "x",
                   "current ns", "baseline ns", "speed-up", "err", "err base", "terms");
     os << buf;
     for (double x : xs) {
-      const auto it = at.find({x, index_text(m)});
+      const auto it = at.find({x, io::index_text(m)});
       if (it == at.end()) continue;
       const SpeedCell& c = *it->second;
       char e1[16] = "-", e2[16] = "-";
@@ -207,7 +201,7 @@ std::string format_speed_vs_baseline(const std::vector<SpeedCell>& cells, const 
   std::snprintf(buf, sizeof buf, "%8s", "x");
   os << buf;
   for (const auto& m : ms) {
-    std::snprintf(buf, sizeof buf, " %12s", index_text(m).c_str());
+    std::snprintf(buf, sizeof buf, " %12s", io::index_text(m).c_str());
     os << buf;
   }
   os << '\n';
@@ -215,7 +209,7 @@ std::string format_speed_vs_baseline(const std::vector<SpeedCell>& cells, const 
     std::snprintf(buf, sizeof buf, "%8.0e", x);
     os << buf;
     for (const auto& m : ms) {
-      const auto it = at.find({x, index_text(m)});
+      const auto it = at.find({x, io::index_text(m)});
       if (it == at.end()) std::snprintf(buf, sizeof buf, " %12s", "-");
       else std::snprintf(buf, sizeof buf, " %11.2fx", it->second->speedup());
       os << buf;

@@ -5,6 +5,7 @@
 // amplitudes.
 #include "mie_published.hpp"
 
+#include <boost/math/constants/constants.hpp>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "attenuvis/io/number_text.hpp"
 #include "attenuvis/mie.hpp"
 
 namespace attenuvis::validation::detail {
@@ -59,20 +61,6 @@ double num(const Row& r, const std::string& key) {
   return std::stod(it->second);
 }
 
-// Half a unit in the last printed digit of "7.417859E-06", "0.10149104", "55.8066".
-double half_unit_last_digit(const std::string& text) {
-  std::string mant = text;
-  int exponent = 0;
-  const auto e = text.find_first_of("eE");
-  if (e != std::string::npos) {
-    mant = text.substr(0, e);
-    exponent = std::stoi(text.substr(e + 1));
-  }
-  const auto dot = mant.find('.');
-  const int decimals = dot == std::string::npos ? 0 : static_cast<int>(mant.size() - dot - 1);
-  return 0.5 * std::pow(10.0, exponent - decimals);
-}
-
 std::string g10(double v) {
   char b[40];
   std::snprintf(b, sizeof b, "%.10g", v);
@@ -115,7 +103,7 @@ class Collector {
     const double pub = std::stod(printed);
     e.published = printed;
     e.computed = g10(got);
-    e.half_unit = half_unit_last_digit(printed);
+    e.half_unit = io::half_unit_in_last_digit(printed);
     e.abs_diff = std::abs(got - pub);
     e.rel_error = pub != 0 ? e.abs_diff / std::abs(pub) : e.abs_diff;
     finish(e);
@@ -128,7 +116,7 @@ class Collector {
     const cd pub(std::stod(re), (conjugate ? -1.0 : 1.0) * std::stod(im));
     e.published = g10(pub);
     e.computed = g10(got);
-    e.half_unit = std::abs(pub.real()) >= std::abs(pub.imag()) ? half_unit_last_digit(re) : half_unit_last_digit(im);
+    e.half_unit = std::abs(pub.real()) >= std::abs(pub.imag()) ? io::half_unit_in_last_digit(re) : io::half_unit_in_last_digit(im);
     e.abs_diff = std::max(std::abs(got.real() - pub.real()), std::abs(got.imag() - pub.imag()));
     e.rel_error = std::abs(got - pub) / std::abs(pub);
     finish(e);
@@ -226,7 +214,7 @@ void wiscombe_1979(const std::string& dir, Collector& c) {
 }
 
 void bohren_huffman(const std::string& dir, Collector& c) {
-  const double x = 2.0 * 3.14159265358979323846 * 0.525 / 0.6328;
+  const double x = 2.0 * boost::math::constants::pi<double>() * 0.525 / 0.6328;
   const auto rows = read_table(dir, "bohren_huffman_appendix_a.csv");
   mie::Extras ex;
   for (const Row& r : rows) ex.angles_deg.push_back(num(r, "angle_deg"));

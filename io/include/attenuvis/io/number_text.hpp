@@ -1,6 +1,7 @@
 // Numbers to and from text, the same way in every module.
 #pragma once
 
+#include <complex>
 #include <string>
 #include <string_view>
 
@@ -18,5 +19,14 @@ std::string shortest(double value);
 // `digits` significant digits, as printf's %g would choose between fixed and
 // exponent form (for values that carry an error bar, and for messages).
 std::string significant(double value, int digits);
+
+// Half a unit in the last printed digit of a decimal literal ("7.417859E-06"
+// -> 5e-13, "0.10149104" -> 5e-9, "55.8066" -> 5e-5): how far a published
+// value may lie from the exact one it rounds.
+double half_unit_in_last_digit(std::string_view literal);
+
+// A complex refractive index as "n+ki" ("1.33+1e-08i"; "1.5" when k = 0), with
+// the 6 significant digits of a stream's default format.
+std::string index_text(std::complex<double> m);
 
 }  // namespace attenuvis::io
