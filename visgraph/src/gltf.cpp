@@ -1,6 +1,9 @@
 // glTF reader (gltf.hpp) on tinygltf (Debian's libtinygltf, which carries
 // the implementation; images are never decoded: attenuvis needs geometry only).
 #include <attenuvis/visgraph/gltf.hpp>
+#include <attenuvis/visgraph/limits.hpp>
+
+#include <attenuvis/io/input_file.hpp>
 
 #include <Eigen/Geometry>
 #include <tiny_gltf.h>
@@ -92,6 +95,7 @@ void add_primitive(const tinygltf::Model& model, const tinygltf::Primitive& prim
     std::memcpy(xyz, pos.at(i), sizeof xyz);
     const Eigen::Vector4d p = transform * Eigen::Vector4d(xyz[0], xyz[1], xyz[2], 1.0);
     if (!p.allFinite()) fail(path, where, "vertex " + std::to_string(i) + " is not finite");
+    for (int c = 0; c < 3; ++c) check_coordinate(p[c], path + ": " + where + " vertex " + std::to_string(i));
     mesh.vertices.emplace_back(p.x(), -p.z(), p.y());  // y-up -> z-up
   }
   std::vector<std::uint32_t> idx;
@@ -138,6 +142,7 @@ Mesh load_gltf(const std::string& path) {
   tinygltf::Model model;
   std::string err, warn;
   std::string head(4, '\0');
+  io::require_readable_input(path, kMaxSceneFileBytes);
   {
     std::FILE* f = std::fopen(path.c_str(), "rb");
     if (!f) fail(path, "", std::string("cannot open: ") + std::strerror(errno));
