@@ -6,6 +6,7 @@
 // right answer.
 #include "test_visibility_scenes.hpp"
 
+#include <attenuvis/visgraph/gltf.hpp>
 #include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/nodes.hpp>
 #include <attenuvis/visgraph/obj.hpp>
@@ -17,8 +18,10 @@
 #include <catch2/catch.hpp>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace vg = attenuvis::visgraph;
@@ -173,4 +176,21 @@ TEST_CASE("devices are no scene or node files", "[visgraph][limits]") {
     CHECK_THAT(error_of([&] { vg::read_nodes(device); }), Contains(device) && Contains("not a regular file"));
     CHECK_THAT(error_of([&] { vg::read_nodes_csv(device); }), Contains("not a regular file"));
   }
+}
+
+TEST_CASE("a glTF buffer uri naming a FIFO is refused, not waited on", "[visgraph][limits]") {
+  const std::string dir = "/tmp/attenuvis-limits-gltf-" + std::to_string(::getpid());
+  std::filesystem::create_directories(dir);
+  REQUIRE(::mkfifo((dir + "/pipe.bin").c_str(), 0600) == 0);
+  {
+    std::ofstream(dir + "/scene.gltf")
+        << R"({"asset":{"version":"2.0"},"buffers":[{"uri":"pipe.bin","byteLength":36}],)"
+        << R"("bufferViews":[{"buffer":0,"byteLength":36}],)"
+        << R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],)"
+        << R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})";
+  }
+  // Was: tinygltf's FileExists and ReadWholeFile open the FIFO and block for ever.
+  const std::string msg = error_of([&] { vg::load_gltf(dir + "/scene.gltf"); });
+  std::filesystem::remove_all(dir);
+  CHECK_THAT(msg, Contains("pipe.bin") && Contains("not a regular file"));
 }

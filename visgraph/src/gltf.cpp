@@ -8,6 +8,8 @@
 #include <Eigen/Geometry>
 #include <tiny_gltf.h>
 
+#include <sys/stat.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -136,8 +138,31 @@ bool looks_like_gltf(const std::string& head) {
          head.find("\"CityObjects\"") == std::string::npos;
 }
 
+namespace {
+// Buffers and images a .gltf names by uri are read with the same checks as the
+// scene file itself: a uri of /dev/zero or a FIFO would be read for ever.
+// tinygltf's own FileExists opens the file, which blocks on a FIFO: stat only.
+bool file_exists(const std::string& path, void*) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+bool read_whole_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  try {
+    const std::string text = io::read_input_file(path, kMaxSceneFileBytes);
+    out->assign(text.begin(), text.end());
+    return true;
+  } catch (const std::exception& e) {
+    if (err) *err += e.what() + std::string("\n");
+    return false;
+  }
+}
+}  // namespace
+
 Mesh load_gltf(const std::string& path) {
   tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks({&file_exists, &tinygltf::ExpandFilePath, &read_whole_regular_file,
+                         &tinygltf::WriteWholeFile, nullptr});
   loader.SetImageLoader(skip_image, nullptr);
   tinygltf::Model model;
   std::string err, warn;
