@@ -242,7 +242,11 @@ void run_vg(const VgArguments& a) {
   options.threads = a.threads;
   options.progress = !a.quiet;
 
-  check_work(a, vg::estimate_work(eyes, targets.empty() ? nullptr : &targets, options));
+  const vg::WorkEstimate work = vg::estimate_work(eyes, targets.empty() ? nullptr : &targets, options);
+  check_work(a, work);
+  if (!a.quiet)
+    std::cerr << "work: " << io::significant(work.pairs, 3) << " pairs to consider, "
+              << io::significant(work.bytes / 1e6, 3) << " MB of accumulators\n";
 
   io::StagedFiles staged;
   vg::VisibilityResult result;

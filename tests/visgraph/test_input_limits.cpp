@@ -6,6 +6,7 @@
 // right answer.
 #include "test_visibility_scenes.hpp"
 
+#include <attenuvis/visgraph/city.hpp>
 #include <attenuvis/visgraph/gltf.hpp>
 #include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/nodes.hpp>
@@ -193,4 +194,13 @@ TEST_CASE("a glTF buffer uri naming a FIFO is refused, not waited on", "[visgrap
   const std::string msg = error_of([&] { vg::load_gltf(dir + "/scene.gltf"); });
   std::filesystem::remove_all(dir);
   CHECK_THAT(msg, Contains("pipe.bin") && Contains("not a regular file"));
+}
+
+TEST_CASE("city options outside their ranges are refused with the value", "[visgraph][limits]") {
+  vg::CityOptions o;
+  o.hex_size = 1e300;  // would have asked for terabytes of street segments
+  CHECK_THAT(error_of([&] { vg::make_city(o); }), Contains("hex_size must be in (0, 1000] m, got 1e+300"));
+  o = {};
+  o.relief = 1e9;  // terrain far outside the coordinate range
+  CHECK_THAT(error_of([&] { vg::make_city(o); }), Contains("relief must be in [0, 1000] m"));
 }
