@@ -7,6 +7,7 @@
 #include "test_visibility_scenes.hpp"
 
 #include <attenuvis/visgraph/city.hpp>
+#include <attenuvis/visgraph/geojson.hpp>
 #include <attenuvis/visgraph/gltf.hpp>
 #include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/nodes.hpp>
@@ -203,4 +204,12 @@ TEST_CASE("city options outside their ranges are refused with the value", "[visg
   o = {};
   o.relief = 1e9;  // terrain far outside the coordinate range
   CHECK_THAT(error_of([&] { vg::make_city(o); }), Contains("relief must be in [0, 1000] m"));
+}
+
+TEST_CASE("a GeoJSON number beyond any JSON number type is a clean error", "[visgraph][limits]") {
+  // Found by fuzz_geojson_nodes: nlohmann throws out_of_range (not a parse
+  // error) for 333330000E000000016923..., which escaped the reader.
+  const TempFile geo("overflow.geojson", R"({"type":"Point","coordinates":[1,2,333330000E00000001692314756788421404]})");
+  CHECK_THAT(error_of([&] { vg::read_nodes(geo.path); }), Contains(geo.path) && Contains("number overflow"));
+  CHECK_THROWS_AS(vg::read_geojson_points(geo.path), std::runtime_error);
 }

@@ -102,6 +102,9 @@ GeoJsonPoints read_geojson_points(const std::string& path) {
     doc = json::parse(text);
   } catch (const json::parse_error& e) {
     fail(path, line_and_column(text, e.byte), "not valid JSON");
+  } catch (const json::exception& e) {
+    // out_of_range: a number too large for any JSON number type (1e400).
+    fail(path, "", std::string("not readable JSON: ") + e.what());
   }
   GeoJsonPoints out;
   if (!doc.is_object() || !doc.contains("type") || !doc["type"].is_string()) fail(path, "", "not a GeoJSON object (no type)");
