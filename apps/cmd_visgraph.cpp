@@ -69,9 +69,11 @@ void check_option_ranges(const VgArguments& a) {
 
 // Refuses a run whose pairs or memory exceed the default caps (or the
 // machine's memory), saying what was asked and how to ask for less.
+// --allow-large lifts the caps but not the machine's memory.
 void check_work(const VgArguments& a, const vg::WorkEstimate& e) {
-  if (a.allow_large) return;
   const double memory = vg::physical_memory_bytes();
+  const bool beyond_machine = memory > 0 && e.bytes > memory;
+  if (a.allow_large && !beyond_machine) return;
   const bool too_many_pairs = e.pairs > vg::kDefaultMaxPairs;
   const bool too_much_memory = memory > 0 && e.bytes > 0.5 * memory;
   if (!too_many_pairs && !too_much_memory) return;
@@ -85,7 +87,8 @@ void check_work(const VgArguments& a, const vg::WorkEstimate& e) {
       "the run is too large: " + what + " (limits: " + io::significant(vg::kDefaultMaxPairs, 3) +
       " pairs, half of the machine's " + io::significant(memory / 1e9, 3) +
       " GB). Reduce it with a larger --spacing, --max-distance, or --prune-below (with a positive sigma), "
-      "fewer --threads for memory, or pass --allow-large to run it anyway");
+      "fewer --threads for memory" +
+      std::string(beyond_machine ? " (it needs more memory than the machine has)" : ", or pass --allow-large to run it anyway"));
 }
 
 // One ConditionInfo per comma-separated condition, in the user's spelling.
@@ -375,7 +378,8 @@ void register_visgraph(CLI::App& app) {
   vgc->add_option("--edges", args->edges, "CSV edge list i,j,distance (O(edges) output)");
   vgc->add_flag("--quiet", args->quiet, "no report or progress on stderr");
   vgc->add_flag("--allow-large", args->allow_large,
-                "run even above the default caps: 1e7 grid cells, 2e9 pairs, half the machine's memory");
+                "run even above the default caps: 1e7 grid cells, 2e9 pairs, half the machine's memory "
+                "(never above all of it)");
   vgc->callback([args, old_prune] {
     if (old_prune->count() > 0) {
       if (!args->quiet)

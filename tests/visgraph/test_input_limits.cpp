@@ -213,3 +213,14 @@ TEST_CASE("a GeoJSON number beyond any JSON number type is a clean error", "[vis
   CHECK_THAT(error_of([&] { vg::read_nodes(geo.path); }), Contains(geo.path) && Contains("number overflow"));
   CHECK_THROWS_AS(vg::read_geojson_points(geo.path), std::runtime_error);
 }
+
+TEST_CASE("no limit lifts the machine's memory: a grid that cannot fit is refused", "[visgraph][limits]") {
+  Mesh m;
+  add_floor(m, 0, 1e6, 0, 1e6, 0, "floor");
+  const vg::Scene scene(m);
+  vg::NodeGridOptions o;
+  o.spacing = 1e-3;  // 1e18 cells, ~1e20 bytes: more than any machine
+  o.max_cells = 0;   // no cell limit (vg --allow-large)
+  // Was: a terabyte allocation, std::bad_alloc in Release and an abort under ASan.
+  CHECK_THAT(error_of([&] { vg::generate_nodes(scene, o); }), Contains("1e+18 cells") && Contains("machine's"));
+}

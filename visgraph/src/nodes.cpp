@@ -3,6 +3,7 @@
 #include <attenuvis/visgraph/geojson.hpp>
 #include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/mesh.hpp>
+#include <attenuvis/visgraph/work_estimate.hpp>
 
 #include <attenuvis/io/input_file.hpp>
 #include <attenuvis/io/number_text.hpp>
@@ -206,6 +207,15 @@ NodeSet generate_nodes(const Scene& scene, const NodeGridOptions& options) {
                                 io::significant(estimate.cells, 3) + " cells (" +
                                 io::significant(estimate.bytes / 1e9, 3) + " GB), more than the limit of " +
                                 io::significant(options.max_cells, 3) + ": choose a larger spacing");
+  // No limit lifts the machine's memory: a grid that cannot fit is refused
+  // here rather than by a terabyte allocation (std::bad_alloc, or an abort
+  // under AddressSanitizer).
+  const double memory = physical_memory_bytes();
+  if (memory > 0 && estimate.bytes > memory)
+    throw std::invalid_argument("node grid: spacing " + io::shortest(options.spacing) + " m gives " +
+                                io::significant(estimate.cells, 3) + " cells needing " +
+                                io::significant(estimate.bytes / 1e9, 3) + " GB, more than this machine's " +
+                                io::significant(memory / 1e9, 3) + " GB: choose a larger spacing");
   const Walkable walkable = resolve_walkable(scene, options.walkable);
   const double cos_max_slope =
       std::cos(std::min(options.max_slope_deg, 90.0) * boost::math::constants::pi<double>() / 180.0);
