@@ -112,16 +112,16 @@ void register_scene_command(CLI::App& app) {
   scene->add_option("--out,-o", args->out, "OBJ file to write (atomically)");
   auto* c = &args->city;
   const std::string city_group = "City options (city scenes only)";
-  scene->add_option("--rings", c->rings, "rings of hexagonal blocks around the central one")
+  scene->add_option("--rings", c->rings, "rings of hexagonal blocks around the central one, 0 to 40")
       ->capture_default_str()->group(city_group);
-  scene->add_option("--hex-size", c->hex_size, "street centre-line hexagon side, m")
+  scene->add_option("--hex-size", c->hex_size, "street centre-line hexagon side, (0, 1000] m")
       ->capture_default_str()->group(city_group);
-  scene->add_option("--road-width", c->road_width, "m, curb to curb")->capture_default_str()->group(city_group);
-  scene->add_option("--sidewalk-width", c->sidewalk_width, "m")->capture_default_str()->group(city_group);
-  scene->add_option("--crosswalk-width", c->crosswalk_width, "m along the street")
+  scene->add_option("--road-width", c->road_width, "m, curb to curb, (0, 100]")->capture_default_str()->group(city_group);
+  scene->add_option("--sidewalk-width", c->sidewalk_width, "m, (0, 100]")->capture_default_str()->group(city_group);
+  scene->add_option("--crosswalk-width", c->crosswalk_width, "m along the street, (0, 100]")
       ->capture_default_str()->group(city_group);
-  scene->add_option("--relief", c->relief, "terrain peak to trough, m")->capture_default_str()->group(city_group);
-  scene->add_option("--park-fraction", c->park_fraction, "share of blocks left open")
+  scene->add_option("--relief", c->relief, "terrain peak to trough, [0, 1000] m")->capture_default_str()->group(city_group);
+  scene->add_option("--park-fraction", c->park_fraction, "share of blocks left open, [0, 1]")
       ->capture_default_str()->group(city_group);
   scene->callback([args] { run_scene(*args); });
 }

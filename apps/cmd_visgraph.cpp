@@ -6,10 +6,12 @@
 #include "weather_options.hpp"
 
 #include <attenuvis/io/number_text.hpp>
+#include <attenuvis/io/staged_file.hpp>
 #include <attenuvis/visgraph.hpp>
 #include <attenuvis/weather.hpp>
 
 #include <chrono>
+#include <fstream>
 #include <filesystem>
 #include <cmath>
 #include <iostream>
@@ -39,6 +41,7 @@ struct VgArguments {
   bool distances = false;
   std::string out, ply, heatmap, summary, edges, color_by, geojson;
   bool quiet = false;
+  bool allow_large = false;
   std::string up_axis = "z", lod, ground_plane = "auto";
 };
 
@@ -48,6 +51,44 @@ std::vector<std::string> split(const std::string& text, char separator) {
   std::string part;
   while (std::getline(in, part, separator)) parts.push_back(part);
   return parts;
+}
+
+// Every numeric option within its documented range (limits.hpp; --help and
+// README say them), so that no value reaches the grid or Embree that would
+// overflow, assert or make a meaningless grid.
+void check_option_ranges(const VgArguments& a) {
+  vg::check_range(a.spacing, vg::kMinSpacing, vg::kMaxSpacing, "--spacing", "m");
+  vg::check_range(a.eye_height, 0.0, vg::kMaxEyeHeight, "--eye-height", "m");
+  vg::check_range(a.max_slope, 0.0, 90.0, "--max-slope", "degrees");
+  if (!(a.prune_below >= 0 && a.prune_below < 1))
+    throw std::invalid_argument("--prune-below: " + io::significant(a.prune_below, 6) + " is outside [0, 1)");
+  if (!(a.max_distance > 0))  // NaN fails too; inf (the default) means no limit
+    throw std::invalid_argument("--max-distance: " + io::significant(a.max_distance, 6) + " is not a positive number of metres");
+  vg::check_range(a.threads, 0, 1024, "--threads", "");
+}
+
+// Refuses a run whose pairs or memory exceed the default caps (or the
+// machine's memory), saying what was asked and how to ask for less.
+// --allow-large lifts the caps but not the machine's memory.
+void check_work(const VgArguments& a, const vg::WorkEstimate& e) {
+  const double memory = vg::physical_memory_bytes();
+  const bool beyond_machine = memory > 0 && e.bytes > memory;
+  if (a.allow_large && !beyond_machine) return;
+  const bool too_many_pairs = e.pairs > vg::kDefaultMaxPairs;
+  const bool too_much_memory = memory > 0 && e.bytes > 0.5 * memory;
+  if (!too_many_pairs && !too_much_memory) return;
+  std::string what = std::to_string(e.nodes) + " nodes" +
+                     (e.targets ? " x " + std::to_string(e.targets) + " targets" : std::string()) + " = " +
+                     io::significant(e.pairs, 3) + " pairs" +
+                     (std::isfinite(e.radius) ? " within " + io::significant(e.radius, 4) + " m" : std::string()) +
+                     ", " + io::significant(e.bytes / 1e9, 3) + " GB of accumulators on " + std::to_string(e.threads) +
+                     " threads";
+  throw std::invalid_argument(
+      "the run is too large: " + what + " (limits: " + io::significant(vg::kDefaultMaxPairs, 3) +
+      " pairs, half of the machine's " + io::significant(memory / 1e9, 3) +
+      " GB). Reduce it with a larger --spacing, --max-distance, or --prune-below (with a positive sigma), "
+      "fewer --threads for memory" +
+      std::string(beyond_machine ? " (it needs more memory than the machine has)" : ", or pass --allow-large to run it anyway"));
 }
 
 // One ConditionInfo per comma-separated condition, in the user's spelling.
@@ -119,6 +160,15 @@ vg::NodeSet place_nodes(const VgArguments& a, SceneInput& input, std::unique_ptr
   options.eye_height = a.eye_height;
   options.max_slope_deg = a.max_slope;
   options.walkable = a.walkable.empty() ? vg::default_walkable_groups(a.scene) : split(a.walkable, ',');
+  options.max_cells = a.allow_large ? 0.0 : vg::kDefaultMaxGridCells;
+  const vg::GridEstimate cells = vg::estimate_grid(*scene, a.spacing);
+  if (!a.allow_large && cells.cells > vg::kDefaultMaxGridCells)
+    throw std::invalid_argument("--spacing " + io::shortest(a.spacing) + " m over this scene gives " +
+                                io::significant(cells.nx, 3) + " x " + io::significant(cells.ny, 3) + " = " +
+                                io::significant(cells.cells, 3) + " grid cells (" +
+                                io::significant(cells.bytes / 1e9, 3) + " GB while placing), more than the " +
+                                io::significant(vg::kDefaultMaxGridCells, 3) +
+                                " allowed: use a larger --spacing, or --allow-large to run it anyway");
   const auto add_plane = [&] {
     vg::add_ground_plane(input.mesh);
     scene = std::make_unique<vg::Scene>(input.mesh);
@@ -158,10 +208,16 @@ void run_vg(const VgArguments& a) {
   if (!a.targets_file.empty() && !a.target_point.empty())
     throw std::invalid_argument("give --targets or --target-point, not both");
   refuse_path_clashes({{"--out", a.out}, {"--ply", a.ply}, {"--heatmap", a.heatmap}, {"--summary", a.summary},
-                       {"--edges", a.edges}},
+                       {"--edges", a.edges}, {"--geojson", a.geojson}},
                       {{"the scene", vg::is_scene_spec(a.scene) ? "" : a.scene},
                        {"--nodes", a.nodes_file},
                        {"--targets", a.targets_file}});
+  check_option_ranges(a);
+  // Existing outputs that are not regular files (a device, a directory) are
+  // refused before any work; every output is staged and renamed only when
+  // all of them were written.
+  for (const std::string* path : {&a.out, &a.ply, &a.heatmap, &a.summary, &a.edges, &a.geojson})
+    if (!path->empty()) io::require_regular_or_absent(*path);
   double wavelength_m = 0;
   const std::vector<vg::ConditionInfo> conditions = conditions_to_sigma(a, wavelength_m);
 
@@ -189,6 +245,13 @@ void run_vg(const VgArguments& a) {
   options.threads = a.threads;
   options.progress = !a.quiet;
 
+  const vg::WorkEstimate work = vg::estimate_work(eyes, targets.empty() ? nullptr : &targets, options);
+  check_work(a, work);
+  if (!a.quiet)
+    std::cerr << "work: " << io::significant(work.pairs, 3) << " pairs to consider, "
+              << io::significant(work.bytes / 1e6, 3) << " MB of accumulators\n";
+
+  io::StagedFiles staged;
   vg::VisibilityResult result;
   auto run = [&] {
     result = targets.empty() ? vg::all_to_all(*scene, eyes, options) : vg::to_targets(*scene, eyes, targets, options);
@@ -196,14 +259,17 @@ void run_vg(const VgArguments& a) {
   if (a.edges.empty()) {
     run();
   } else {
-    vg::write_atomically(a.edges, [&](std::ostream& out) {
-      out << (targets.empty() ? "i,j,distance\n" : "node,target,distance\n");
-      out.precision(std::numeric_limits<double>::max_digits10);
-      options.edge_sink = [&out](const std::vector<vg::Edge>& edges) {
-        for (const vg::Edge& e : edges) out << e.i << "," << e.j << "," << e.distance << "\n";
-      };
-      run();
-    });
+    // The edge list streams into its staged temporary (never held whole).
+    const std::string edges_temporary = staged.add(a.edges).temporary_path();
+    std::ofstream out(edges_temporary, std::ios::binary | std::ios::trunc);
+    out << (targets.empty() ? "i,j,distance\n" : "node,target,distance\n");
+    out.precision(std::numeric_limits<double>::max_digits10);
+    options.edge_sink = [&out](const std::vector<vg::Edge>& edges) {
+      for (const vg::Edge& e : edges) out << e.i << "," << e.j << "," << e.distance << "\n";
+    };
+    run();
+    out.close();
+    if (!out) throw std::runtime_error("error while writing '" + a.edges + "' (disk full?)");
   }
 
   vg::ScoreTable table;
@@ -215,16 +281,27 @@ void run_vg(const VgArguments& a) {
   const std::vector<std::string> panels =
       a.color_by.empty() ? vg::default_heatmap_columns(table) : std::vector<std::string>{a.color_by};
   if (!a.ply.empty() || !a.heatmap.empty()) vg::score_values(table, panels.front());  // check the name before writing
-  vg::write_csv(a.out, table);
-  if (!a.geojson.empty()) vg::write_geojson(a.geojson, table, input.mesh.crs);
-  if (!a.ply.empty()) vg::write_ply(a.ply, table, panels.front());
+  const auto stage_text = [&staged](const std::string& path, const std::string& text) {
+    io::StagedFile& file = staged.add(path);
+    file.write(text);
+    return file.temporary_path();
+  };
+  std::ostringstream csv;
+  vg::write_csv(csv, table);
+  const std::string csv_temporary = stage_text(a.out, csv.str());
+  if (!a.geojson.empty()) stage_text(a.geojson, vg::geojson_text(table, input.mesh.crs));
+  if (!a.ply.empty()) {
+    std::ostringstream ply;
+    vg::write_ply(ply, table, panels.front());
+    stage_text(a.ply, ply.str());
+  }
   if (!a.heatmap.empty()) {
     vg::HeatmapOptions heatmap;
     heatmap.columns = panels;
     heatmap.title = std::filesystem::path(a.scene).filename().string();
     if (grid) heatmap.covered_cells = grid->covered_cells;
     heatmap.crs = vg::short_crs_name(input.mesh.crs);
-    vg::write_heatmap(a.heatmap, a.out, heatmap);
+    vg::draw_heatmap(staged.add(a.heatmap).temporary_path(), csv_temporary, heatmap);
   }
   if (!a.summary.empty()) {
     vg::RunInfo info;
@@ -241,8 +318,9 @@ void run_vg(const VgArguments& a) {
     info.conditions = conditions;
     info.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const std::string json = vg::summary_json(table, info);
-    vg::write_atomically(a.summary, [&](std::ostream& out) { out << json; });
+    stage_text(a.summary, json);
   }
+  staged.commit_all();
   if (!a.quiet)
     std::cerr << "visibility: " << result.nodes << " nodes, " << result.pairs_total << " pairs ("
               << result.pairs_cast << " cast, " << result.pairs_visible << " visible) in " << result.seconds
@@ -255,7 +333,8 @@ void register_visgraph(CLI::App& app) {
   auto args = std::make_shared<VgArguments>();
   CLI::App* vgc = app.add_subcommand("vg", "Visibility graph weighted by contrast ratio C = exp(-sigma d)");
   vgc->add_option("scene", args->scene,
-                  "scene file (CityJSON .json/.city.json/.jsonl, glTF .gltf/.glb, OBJ; recognised by content), "
+                  "scene file (CityJSON .json/.city.json/.jsonl, glTF .gltf/.glb, OBJ; recognised by content; "
+                  "a regular file <= 2 GiB, |coordinates| <= 1e7 m, faces <= 10000 vertices), "
                   "or layout:0..4, city, city:SEED")
       ->required();
   vgc->add_option("--up-axis", args->up_axis, "up axis of an OBJ file: z or y")->capture_default_str();
@@ -264,13 +343,14 @@ void register_visgraph(CLI::App& app) {
                   "auto | yes | no: a horizontal plane at the scene's lowest z to stand on (auto: when the grid "
                   "finds no ground)")
       ->capture_default_str();
-  vgc->add_option("--spacing", args->spacing, "node grid spacing (m)")->capture_default_str();
-  vgc->add_option("--eye-height", args->eye_height, "eye height above the walkable surface (m)")->capture_default_str();
+  vgc->add_option("--spacing", args->spacing, "node grid spacing, 0.001 to 10000 m")->capture_default_str();
+  vgc->add_option("--eye-height", args->eye_height, "eye height above the walkable surface, 0 to 1000 m")
+      ->capture_default_str();
   vgc->add_option("--walkable", args->walkable,
                   "walkable groups or classes (CityJSON semantics/types), comma-separated; * = every surface "
                   "(default: the data decide, never roofs; floor for layouts; sidewalk,crosswalk for city)");
-  vgc->add_option("--max-slope", args->max_slope, "steepest walkable surface (degrees)")->capture_default_str();
-  vgc->add_option("--nodes", args->nodes_file, "eye positions instead of the grid: CSV x,y,z or GeoJSON points");
+  vgc->add_option("--max-slope", args->max_slope, "steepest walkable surface, 0 to 90 degrees")->capture_default_str();
+  vgc->add_option("--nodes", args->nodes_file, "eye positions instead of the grid: CSV x,y,z or GeoJSON points (|x|, |y|, |z| <= 1e7 m, file <= 512 MiB)");
   vgc->add_option("--targets", args->targets_file,
                   "targets (CSV x,y,z or GeoJSON points): nodes -> targets instead of all pairs");
   vgc->add_option("--target-point", args->target_point, "one target x,y,z");
@@ -281,12 +361,12 @@ void register_visgraph(CLI::App& app) {
   // pruning threshold, now --prune-below, and stays as a deprecated alias.
   add_weather_options(vgc, args->weather, {/*wavelength=*/true, /*tolerance=*/false});
   auto* prune = vgc->add_option("--prune-below", args->prune_below,
-                                "prune pairs whose C < eps for every condition (certified bound)");
+                                "prune pairs whose C < eps for every condition (certified bound), eps in [0, 1)");
   auto* old_prune = vgc->add_option("--tolerance", args->deprecated_tolerance,
                                     "deprecated: the old name of --prune-below");
   old_prune->excludes(prune);
-  vgc->add_option("--max-distance", args->max_distance, "pairs farther than this (m) are not lines of sight");
-  vgc->add_option("--threads", args->threads, "worker threads (0 = all cores)")->capture_default_str();
+  vgc->add_option("--max-distance", args->max_distance, "pairs farther than this (m, > 0) are not lines of sight");
+  vgc->add_option("--threads", args->threads, "worker threads, 0 to 1024 (0 = all cores)")->capture_default_str();
   vgc->add_flag("--distances", args->distances, "add mean_distance and max_distance columns");
   vgc->add_option("--out", args->out, "CSV of per-node scores")->required();
   vgc->add_option("--ply", args->ply, "PLY point cloud coloured by --color-by");
@@ -297,6 +377,9 @@ void register_visgraph(CLI::App& app) {
   vgc->add_option("--summary", args->summary, "JSON summary");
   vgc->add_option("--edges", args->edges, "CSV edge list i,j,distance (O(edges) output)");
   vgc->add_flag("--quiet", args->quiet, "no report or progress on stderr");
+  vgc->add_flag("--allow-large", args->allow_large,
+                "run even above the default caps: 1e7 grid cells, 2e9 pairs, half the machine's memory "
+                "(never above all of it)");
   vgc->callback([args, old_prune] {
     if (old_prune->count() > 0) {
       if (!args->quiet)

@@ -22,6 +22,8 @@
 #include <attenuvis/visgraph/city.hpp>
 #include <attenuvis/visgraph/scene_spec.hpp>
 
+#include <attenuvis/io/number_text.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -75,20 +77,24 @@ void check_options(const CityOptions& o) {
     if (!ok) throw std::invalid_argument("city options: " + what);
   };
   require(o.rings >= 0 && o.rings <= 40, "rings must be in 0..40");
-  require(o.hex_size > 0 && std::isfinite(o.hex_size), "hex_size must be positive");
-  require(o.road_width > 0 && std::isfinite(o.road_width), "road_width must be positive");
-  require(o.sidewalk_width > 0 && std::isfinite(o.sidewalk_width), "sidewalk_width must be positive");
-  require(o.crosswalk_width > 0 && std::isfinite(o.crosswalk_width), "crosswalk_width must be positive");
+  // Upper bounds keep a city street-sized: beyond them the terrain grid and the
+  // triangle counts (and, for relief, the coordinates) leave the ranges of limits.hpp.
+  require(o.hex_size > 0 && o.hex_size <= 1000, "hex_size must be in (0, 1000] m, got " + io::shortest(o.hex_size));
+  require(o.road_width > 0 && o.road_width <= 100, "road_width must be in (0, 100] m, got " + io::shortest(o.road_width));
+  require(o.sidewalk_width > 0 && o.sidewalk_width <= 100,
+          "sidewalk_width must be in (0, 100] m, got " + io::shortest(o.sidewalk_width));
+  require(o.crosswalk_width > 0 && o.crosswalk_width <= 100,
+          "crosswalk_width must be in (0, 100] m, got " + io::shortest(o.crosswalk_width));
   const double block_apothem = o.hex_size * kSqrt3 / 2 - o.road_width / 2;
   require(block_apothem - o.sidewalk_width > 5.0,
           "hex_size too small for road and sidewalk (the lot inside the sidewalk needs an apothem > 5 m)");
   require(2 * o.crosswalk_width < o.hex_size - o.road_width / kSqrt3, "crosswalks longer than their street");
-  require(o.relief >= 0 && std::isfinite(o.relief), "relief must be >= 0");
+  require(o.relief >= 0 && o.relief <= 1000, "relief must be in [0, 1000] m, got " + io::shortest(o.relief));
   require(o.margin >= 0 && std::isfinite(o.margin), "margin must be >= 0");
   require(o.building_height_min > 0 && o.building_height_max >= o.building_height_min &&
               std::isfinite(o.building_height_max),
           "building heights need 0 < min <= max");
-  require(o.park_fraction >= 0 && o.park_fraction <= 1, "park_fraction must be in [0, 1]");
+  require(o.park_fraction >= 0 && o.park_fraction <= 1, "park_fraction must be in [0, 1], got " + io::shortest(o.park_fraction));
   require(o.paved_max_edge >= 0.1 && o.ground_max_edge >= 0.1 && o.terrain_spacing >= 0.5 &&
               std::isfinite(o.paved_max_edge + o.ground_max_edge + o.terrain_spacing),
           "triangle sizes too small (paved/ground >= 0.1 m, terrain >= 0.5 m)");

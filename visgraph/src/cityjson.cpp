@@ -7,8 +7,10 @@
 // and semantics.values nests the same way without the ring and vertex levels
 // (an integer into semantics.surfaces, or null).
 #include <attenuvis/visgraph/cityjson.hpp>
+#include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/polygon.hpp>
 
+#include <attenuvis/io/input_file.hpp>
 #include <attenuvis/io/number_text.hpp>
 
 #include <Eigen/Geometry>
@@ -36,11 +38,8 @@ using json = nlohmann::ordered_json;
 std::string read_text(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) fail(path, "", "is a directory, not a CityJSON file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "", std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
+  if (!std::filesystem::exists(path, ec)) fail(path, "", "cannot open: " + (ec ? ec.message() : "no such file"));
+  return io::read_input_file(path, kMaxSceneFileBytes);
 }
 
 // "line L, column C" of a byte offset (1-based), for syntax errors.
@@ -120,6 +119,8 @@ class Reader {
     for (std::size_t i = 0; i < vertices.size(); ++i) {
       const Eigen::Vector3d v = raw_vector(vertices[i], where + "vertices/" + std::to_string(i));
       mesh_.vertices.push_back(v.cwiseProduct(scale_) + translate_);
+      for (int c = 0; c < 3; ++c)
+        check_coordinate(mesh_.vertices.back()[c], path_ + ": " + where + "vertices/" + std::to_string(i));
     }
     vertex_base_ = base;
     vertex_count_ = vertices.size();
@@ -224,8 +225,10 @@ class Reader {
     Placement place;
     place.base = mesh_.vertices.size();
     place.count = template_vertices_.size();
-    for (const Eigen::Vector3d& v : template_vertices_)
+    for (const Eigen::Vector3d& v : template_vertices_) {
       mesh_.vertices.push_back(reference + (matrix * v.homogeneous()).head<3>());
+      for (int c = 0; c < 3; ++c) check_coordinate(mesh_.vertices.back()[c], path_ + ": " + where + " (template vertex)");
+    }
     const json& templ = templates_[t.get<std::size_t>()];
     const int nesting = nesting_of(templ.value("type", ""));
     if (nesting == 0) return;
@@ -273,6 +276,10 @@ class Reader {
         ids.push_back(id);
       }
     }
+    // Ear clipping is quadratic in the vertices: a 100,000-vertex surface would take minutes.
+    if (ids.size() > kMaxPolygonVertices)
+      fail(path_, where, "surface has " + std::to_string(ids.size()) + " vertices, more than the " +
+                             std::to_string(kMaxPolygonVertices) + " a surface may have: split it");
     const PolygonTriangles result = triangulate_polygon(points);
     if (result.status == PolygonStatus::degenerate) ++report_.degenerate_surfaces;
     if (result.status == PolygonStatus::partial) ++report_.invalid_surfaces;

@@ -1,6 +1,9 @@
 // GeoJSON writer and point reader (geojson.hpp), on nlohmann-json.
 #include <attenuvis/visgraph/cityjson.hpp>
 #include <attenuvis/visgraph/geojson.hpp>
+#include <attenuvis/visgraph/limits.hpp>
+
+#include <attenuvis/io/input_file.hpp>
 
 #include <attenuvis/io/staged_file.hpp>
 
@@ -38,6 +41,7 @@ Eigen::Vector3d point(const json& c, const std::string& path, const std::string&
     fail(path, where, "the point has no z: nodes are eye positions and need x, y and z (metres)");
   const Eigen::Vector3d p(c[0].get<double>(), c[1].get<double>(), c[2].get<double>());
   if (!p.allFinite()) fail(path, where, "coordinate is not finite");
+  for (int k = 0; k < 3; ++k) check_coordinate(p[k], path + ": " + where);
   return p;
 }
 
@@ -62,7 +66,7 @@ std::string geojson_crs_name(const std::string& crs) {
   return s;
 }
 
-void write_geojson(const std::string& path, const ScoreTable& table, const std::string& crs) {
+std::string geojson_text(const ScoreTable& table, const std::string& crs) {
   const std::vector<std::string> columns = score_columns(table);
   std::vector<std::vector<double>> values;
   for (std::size_t c = 3; c < columns.size(); ++c) values.push_back(score_values(table, columns[c]));
@@ -84,20 +88,23 @@ void write_geojson(const std::string& path, const ScoreTable& table, const std::
                         {"properties", std::move(properties)}});
   }
   doc["features"] = std::move(features);
-  io::write_file_atomically(path, doc.dump() + "\n");
+  return doc.dump() + "\n";
+}
+
+void write_geojson(const std::string& path, const ScoreTable& table, const std::string& crs) {
+  io::write_file_atomically(path, geojson_text(table, crs));
 }
 
 GeoJsonPoints read_geojson_points(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "", std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  const std::string text = io::read_input_file(path, kMaxNodeFileBytes);
   json doc;
   try {
     doc = json::parse(text);
   } catch (const json::parse_error& e) {
     fail(path, line_and_column(text, e.byte), "not valid JSON");
+  } catch (const json::exception& e) {
+    // out_of_range: a number too large for any JSON number type (1e400).
+    fail(path, "", std::string("not readable JSON: ") + e.what());
   }
   GeoJsonPoints out;
   if (!doc.is_object() || !doc.contains("type") || !doc["type"].is_string()) fail(path, "", "not a GeoJSON object (no type)");

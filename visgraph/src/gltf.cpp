@@ -1,9 +1,14 @@
 // glTF reader (gltf.hpp) on tinygltf (Debian's libtinygltf, which carries
 // the implementation; images are never decoded: attenuvis needs geometry only).
 #include <attenuvis/visgraph/gltf.hpp>
+#include <attenuvis/visgraph/limits.hpp>
+
+#include <attenuvis/io/input_file.hpp>
 
 #include <Eigen/Geometry>
 #include <tiny_gltf.h>
+
+#include <sys/stat.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -92,6 +97,7 @@ void add_primitive(const tinygltf::Model& model, const tinygltf::Primitive& prim
     std::memcpy(xyz, pos.at(i), sizeof xyz);
     const Eigen::Vector4d p = transform * Eigen::Vector4d(xyz[0], xyz[1], xyz[2], 1.0);
     if (!p.allFinite()) fail(path, where, "vertex " + std::to_string(i) + " is not finite");
+    for (int c = 0; c < 3; ++c) check_coordinate(p[c], path + ": " + where + " vertex " + std::to_string(i));
     mesh.vertices.emplace_back(p.x(), -p.z(), p.y());  // y-up -> z-up
   }
   std::vector<std::uint32_t> idx;
@@ -132,12 +138,36 @@ bool looks_like_gltf(const std::string& head) {
          head.find("\"CityObjects\"") == std::string::npos;
 }
 
+namespace {
+// Buffers and images a .gltf names by uri are read with the same checks as the
+// scene file itself: a uri of /dev/zero or a FIFO would be read for ever.
+// tinygltf's own FileExists opens the file, which blocks on a FIFO: stat only.
+bool file_exists(const std::string& path, void*) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+bool read_whole_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  try {
+    const std::string text = io::read_input_file(path, kMaxSceneFileBytes);
+    out->assign(text.begin(), text.end());
+    return true;
+  } catch (const std::exception& e) {
+    if (err) *err += e.what() + std::string("\n");
+    return false;
+  }
+}
+}  // namespace
+
 Mesh load_gltf(const std::string& path) {
   tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks({&file_exists, &tinygltf::ExpandFilePath, &read_whole_regular_file,
+                         &tinygltf::WriteWholeFile, nullptr});
   loader.SetImageLoader(skip_image, nullptr);
   tinygltf::Model model;
   std::string err, warn;
   std::string head(4, '\0');
+  io::require_readable_input(path, kMaxSceneFileBytes);
   {
     std::FILE* f = std::fopen(path.c_str(), "rb");
     if (!f) fail(path, "", std::string("cannot open: ") + std::strerror(errno));

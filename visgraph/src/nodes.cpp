@@ -1,8 +1,11 @@
 // Node generation on walkable surfaces and node files.
 #include <attenuvis/visgraph/nodes.hpp>
 #include <attenuvis/visgraph/geojson.hpp>
+#include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/mesh.hpp>
+#include <attenuvis/visgraph/work_estimate.hpp>
 
+#include <attenuvis/io/input_file.hpp>
 #include <attenuvis/io/number_text.hpp>
 
 #include <boost/math/constants/constants.hpp>
@@ -175,27 +178,51 @@ Cell place(const Scene& scene, const Walkable& w, const NodeGridOptions& o, cons
 }
 
 void check_grid_options(const NodeGridOptions& options) {
-  if (!(options.spacing > 0) || !std::isfinite(options.spacing))
-    throw std::invalid_argument("node grid: spacing must be a positive number of metres");
-  if (!(options.eye_height >= 0) || !std::isfinite(options.eye_height))
-    throw std::invalid_argument("node grid: eye height must be a non-negative number of metres");
+  check_range(options.spacing, kMinSpacing, kMaxSpacing, "node grid: spacing", "m");
+  check_range(options.eye_height, 0.0, kMaxEyeHeight, "node grid: eye height", "m");
+  check_range(options.max_slope_deg, 0.0, 90.0, "node grid: max slope", "degrees");
 }
 
 }  // namespace
 
+GridEstimate estimate_grid(const Scene& scene, double spacing) {
+  check_range(spacing, kMinSpacing, kMaxSpacing, "node grid: spacing", "m");
+  const Eigen::Vector3d extent = scene.bounds().extent();
+  // The tiny allowance keeps 50 m / 1 m at exactly 50 cells despite rounding.
+  const auto cells_along = [&](double length) { return std::max(1.0, std::ceil(length / spacing - 1e-9)); };
+  GridEstimate e;
+  e.nx = cells_along(extent.x());
+  e.ny = cells_along(extent.y());
+  e.cells = e.nx * e.ny;
+  e.bytes = e.cells * static_cast<double>(sizeof(Cell) + sizeof(Eigen::Vector3d));
+  return e;
+}
+
 NodeSet generate_nodes(const Scene& scene, const NodeGridOptions& options) {
   check_grid_options(options);
+  const GridEstimate estimate = estimate_grid(scene, options.spacing);
+  if (options.max_cells > 0 && estimate.cells > options.max_cells)
+    throw std::invalid_argument("node grid: spacing " + io::shortest(options.spacing) + " m gives " +
+                                io::significant(estimate.nx, 3) + " x " + io::significant(estimate.ny, 3) + " = " +
+                                io::significant(estimate.cells, 3) + " cells (" +
+                                io::significant(estimate.bytes / 1e9, 3) + " GB), more than the limit of " +
+                                io::significant(options.max_cells, 3) + ": choose a larger spacing");
+  // No limit lifts the machine's memory: a grid that cannot fit is refused
+  // here rather than by a terabyte allocation (std::bad_alloc, or an abort
+  // under AddressSanitizer).
+  const double memory = physical_memory_bytes();
+  if (memory > 0 && estimate.bytes > memory)
+    throw std::invalid_argument("node grid: spacing " + io::shortest(options.spacing) + " m gives " +
+                                io::significant(estimate.cells, 3) + " cells needing " +
+                                io::significant(estimate.bytes / 1e9, 3) + " GB, more than this machine's " +
+                                io::significant(memory / 1e9, 3) + " GB: choose a larger spacing");
   const Walkable walkable = resolve_walkable(scene, options.walkable);
   const double cos_max_slope =
       std::cos(std::min(options.max_slope_deg, 90.0) * boost::math::constants::pi<double>() / 180.0);
   const BoundingBox& box = scene.bounds();
   const Eigen::Vector3d extent = box.extent();
-  // Cells of pitch `spacing` covering the footprint; the tiny allowance keeps
-  // 50 m / 1 m at exactly 50 cells despite rounding.
-  const auto cells_along = [&](double length) {
-    return std::max<long>(1, static_cast<long>(std::ceil(length / options.spacing - 1e-9)));
-  };
-  const long nx = cells_along(extent.x()), ny = cells_along(extent.y());
+  // Cells of pitch `spacing` covering the footprint (estimate_grid).
+  const long nx = static_cast<long>(estimate.nx), ny = static_cast<long>(estimate.ny);
   const double top = scene.to_local(box.max).z() + 1.0;
   const double depth = extent.z() + 2.0;
   std::vector<std::vector<Cell>> rows(static_cast<std::size_t>(ny));
@@ -250,13 +277,15 @@ bool found_ground(const Scene& scene, const NodeSet& grid) {
 }
 
 std::vector<Eigen::Vector3d> read_nodes_csv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read node file '" + path + "'");
+  std::istringstream in(io::read_input_file(path, kMaxNodeFileBytes));
   std::vector<Eigen::Vector3d> nodes;
   std::string line;
   std::size_t number = 0;
   while (std::getline(in, line)) {
     ++number;
+    if (line.size() > kMaxLineBytes)
+      throw std::runtime_error(path + ":" + std::to_string(number) + ": line of " + std::to_string(line.size()) +
+                               " bytes, longer than the " + std::to_string(kMaxLineBytes) + " a node line may have");
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.find_first_not_of(" \t") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
     const std::vector<std::string> fields = split_commas(line);
@@ -269,6 +298,7 @@ std::vector<Eigen::Vector3d> read_nodes_csv(const std::string& path) {
     }
     if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
       throw std::runtime_error(path + ":" + std::to_string(number) + ": coordinate is not finite");
+    for (int c = 0; c < 3; ++c) check_coordinate(v[c], path + ":" + std::to_string(number));
     nodes.emplace_back(v[0], v[1], v[2]);
   }
   if (nodes.empty()) throw std::runtime_error("node file '" + path + "' holds no x,y,z rows");
@@ -277,6 +307,7 @@ std::vector<Eigen::Vector3d> read_nodes_csv(const std::string& path) {
 
 std::vector<Eigen::Vector3d> read_nodes(const std::string& path, std::string* crs) {
   if (crs) crs->clear();
+  io::require_readable_input(path, kMaxNodeFileBytes);
   std::ifstream in(path);
   if (!in) throw std::runtime_error("cannot read node file '" + path + "'");
   char first = ' ';
@@ -294,6 +325,7 @@ Eigen::Vector3d parse_point(const std::string& text) {
   bool ok = fields.size() == 3;
   for (int c = 0; ok && c < 3; ++c) ok = parse_double(fields[static_cast<std::size_t>(c)], v[c]) && std::isfinite(v[c]);
   if (!ok) throw std::invalid_argument("expected a point 'x,y,z' of finite numbers, got '" + text + "'");
+  for (int c = 0; c < 3; ++c) check_coordinate(v[c], "point '" + text + "'");
   return {v[0], v[1], v[2]};
 }
 

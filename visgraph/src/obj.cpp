@@ -16,8 +16,10 @@
 // Naming rule (documented in obj.hpp): a triangle's group is its OBJ group
 // (`g`, or `o` where the file uses objects); a triangle with no group takes
 // its material name (`usemtl`); one with neither is in group "default".
+#include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/obj.hpp>
 
+#include <attenuvis/io/input_file.hpp>
 #include <attenuvis/io/number_text.hpp>
 #include <attenuvis/io/staged_file.hpp>
 
@@ -85,6 +87,9 @@ Prescan prescan(const std::string& path, const std::string& text) {
   long long largest_index = 0;  // largest positive vertex index and its line
   std::size_t largest_index_line = 0;
   for_each_line(text, [&](std::size_t line, std::string_view raw) {
+    if (raw.size() > kMaxLineBytes)
+      fail(path, line, "line of " + std::to_string(raw.size()) + " bytes, longer than the " +
+                           std::to_string(kMaxLineBytes) + " an OBJ line may have");
     const std::string_view s = trim(raw);
     if (s.size() < 2 || s[0] == '#') return;
     const bool blank_after_keyword_1 = s[1] == ' ' || s[1] == '\t';
@@ -100,6 +105,9 @@ Prescan prescan(const std::string& path, const std::string& text) {
         if (end == p) fail(path, line, "vertex needs three numeric coordinates: '" + std::string(s) + "'");
         if (!std::isfinite(xyz[k]))
           fail(path, line, "vertex coordinate is not finite (NaN or inf): '" + std::string(s) + "'");
+        if (std::abs(xyz[k]) > kMaxCoordinate)
+          fail(path, line, "vertex coordinate " + io::significant(xyz[k], 6) +
+                               " is outside [-1e7, 1e7] m (shift the model nearer its origin)");
         p = end;
       }
       scan.vertices.emplace_back(xyz[0], xyz[1], xyz[2]);
@@ -123,7 +131,9 @@ Prescan prescan(const std::string& path, const std::string& text) {
           largest_index = index;
           largest_index_line = line;
         }
-        ++corners;
+        if (++corners > static_cast<int>(kMaxPolygonVertices))
+          fail(path, line, "face has more than " + std::to_string(kMaxPolygonVertices) +
+                               " vertices (triangulating it would take minutes): split it");
       }
       if (corners < 3) fail(path, line, "face has fewer than 3 vertices");
       ++scan.faces;
@@ -166,12 +176,8 @@ class MaterialNames final : public tinyobj::MaterialReader {
 std::string read_file(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) fail(path, 0, "is a directory, not an OBJ file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, 0, std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) fail(path, 0, "read error");
-  return buffer.str();
+  if (!std::filesystem::exists(path, ec)) fail(path, 0, "cannot open: " + (ec ? ec.message() : "no such file"));
+  return io::read_input_file(path, kMaxSceneFileBytes);
 }
 
 }  // namespace

@@ -100,10 +100,14 @@ std::vector<double> score_values(const ScoreTable& table, const std::string& col
 }
 
 void write_csv(const std::string& path, const ScoreTable& table) {
+  write_atomically(path, [&](std::ostream& out) { write_csv(out, table); });
+}
+
+void write_csv(std::ostream& out, const ScoreTable& table) {
   const std::vector<std::string> columns = score_columns(table);
   std::vector<std::vector<double>> values;
   for (std::size_t c = 3; c < columns.size(); ++c) values.push_back(score_values(table, columns[c]));
-  write_atomically(path, [&](std::ostream& out) {
+  {
     for (std::size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c];
     out << "\n";
     out.precision(std::numeric_limits<double>::max_digits10);
@@ -117,15 +121,19 @@ void write_csv(const std::string& path, const ScoreTable& table) {
       }
       out << "\n";
     }
-  });
+  }
 }
 
 void write_ply(const std::string& path, const ScoreTable& table, const std::string& column) {
+  write_atomically(path, [&](std::ostream& out) { write_ply(out, table, column); });
+}
+
+void write_ply(std::ostream& out, const ScoreTable& table, const std::string& column) {
   const std::vector<double> v = score_values(table, column);
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (double x : v)
     if (std::isfinite(x)) lo = std::min(lo, x), hi = std::max(hi, x);
-  write_atomically(path, [&](std::ostream& out) {
+  {
     out << "ply\nformat ascii 1.0\ncomment attenuvis visibility graph, coloured by " << column
         << " (viridis)\nelement vertex " << v.size()
         << "\nproperty double x\nproperty double y\nproperty double z\n"
@@ -139,16 +147,21 @@ void write_ply(const std::string& path, const ScoreTable& table, const std::stri
       for (int c = 0; c < 3; ++c) out << " " << static_cast<int>(std::lround(255 * rgb[c]));
       out << " " << (std::isnan(v[i]) ? 0.0 : v[i]) << "\n";
     }
-  });
+  }
 }
 
 void write_heatmap(const std::string& png_path, const std::string& csv_path, const HeatmapOptions& options) {
-  if (options.columns.empty()) throw std::invalid_argument("heatmap: no column to draw");
   // The script writes the staged temporary; commit() renames it into place,
   // and a failure leaves neither a partial PNG nor the temporary behind.
   io::StagedFile png(png_path);
+  draw_heatmap(png.temporary_path(), csv_path, options);
+  png.commit();
+}
+
+void draw_heatmap(const std::string& png_path, const std::string& csv_path, const HeatmapOptions& options) {
+  if (options.columns.empty()) throw std::invalid_argument("heatmap: no column to draw");
   std::string command = io::shell_quote(ATTENUVIS_PYTHON) + " " + io::shell_quote(ATTENUVIS_VG_HEATMAP_SCRIPT) + " " +
-                        io::shell_quote(csv_path) + " " + io::shell_quote(png.temporary_path());
+                        io::shell_quote(csv_path) + " " + io::shell_quote(png_path);
   for (const std::string& c : options.columns) command += " " + io::shell_quote(c);
   if (!options.title.empty()) command += " --title " + io::shell_quote(options.title);
   if (!options.crs.empty()) command += " --crs " + io::shell_quote(options.crs);
@@ -164,7 +177,6 @@ void write_heatmap(const std::string& png_path, const std::string& csv_path, con
   const int status = std::system(command.c_str());
   if (status != 0)
     throw std::runtime_error("heatmap: '" + command + "' failed (status " + std::to_string(status) + ")");
-  png.commit();
 }
 
 void write_heatmap(const std::string& png_path, const std::string& csv_path, const std::string& column,

@@ -6,6 +6,8 @@
 // kept and put into the exception the failing call throws.
 #include "scene_access.hpp"
 
+#include <attenuvis/visgraph/limits.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -81,6 +83,8 @@ Scene::Scene(const Mesh& mesh) : impl_(std::make_unique<Impl>()) {
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
     if (!mesh.vertices[v].allFinite())
       throw std::invalid_argument("scene: vertex " + std::to_string(v + 1) + " is not finite");
+    else
+      for (int c = 0; c < 3; ++c) check_coordinate(mesh.vertices[v][c], "scene: vertex " + std::to_string(v + 1));
   BoundingBox box{Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
                   Eigen::Vector3d::Constant(-std::numeric_limits<double>::infinity())};
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t)

@@ -1,7 +1,10 @@
 // Scene files by content (scene_file.hpp).
 #include <attenuvis/visgraph/gltf.hpp>
+#include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/obj.hpp>
 #include <attenuvis/visgraph/scene_file.hpp>
+
+#include <attenuvis/io/input_file.hpp>
 
 #include <algorithm>
 #include <fstream>
@@ -31,6 +34,9 @@ std::string up_axis_warning(const Mesh& mesh, const std::string& how_to_fix) {
 }
 
 SceneFile load_scene_file(const std::string& path, const SceneFileOptions& options) {
+  // A device or FIFO (/dev/zero, /dev/urandom) would be read for ever: only
+  // regular files up to kMaxSceneFileBytes are scenes.
+  io::require_readable_input(path, kMaxSceneFileBytes);
   std::string head(65536, '\0');
   {
     std::ifstream in(path, std::ios::binary);

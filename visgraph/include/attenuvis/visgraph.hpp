@@ -5,6 +5,7 @@
 #include <attenuvis/visgraph/cityjson.hpp>
 #include <attenuvis/visgraph/generators.hpp>
 #include <attenuvis/visgraph/geojson.hpp>
+#include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/mesh.hpp>
 #include <attenuvis/visgraph/nodes.hpp>
 #include <attenuvis/visgraph/obj.hpp>
@@ -12,3 +13,4 @@
 #include <attenuvis/visgraph/scene.hpp>
 #include <attenuvis/visgraph/scene_file.hpp>
 #include <attenuvis/visgraph/visibility.hpp>
+#include <attenuvis/visgraph/work_estimate.hpp>

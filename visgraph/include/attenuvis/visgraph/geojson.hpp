@@ -23,6 +23,8 @@ namespace attenuvis::visgraph {
 // score_columns() (NaN as null).  `crs` as the scene names it (empty: no crs
 // member, coordinates in an unnamed local frame).  Written atomically.
 void write_geojson(const std::string& path, const ScoreTable& table, const std::string& crs);
+// The same document as text (for a caller that stages several outputs).
+std::string geojson_text(const ScoreTable& table, const std::string& crs);
 
 // The crs name to put in the file: "urn:ogc:def:crs:EPSG::N" for any EPSG
 // spelling; other names unchanged.

@@ -33,6 +33,8 @@
 
 namespace attenuvis::visgraph {
 
+constexpr double kDefaultMaxGridCells = 1e7;
+
 struct NodeGridOptions {
   double spacing = 1.0;     // m, grid pitch (cell centres at min + (i + 1/2) spacing)
   double eye_height = 1.7;  // m above the walkable surface
@@ -41,7 +43,18 @@ struct NodeGridOptions {
   std::vector<std::string> walkable;
   double max_slope_deg = 90.0;  // surfaces steeper than this are not walkable
   double elevated_height = 2.0; // m above the lowest surface under the cell
+  // Refuse grids of more cells than this (0 = no limit): each cell costs
+  // ~100 bytes and a few rays, so 1e7 cells are ~1 GB and a minute.
+  double max_cells = kDefaultMaxGridCells;
 };
+
+// Cells of the grid generate_nodes would examine (a double: a 1 mm grid over
+// a country overflows any integer), and the bytes they take while placed.
+struct GridEstimate {
+  double nx = 0, ny = 0, cells = 0;
+  double bytes = 0;
+};
+GridEstimate estimate_grid(const Scene& scene, double spacing);
 
 // Classes people walk on by default (CityJSON city-object types and semantic
 // surfaces, including CityJSON 2.0 names): TINRelief, Road, TransportSquare,
@@ -69,8 +82,8 @@ struct NodeSet {
   std::vector<Eigen::Vector2d> covered_cells;  // world xy of covered cell centres (building footprints)
 };
 
-// Throws std::invalid_argument for a non-positive/non-finite spacing or eye
-// height, or a walkable name that is neither a group nor a class of the scene.
+// Throws std::invalid_argument for a spacing, eye height or slope outside
+// the ranges of limits.hpp, a grid of more than max_cells cells, or a walkable name that is neither a group nor a class of the scene.
 NodeSet generate_nodes(const Scene& scene, const NodeGridOptions& options);
 
 // True when the grid stood on the scene's own ground.  In a scene with classes:

@@ -33,10 +33,12 @@ std::vector<std::string> score_columns(const ScoreTable& table);
 std::vector<double> score_values(const ScoreTable& table, const std::string& column);
 
 void write_csv(const std::string& path, const ScoreTable& table);
+void write_csv(std::ostream& out, const ScoreTable& table);
 
 // ASCII PLY: x y z (double), red green blue (uchar, viridis colour map over
 // the column's finite range; NaN grey) and the value itself (double).
 void write_ply(const std::string& path, const ScoreTable& table, const std::string& column);
+void write_ply(std::ostream& out, const ScoreTable& table, const std::string& column);
 
 // Top-view heatmap drawn from an existing CSV by visgraph/scripts/vg_heatmap.py
 // with Debian's python3 (matplotlib): one panel per column on one colour
@@ -49,6 +51,9 @@ struct HeatmapOptions {
   std::string crs;                             // for the axis labels, or empty
 };
 void write_heatmap(const std::string& png_path, const std::string& csv_path, const HeatmapOptions& options);
+// The same, drawn straight into `png_path` (a caller's staged temporary; a
+// failure may leave it partial there).
+void draw_heatmap(const std::string& png_path, const std::string& csv_path, const HeatmapOptions& options);
 // One column: write_heatmap with a single panel and no footprints.
 void write_heatmap(const std::string& png_path, const std::string& csv_path, const std::string& column,
                    const std::string& title);
