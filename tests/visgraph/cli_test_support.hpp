@@ -16,24 +16,14 @@
 #include <unistd.h>
 #include <vector>
 
+#include "../cli_run.hpp"
+
 namespace clitest {
 
 namespace fs = std::filesystem;
 
-struct Run {
-  int status;
-  std::string output;  // stdout + stderr
-};
-
-inline Run run(const std::string& args) {
-  const std::string command = std::string(ATTENUVIS_CLI) + " " + args + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-  std::string out;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe.get())) out += buffer.data();
-  const int raw = pclose(pipe.release());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
-}
+using Run = cli_run::Result;
+using cli_run::run;
 
 // A fresh empty directory, removed at scope exit.
 struct TempDir {

@@ -1,7 +1,7 @@
 // End-to-end tests of `attenuvis sigma | table | distribution`.
 #include <catch2/catch.hpp>
 
-#include "cli_run.hpp"
+#include "../cli_run.hpp"
 
 #include <array>
 #include <cmath>
@@ -17,8 +17,8 @@
 using Catch::Matchers::Contains;
 
 namespace {
-using weather_cli::Result;
-using weather_cli::run;
+using cli_run::Result;
+using cli_run::run;
 std::string data(const std::string& name) { return std::string(ATTENUVIS_TEST_DATA_DIR) + "/weather/" + name; }
 bool exists(const std::string& path) { return std::ifstream(path).good(); }
 }  // namespace
@@ -26,7 +26,7 @@ bool exists(const std::string& path) { return std::ifstream(path).good(); }
 TEST_CASE("sigma prints values, units and convention", "[weather][cli]") {
   auto r = run("sigma rain:8 snow:dry:4 clear --convention seed --json");
   REQUIRE(r.status == 0);
-  auto j = nlohmann::json::parse(r.out);
+  auto j = nlohmann::json::parse(r.output);
   REQUIRE(j.size() == 3);
   // Seed paper, Sec. Results: 0.0045 (rain 8 mm/h), 0.0374 (dry snow 4 mm/h), 0.00015 (clear), 1/m.
   CHECK(j[0]["sigma"].get<double>() == Approx(0.0045).margin(5e-5));
@@ -36,13 +36,13 @@ TEST_CASE("sigma prints values, units and convention", "[weather][cli]") {
   CHECK(j[0]["units"] == "1/m");
   auto db = run("sigma rain:8:carbonneau --units dB/km");
   CHECK(db.status == 0);
-  CHECK_THAT(db.out, Contains("dB/km") && Contains("convention itu"));
+  CHECK_THAT(db.output, Contains("dB/km") && Contains("convention itu"));
 }
 
 TEST_CASE("bad condition: error with the grammar, non-zero exit", "[weather][cli]") {
   auto r = run("sigma rain:8 hail:2");
   CHECK(r.status != 0);
-  CHECK_THAT(r.out, Contains("attenuvis: error: bad condition 'hail:2'") && Contains("snow:wet:RATE"));
+  CHECK_THAT(r.output, Contains("attenuvis: error: bad condition 'hail:2'") && Contains("snow:wet:RATE"));
 }
 
 TEST_CASE("table writes CSV and JSON atomically", "[weather][cli]") {
@@ -68,7 +68,7 @@ TEST_CASE("table writes CSV and JSON atomically", "[weather][cli]") {
   std::remove(bad.c_str());
   auto rb = run("table --conditions rain:8,fog:file=does-not-exist.csv --wavelengths 550nm --out " + bad);
   CHECK(rb.status != 0);
-  CHECK_THAT(rb.out, Contains("does-not-exist.csv"));
+  CHECK_THAT(rb.output, Contains("does-not-exist.csv"));
   CHECK(!exists(bad));
   std::remove(csv.c_str());
   std::remove(json.c_str());
@@ -77,7 +77,7 @@ TEST_CASE("table writes CSV and JSON atomically", "[weather][cli]") {
 TEST_CASE("distribution reports moments and validates files", "[weather][cli]") {
   auto r = run("distribution advection --json");
   REQUIRE(r.status == 0);
-  auto j = nlohmann::json::parse(r.out);
+  auto j = nlohmann::json::parse(r.output);
   CHECK(j["number_per_cm3"].get<double>() == Approx(20.0));           // seed Table tab:itu-fog
   CHECK(j["water_content_g_per_m3"].get<double>() == Approx(0.37).margin(0.005));
   CHECK(j["mode_radius_um"].get<double>() == Approx(10.0));
@@ -85,7 +85,7 @@ TEST_CASE("distribution reports moments and validates files", "[weather][cli]") 
   CHECK(bin.status == 0);
   auto bad = run("distribution " + data("bad_negative.csv"));
   CHECK(bad.status != 0);
-  CHECK_THAT(bad.out, Contains("bad_negative.csv:3:"));
+  CHECK_THAT(bad.output, Contains("bad_negative.csv:3:"));
 }
 
 TEST_CASE("vg takes the weather options of sigma; --tolerance there is the old name of --prune-below",
@@ -119,7 +119,7 @@ TEST_CASE("vg takes the weather options of sigma; --tolerance there is the old n
   auto old = run("vg layout:2 --spacing 10 --out " + csv + " --summary " + summary +
                  " --conditions rain:8 --tolerance 1e-3");
   REQUIRE(old.status == 0);
-  CHECK_THAT(old.out, Contains("--tolerance is deprecated") && Contains("--prune-below"));
+  CHECK_THAT(old.output, Contains("--tolerance is deprecated") && Contains("--prune-below"));
   {
     std::ifstream in(summary);
     CHECK(nlohmann::json::parse(in)["pruning"]["radius_m"].get<double>() == radius);

@@ -4,7 +4,7 @@
 // carries inf or NaN.
 #include <catch2/catch.hpp>
 
-#include "cli_run.hpp"
+#include "../cli_run.hpp"
 
 #include <array>
 #include <chrono>
@@ -26,8 +26,8 @@ using Catch::Matchers::StartsWith;
 
 namespace {
 
-using weather_cli::Result;
-using weather_cli::run;
+using cli_run::Result;
+using cli_run::run;
 
 std::string temp_path(const std::string& name) { return "/tmp/attenuvis_test_domains_" + name; }
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
@@ -40,9 +40,9 @@ std::string read_text(const std::string& path) {
 
 // A failed run: non-zero status, one "attenuvis: error:" line first, naming `what`.
 void check_error(const Result& r, const std::string& what) {
-  INFO(r.out);
+  INFO(r.output);
   CHECK(r.status != 0);
-  CHECK_THAT(r.out, StartsWith("attenuvis: error: ") && Contains(what));
+  CHECK_THAT(r.output, StartsWith("attenuvis: error: ") && Contains(what));
 }
 
 }  // namespace
@@ -149,7 +149,7 @@ TEST_CASE("hostile input: the command line", "[weather][domains][cli]") {
   check_error(run("sigma rain:8 --no-such-option"), "--no-such-option");
   const Result r = run("table --conditions rain:8 --out " + temp_path("t.csv") + " --threads " + std::string(300, '9'));
   check_error(r, "--threads");
-  CHECK(r.out.size() < 300);
+  CHECK(r.output.size() < 300);
 }
 
 TEST_CASE("hostile input: no inf or NaN in outputs; sigma = 0 has an unbounded visibility", "[weather][domains][cli]") {
@@ -165,9 +165,9 @@ TEST_CASE("hostile input: no inf or NaN in outputs; sigma = 0 has an unbounded v
   CHECK_THAT(text, !Contains("inf") && !Contains("nan"));
   const Result text_out = run("sigma sigma:0");
   CHECK(text_out.status == 0);
-  CHECK_THAT(text_out.out, Contains("visibility unbounded") && !Contains("inf"));
+  CHECK_THAT(text_out.output, Contains("visibility unbounded") && !Contains("inf"));
   const Result json_out = run("sigma sigma:0 --json");
-  CHECK(nlohmann::json::parse(json_out.out)[0]["visibility_m"].is_null());
+  CHECK(nlohmann::json::parse(json_out.output)[0]["visibility_m"].is_null());
 }
 
 TEST_CASE("hostile input: an output over an input is refused before any work", "[weather][domains][cli]") {

@@ -123,8 +123,9 @@ def main() -> int:
         if len(covered):
             ax.scatter([], [], s=20, marker="s", c="0.3", label="covered (buildings)")
         ax.set_aspect("equal")
-        ax.set_xlabel(f"x - {x0:.0f} ({unit})")
-        ax.set_ylabel(f"y - {y0:.0f} ({unit})")
+        # Shown relative to the scene's corner only where it is not the origin (UTM-sized data).
+        ax.set_xlabel(f"x - {x0:.0f} ({unit})" if x0 else f"x ({unit})")
+        ax.set_ylabel(f"y - {y0:.0f} ({unit})" if y0 else f"y ({unit})")
         ax.set_title(name)
         if len(covered) or blind.any():
             ax.legend(loc="upper right", fontsize=7, framealpha=0.8)
