@@ -178,3 +178,25 @@ TEST_CASE("mie batch: the fuzzer's regression lines are errors, not NaN rows", "
     CHECK_THAT(err[i], Catch::Contains("must") || Catch::Contains("needs"));
   }
 }
+
+TEST_CASE("--version names the version, commit, build type, Embree and Boost", "[cli]") {
+  const Run r = run_cli("--version");
+  CHECK(r.status == 0);
+  CHECK(r.err.empty());
+  const std::vector<std::string> v = lines(r.out);
+  REQUIRE(v.size() == 5);
+  CHECK(v[0].rfind("attenuvis ", 0) == 0);
+  CHECK(v[0].size() > std::string("attenuvis ").size());  // a version follows the name
+  const auto value = [&](std::size_t i, const std::string& key) {
+    REQUIRE(v[i].rfind(key, 0) == 0);
+    return v[i].substr(v[i].find_first_not_of(' ', key.size()));
+  };
+  // A short hash (hex digits) from git, or "unknown" for a tree outside a checkout.
+  const std::string commit = value(1, "commit:");
+  const std::string hash = commit.substr(0, commit.find(' '));
+  CHECK((hash == "unknown" || (hash.size() >= 7 && hash.find_first_not_of("0123456789abcdef") == std::string::npos)));
+  CHECK(!value(2, "build type:").empty());
+  // Embree 3 (the project's find_package floor) and Boost 1.x, as MAJOR.MINOR.PATCH.
+  CHECK(value(3, "Embree:").rfind("3.", 0) == 0);
+  CHECK(value(4, "Boost:").rfind("1.", 0) == 0);
+}
