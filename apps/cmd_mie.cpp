@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "attenuvis/io/number_text.hpp"
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/batch.hpp"
 #include "commands.hpp"
@@ -66,7 +67,9 @@ std::string num(double v) {
 
 void print_text(const MieArgs& a, std::complex<double> m, const mie::Scattering<double>& s) {
   const auto& q = s.q;
-  std::cout << "Mie sphere  x = " << num(a.x) << "  m = " << num(m.real()) << " + " << num(m.imag()) << "i\n"
+  // The input echoed as the shortest text that reads back to it; results at 17 digits.
+  std::cout << "Mie sphere  x = " << io::shortest(a.x) << "  m = " << io::shortest(m.real()) << " + "
+            << io::shortest(m.imag()) << "i\n"
             << "  Qext  = " << num(q.qext) << "\n"
             << "  Qsca  = " << num(q.qsca) << "\n"
             << "  Qabs  = " << num(q.qabs) << "\n"
@@ -128,7 +131,7 @@ void register_mie(CLI::App& app) {
       "Lorenz-Mie efficiencies of a homogeneous sphere (Bohren & Huffman conventions, m = n + ik, k >= 0 "
       "absorbing). Without --x: batch mode, lines 'x m_re m_im' on stdin -> CSV on stdout.");
   cmd->add_option("--x", args->x, "size parameter 2*pi*r/lambda (> 0)");
-  cmd->add_option("--m", args->m, "relative refractive index 'n,k' (default 1.33,0)");
+  cmd->add_option("--m", args->m, "relative refractive index m = n + ik: 'n+ki', 'n,k' or 'n' (e.g. 1.5+0.1i, 1.5,0.1; default 1.33,0)");
   cmd->add_option("--angles", args->angles, "scattering angles in degrees for S1, S2: start:stop:step or a,b,c");
   cmd->add_flag("--json", args->json, "print JSON instead of text");
   cmd->add_option("--terms", args->terms, "term count: converged (default) or wiscombe")

@@ -73,15 +73,6 @@ void run_sigma(const std::vector<std::string>& conditions, const CommonOptions& 
   if (json) std::cout << out.dump(2) << "\n";
 }
 
-std::vector<std::string> split_conditions(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  std::string part;
-  while (std::getline(ss, part, ','))
-    if (!part.empty()) out.push_back(part);
-  return out;
-}
-
 // The size-distribution files the conditions read (inputs no output may replace).
 std::vector<NamedPath> condition_inputs(const std::vector<w::LabelledCondition>& conditions) {
   std::vector<NamedPath> out;
@@ -95,7 +86,7 @@ void run_table(const std::string& conditions, const std::string& wavelengths, co
                const std::string& path, int threads, const CommonOptions& o) {
   const w::Settings s = weather_settings(o.weather);
   std::vector<w::LabelledCondition> parsed;
-  for (const auto& text : split_conditions(conditions)) {
+  for (const auto& text : w::split_condition_list(conditions)) {
     auto expanded = w::expand_conditions(text);
     parsed.insert(parsed.end(), expanded.begin(), expanded.end());
   }

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "build_info.hpp"
 #include "commands.hpp"
 
 namespace attenuvis::cli {
@@ -49,6 +50,10 @@ int main(int argc, char** argv) {
   using attenuvis::cli::shortened;
   CLI::App app{"attenuvis: Lorenz-Mie reference, ITU-R P.1817 attenuation and weather-weighted visibility graphs"};
   app.require_subcommand(1);
+  // CLI11 prints the text to stdout and exits 0; the trailing newline is its own.
+  std::string version = attenuvis::cli::build_info();
+  version.pop_back();
+  app.set_version_flag("--version", version, "print the version and build (commit, build type, Embree, Boost)");
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return error_line(shortened(e.what()) + " (--help lists the options)");
   });

@@ -39,7 +39,7 @@ void add_weather_options(CLI::App* cmd, WeatherOptions& o, WeatherOptionSet whic
     cmd->add_option("--tolerance", o.tolerance,
                     "relative tolerance of Mie size integrals; " + w::range_text(w::domain::tolerance))
         ->capture_default_str();
-  cmd->add_option("--water", o.water, "water refractive-index table: hale-querry or segelstein")
+  cmd->add_option("--water", o.water, "refractive-index table of the drops: hale-querry or segelstein (water), ice (Warren & Brandt 2008)")
       ->capture_default_str();
 }
 
@@ -48,8 +48,8 @@ weather::Settings weather_settings(const WeatherOptions& o) {
   s.convention = for_option("--convention", [&] { return w::parse_convention(o.convention); });
   s.contrast_threshold = for_option("--threshold", [&] { return w::read_in(w::domain::contrast_threshold, o.threshold); });
   s.rel_tolerance = for_option("--tolerance", [&] { return w::read_in(w::domain::tolerance, o.tolerance); });
-  if (o.water != "hale-querry" && o.water != "water" && o.water != "segelstein")
-    throw std::invalid_argument("--water: unknown table '" + o.water + "' (hale-querry or segelstein)");
+  if (o.water != "hale-querry" && o.water != "water" && o.water != "segelstein" && o.water != "ice")
+    throw std::invalid_argument("--water: unknown table '" + o.water + "' (hale-querry, segelstein or ice)");
   s.water_table = o.water;
   return s;
 }

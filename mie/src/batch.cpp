@@ -1,6 +1,7 @@
 // Batch evaluation and the text grammar of `attenuvis mie` (see batch.hpp).
 #include "attenuvis/mie/batch.hpp"
 
+#include "attenuvis/io/number_text.hpp"
 #include "attenuvis/mie/spheres.hpp"
 
 #include <cerrno>
@@ -82,10 +83,12 @@ const char* csv_header() { return "x,m_re,m_im,qext,qsca,qabs,qback,g"; }
 
 std::string csv_row(const Problem& p, const Efficiencies<double>& q) {
   std::string row;
-  const double values[] = {p.x, p.m.real(), p.m.imag(), q.qext, q.qsca, q.qabs, q.qback, q.g};
-  for (std::size_t i = 0; i < sizeof values / sizeof values[0]; ++i) {
-    if (i) row += ',';
-    append_number(row, values[i]);
+  // The input as the shortest text that reads back to it (1.33, not
+  // 1.3300000000000001); the results at 17 digits, which read back exactly.
+  row += io::shortest(p.x) + ',' + io::shortest(p.m.real()) + ',' + io::shortest(p.m.imag());
+  for (double v : {q.qext, q.qsca, q.qabs, q.qback, q.g}) {
+    row += ',';
+    append_number(row, v);
   }
   return row;
 }
@@ -174,11 +177,9 @@ std::size_t run(std::istream& in, std::ostream& out, std::ostream& err, const Op
 }
 
 std::complex<double> parse_refractive_index(const std::string& text) {
-  const std::vector<std::string> f = split_fields(text);
-  if (f.empty() || f.size() > 2)
-    throw std::invalid_argument("refractive index must be 'n,k' or 'n', got '" + text + "'");
-  const double n = parse_number(f[0], "n");
-  const double k = f.size() == 2 ? parse_number(f[1], "k") : 0.0;
+  const io::IndexText parts = io::split_index_text(text, "refractive index");
+  const double n = parse_number(parts.real, "n");
+  const double k = parse_number(parts.imag, "k");
   if (n < 0 || k < 0) throw std::invalid_argument("refractive index needs n >= 0 and k >= 0, got '" + text + "'");
   return {n, k};
 }

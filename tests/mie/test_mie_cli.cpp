@@ -178,3 +178,57 @@ TEST_CASE("mie batch: the fuzzer's regression lines are errors, not NaN rows", "
     CHECK_THAT(err[i], Catch::Contains("must") || Catch::Contains("needs"));
   }
 }
+
+TEST_CASE("--version names the version, commit, build type, Embree and Boost", "[cli]") {
+  const Run r = run_cli("--version");
+  CHECK(r.status == 0);
+  CHECK(r.err.empty());
+  const std::vector<std::string> v = lines(r.out);
+  REQUIRE(v.size() == 5);
+  CHECK(v[0].rfind("attenuvis ", 0) == 0);
+  CHECK(v[0].size() > std::string("attenuvis ").size());  // a version follows the name
+  const auto value = [&](std::size_t i, const std::string& key) {
+    REQUIRE(v[i].rfind(key, 0) == 0);
+    return v[i].substr(v[i].find_first_not_of(' ', key.size()));
+  };
+  // A short hash (hex digits) from git, or "unknown" for a tree outside a checkout.
+  const std::string commit = value(1, "commit:");
+  const std::string hash = commit.substr(0, commit.find(' '));
+  CHECK((hash == "unknown" || (hash.size() >= 7 && hash.find_first_not_of("0123456789abcdef") == std::string::npos)));
+  CHECK(!value(2, "build type:").empty());
+  // Embree 3 (the project's find_package floor) and Boost 1.x, as MAJOR.MINOR.PATCH.
+  CHECK(value(3, "Embree:").rfind("3.", 0) == 0);
+  CHECK(value(4, "Boost:").rfind("1.", 0) == 0);
+}
+
+TEST_CASE("mie --m takes n+ki, n,k and a bare n", "[mie][cli]") {
+  const Run comma = run_cli("mie --x 5 --m 1.5,0.1 --json");
+  const Run plus = run_cli("mie --x 5 --m 1.5+0.1i --json");
+  REQUIRE(comma.status == 0);
+  REQUIRE(plus.status == 0);
+  CHECK(plus.out == comma.out);
+  CHECK(nlohmann::json::parse(plus.out)["m"] == nlohmann::json::array({1.5, 0.1}));
+  const Run bare = run_cli("mie --x 5 --m 1.5 --json");
+  REQUIRE(bare.status == 0);
+  CHECK(nlohmann::json::parse(bare.out)["m"] == nlohmann::json::array({1.5, 0.0}));
+  CHECK(mie::batch::parse_refractive_index("1.33-0i") == std::complex<double>(1.33, 0.0));
+  for (const char* bad : {"1.5-0.1i", "1.5+i", "1.5,0.1,0", "i", ""}) {
+    INFO(bad);
+    CHECK_THROWS_AS(mie::batch::parse_refractive_index(bad), std::invalid_argument);
+  }
+}
+
+TEST_CASE("mie echoes its inputs as the shortest text that reads back, results at 17 digits", "[mie][cli]") {
+  // 1.33 and 0.1 print as 1.3300000000000001 and 0.10000000000000001 at 17 digits.
+  const Run text = run_cli("mie --x 0.1 --m 1.33,1e-8");
+  REQUIRE(text.status == 0);
+  CHECK_THAT(text.out, Catch::Contains("x = 0.1  m = 1.33 + 1e-08i"));
+  const Run batch = run_cli("mie", "0.1 1.33 0.001\n");
+  REQUIRE(batch.status == 0);
+  const std::vector<std::string> v = lines(batch.out);
+  REQUIRE(v.size() == 2);
+  CHECK(v[1].rfind("0.1,1.33,0.001,", 0) == 0);
+  const std::vector<double> row = csv_numbers(v[1]);
+  REQUIRE(row.size() == 8);
+  CHECK(row[3] == mie::sphere(0.1, {1.33, 0.001}).qext);  // the result still reads back exactly
+}

@@ -128,3 +128,18 @@ TEST_CASE("vg takes the weather options of sigma; --tolerance there is the old n
   std::remove(csv.c_str());
   std::remove(summary.c_str());
 }
+
+TEST_CASE("ice: --water ice and :water=ice name the same table, and --help says so", "[weather][cli]") {
+  // Mie over the advection-fog preset at 550 nm with the Warren & Brandt 2008 ice index: the
+  // option and the condition field must select the same table, so give the same sigma.
+  const auto by_option = run("sigma fog:advection --water ice --json");
+  const auto by_field = run("sigma fog:advection:water=ice --json");
+  REQUIRE(by_option.status == 0);
+  REQUIRE(by_field.status == 0);
+  const double ice = nlohmann::json::parse(by_option.out)[0]["sigma"].get<double>();
+  CHECK(nlohmann::json::parse(by_field.out)[0]["sigma"].get<double>() == ice);
+  const auto help = run("sigma --help");
+  CHECK(help.out.find("ice (Warren & Brandt 2008)") != std::string::npos);
+  CHECK(help.out.find(":water=hale-querry|segelstein|ice") != std::string::npos);
+  CHECK(run("sigma fog:advection:water=snow").status != 0);
+}

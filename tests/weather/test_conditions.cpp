@@ -176,3 +176,28 @@ TEST_CASE("sweeps set the swept number in the typed value", "[weather][condition
     CHECK_THROWS_WITH(expand_conditions(bad), Contains("bad condition") && Contains("rain:RATE"));
   }
 }
+
+TEST_CASE("m= takes the index as n+ki, n,k or n, as `attenuvis mie --m` does", "[weather][conditions][grammar]") {
+  const auto index_of = [](const std::string& text) {
+    return std::get<ConstantIndex>(std::get<MieCondition>(parse_condition(text)).index).m;
+  };
+  CHECK(index_of("fog:advection:m=1.5,0.1") == std::complex<double>(1.5, 0.1));
+  CHECK(index_of("fog:advection:m=1.5+0.1i") == std::complex<double>(1.5, 0.1));
+  CHECK(index_of("fog:advection:m=1.5") == std::complex<double>(1.5, 0.0));
+  CHECK(index_of("rain:8:mie:m=1.33,1e-8:N=50") == std::complex<double>(1.33, 1e-8));
+  for (const char* bad : {"fog:advection:m=1.5,-0.1", "fog:advection:m=1.5,", "fog:advection:m=1.5,0.1,2",
+                          "fog:advection:m=,0.1"}) {
+    INFO(bad);
+    CHECK_THROWS_WITH(parse_condition(bad), Contains("bad condition"));
+  }
+  // In a comma-separated list a comma before a number stays inside the condition.
+  CHECK(split_condition_list("clear,fog:advection:m=1.33,0.001:N=50,rain:8,,sigma:-1") ==
+        std::vector<std::string>{"clear", "fog:advection:m=1.33,0.001:N=50", "rain:8", "sigma:-1"});
+}
+
+TEST_CASE("water=ice selects the Warren & Brandt 2008 table and writes back", "[weather][conditions][grammar]") {
+  const auto c = std::get<MieCondition>(parse_condition("fog:radiation:water=ice"));
+  CHECK(std::get<WaterTable>(c.index) == WaterTable::ice);
+  CHECK(to_text(c) == "fog:radiation:water=ice");
+  CHECK_THROWS_WITH(parse_condition("fog:radiation:water=snow"), Contains("hale-querry, segelstein or ice"));
+}

@@ -11,6 +11,13 @@ bool depends_on_convention(const Condition& c) {
 
 std::string to_string(FogPreset p) { return p == FogPreset::advection ? "advection" : "radiation"; }
 
-std::string to_string(WaterTable t) { return t == WaterTable::hale_querry ? "hale-querry" : "segelstein"; }
+std::string to_string(WaterTable t) {
+  switch (t) {
+    case WaterTable::hale_querry: return "hale-querry";
+    case WaterTable::segelstein: return "segelstein";
+    case WaterTable::ice: return "ice";
+  }
+  return "hale-querry";  // not reached: every enumerator is handled above
+}
 
 }  // namespace attenuvis::weather

@@ -153,22 +153,20 @@ class Fields {
 
 // ---- Mie options ------------------------------------------------------------
 
-// "1.33+1e-8i", "1.33-0i", "1.5" -> n + i k; k must be >= 0 (absorbing).
+// "1.33+1e-8i", "1.33,1e-8", "1.5" -> n + i k (io::split_index_text, the
+// syntax of `attenuvis mie --m` too); k must be >= 0 (absorbing).
 std::complex<double> parse_index(const std::string& text, const Fields& f) {
-  std::string s = text;
-  if (!s.empty() && (s.back() == 'i' || s.back() == 'j')) {
-    s.pop_back();
-    std::size_t split_at = std::string::npos;
-    for (std::size_t i = 1; i < s.size(); ++i)
-      if ((s[i] == '+' || s[i] == '-') && s[i - 1] != 'e' && s[i - 1] != 'E') split_at = i;
-    if (split_at == std::string::npos) f.fail("refractive index '" + text + "' should look like 1.33+1e-8i");
-    const double n = f.in(domain::index_real, s.substr(0, split_at));
-    if (f.number(s.substr(split_at), "refractive index imaginary part") < 0)
-      f.fail("refractive index imaginary part must be >= 0 (absorbing; m = n + ik)");
-    const double k = f.in(domain::index_imag, s.substr(split_at));
-    return {n, k};
+  io::IndexText parts;
+  try {
+    parts = io::split_index_text(text, "refractive index");
+  } catch (const std::invalid_argument& e) {
+    f.fail(e.what());
   }
-  return {f.in(domain::index_real, s), 0.0};
+  const double n = f.in(domain::index_real, parts.real);
+  if (f.number(parts.imag, "refractive index imaginary part") < 0)
+    f.fail("refractive index imaginary part must be >= 0 (absorbing; m = n + ik)");
+  const double k = f.in(domain::index_imag, parts.imag);
+  return {n, k};
 }
 
 struct MieOption {
@@ -185,13 +183,15 @@ void set_rescaling(MieCondition& c, Rescaling r, const Fields& f) {
 }
 
 const MieOption kMieOptions[] = {
-    {"m=", ":m=N+Ki", "constant refractive index instead of the water table (e.g. m=1.33+0.001i)",
+    {"m=", ":m=N+Ki | :m=N,K", "constant refractive index instead of the water table (m=1.33+0.001i or m=1.33,0.001)",
      [](MieCondition& c, const std::string& v, const Fields& f) { c.index = ConstantIndex{parse_index(v, f)}; }},
-    {"water=", ":water=hale-querry|segelstein", "water refractive-index table (default: the --water setting)",
+    {"water=", ":water=hale-querry|segelstein|ice",
+     "refractive-index table (ice: Warren & Brandt 2008; default: the --water setting)",
      [](MieCondition& c, const std::string& v, const Fields& f) {
        if (v == "hale-querry" || v == "water") c.index = WaterTable::hale_querry;
        else if (v == "segelstein") c.index = WaterTable::segelstein;
-       else f.fail("water table '" + v + "' is not hale-querry or segelstein");
+       else if (v == "ice") c.index = WaterTable::ice;
+       else f.fail("water table '" + v + "' is not hale-querry, segelstein or ice");
      }},
     {"N=", ":N=PER_CM3", "rescale the drops to this many particles per cm^3",
      [](MieCondition& c, const std::string& v, const Fields& f) {
@@ -362,6 +362,23 @@ std::optional<std::size_t> find_sweep(const std::vector<std::string>& fields) {
 const std::string& condition_grammar() {
   static const std::string grammar = generate_grammar();
   return grammar;
+}
+
+std::vector<std::string> split_condition_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::string current;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char next = i + 1 < text.size() ? text[i + 1] : '\0';
+    const bool continues = std::isdigit(static_cast<unsigned char>(next)) || next == '.' || next == '+' || next == '-';
+    if (text[i] == ',' && !continues) {
+      if (!current.empty()) out.push_back(current);
+      current.clear();
+    } else {
+      current += text[i];
+    }
+  }
+  if (!current.empty()) out.push_back(current);
+  return out;
 }
 
 Condition parse_condition(const std::string& text) {

@@ -25,6 +25,17 @@ std::string significant(double value, int digits);
 // value may lie from the exact one it rounds.
 double half_unit_in_last_digit(std::string_view literal);
 
+// The two number texts of a complex refractive index m = n + ik, written the
+// one way every input of the project accepts: "n+ki" (also "n-ki", 'j' for
+// 'i'), "n,k" (a comma or blanks between), or a bare "n" (imag = "0").  Only
+// the shape is read here; each caller parses and range-checks the numbers so
+// its messages name its own limits.  Throws std::invalid_argument "WHAT 'TEXT'
+// should look like 1.33+1e-8i, 1.33,1e-8 or 1.33" for any other shape.
+struct IndexText {
+  std::string real, imag;
+};
+IndexText split_index_text(std::string_view text, std::string_view what);
+
 // A complex refractive index as "n+ki" ("1.33+1e-08i"; "1.5" when k = 0), with
 // the 6 significant digits of a stream's default format.
 std::string index_text(std::complex<double> m);

@@ -3,8 +3,9 @@
 // Batch input: one problem per line, "x m_re m_im" separated by whitespace
 // and/or commas; '#' starts a comment; blank lines and the output's own
 // header line (x,m_re,m_im[,qext,...]) are skipped.  Output: CSV
-// with the header x,m_re,m_im,qext,qsca,qabs,qback,g and 17 significant
-// digits (round-trip for double).  A bad line (parse error, x <= 0, k < 0,
+// with the header x,m_re,m_im,qext,qsca,qabs,qback,g; the input x, m_re, m_im
+// as the shortest text that reads back to the same double, the results with
+// 17 significant digits (round-trip for double).  A bad line (parse error, x <= 0, k < 0,
 // non-finite value, wrong number of fields) is reported with its line number
 // and skipped; every good line is still computed.
 #pragma once
@@ -38,7 +39,9 @@ std::string csv_row(const Problem& p, const Efficiencies<double>& q);
 // (attenuvis/mie/spheres.hpp), with the same results as sphere().
 std::size_t run(std::istream& in, std::ostream& out, std::ostream& err, const Options& options = {});
 
-// "1.33,1e-8" or "1.33" (k = 0) -> m; throws std::invalid_argument.
+// "1.33+1e-8i", "1.33,1e-8" or "1.33" (k = 0) -> m, the project's one index
+// syntax (attenuvis/io/number_text.hpp: split_index_text); throws
+// std::invalid_argument.
 std::complex<double> parse_refractive_index(const std::string& text);
 // "0:180:1" (start:stop:step, stop included when hit within 1e-9·step),
 // "30" or "0,45,90" -> angles in degrees; throws std::invalid_argument.

@@ -61,7 +61,8 @@ using Drops = std::variant<MarshallPalmerRain, FogPreset, DistributionFile>;
 
 // The refractive index: Settings::water_table, a named water table, or a constant.
 struct SettingsWaterTable {};
-enum class WaterTable { hale_querry, segelstein };
+// ice: Warren & Brandt 2008 (data/refractive-index/ice-warren-brandt-2008).
+enum class WaterTable { hale_querry, segelstein, ice };
 struct ConstantIndex {
   std::complex<double> m;  // n + i k, k >= 0
 };
@@ -97,7 +98,7 @@ bool needs_mie(const Condition& c);
 bool depends_on_convention(const Condition& c);
 
 std::string to_string(FogPreset p);   // "advection" | "radiation"
-std::string to_string(WaterTable t);  // "hale-querry" | "segelstein"
+std::string to_string(WaterTable t);  // "hale-querry" | "segelstein" | "ice"
 
 // Grammar text (condition_grammar.hpp) that parses back to the same
 // condition, numbers in shortest round-trip form: for echoing conditions

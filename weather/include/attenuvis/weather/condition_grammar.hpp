@@ -28,6 +28,12 @@ const std::string& condition_grammar();
 // grammar.  A sweep (A..B) is an error here: use expand_conditions.
 Condition parse_condition(const std::string& text);
 
+// A comma-separated list of conditions ("clear,rain:8,fog:advection") cut
+// into its conditions, empty ones dropped.  A comma followed by a digit, '.',
+// '+' or '-' (where no condition can start) stays inside the condition, so
+// that ":m=1.33,0.001" survives in a list.
+std::vector<std::string> split_condition_list(const std::string& text);
+
 // Like parse_condition, but a sweep gives one condition per value, each
 // labelled with the text as written with the sweep replaced by its value
 // (rain:1..3 -> rain:1, rain:2, rain:3).  The swept number is A + i STEP, set
