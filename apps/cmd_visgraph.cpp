@@ -94,7 +94,7 @@ void check_work(const VgArguments& a, const vg::WorkEstimate& e) {
 // One ConditionInfo per comma-separated condition, in the user's spelling.
 std::vector<vg::ConditionInfo> conditions_to_sigma(const VgArguments& a, double& wavelength_m) {
   std::vector<vg::ConditionInfo> out;
-  const std::vector<std::string> labels = split(a.conditions, ',');
+  const std::vector<std::string> labels = weather::split_condition_list(a.conditions);
   if (labels.empty()) throw std::invalid_argument("--conditions: give at least one condition");
   const weather::Settings settings = weather_settings(a.weather);
   wavelength_m = cli::wavelength_m(a.weather);

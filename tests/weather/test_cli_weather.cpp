@@ -136,10 +136,10 @@ TEST_CASE("ice: --water ice and :water=ice name the same table, and --help says 
   const auto by_field = run("sigma fog:advection:water=ice --json");
   REQUIRE(by_option.status == 0);
   REQUIRE(by_field.status == 0);
-  const double ice = nlohmann::json::parse(by_option.out)[0]["sigma"].get<double>();
-  CHECK(nlohmann::json::parse(by_field.out)[0]["sigma"].get<double>() == ice);
+  const double ice = nlohmann::json::parse(by_option.output)[0]["sigma"].get<double>();
+  CHECK(nlohmann::json::parse(by_field.output)[0]["sigma"].get<double>() == ice);
   const auto help = run("sigma --help");
-  CHECK(help.out.find("ice (Warren & Brandt 2008)") != std::string::npos);
-  CHECK(help.out.find(":water=hale-querry|segelstein|ice") != std::string::npos);
+  CHECK(help.output.find("ice (Warren & Brandt 2008)") != std::string::npos);
+  CHECK(help.output.find(":water=hale-querry|segelstein|ice") != std::string::npos);
   CHECK(run("sigma fog:advection:water=snow").status != 0);
 }
