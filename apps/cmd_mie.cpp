@@ -103,6 +103,20 @@ void print_json(const MieArgs& a, std::complex<double> m, const mie::Scattering<
   std::cout << j.dump(2) << "\n";
 }
 
+// Amplitudes cost one series term per angle and order: refuse a request that
+// would run for minutes (e.g. 1e6 angles at x = 1e4) before spending it.
+constexpr double kMaxAmplitudeTerms = 1e9;  // a few seconds on one core
+
+void require_affordable_amplitudes(double x, std::size_t angles) {
+  if (!(x > 0 && x <= 1e6)) return;  // outside the domain: scatter() says so
+  const double work = static_cast<double>(angles) * static_cast<double>(mie::wiscombe_terms(x));
+  if (work > kMaxAmplitudeTerms)
+    throw std::invalid_argument("mie: " + std::to_string(angles) + " angles x about " +
+                                std::to_string(mie::wiscombe_terms(x)) + " series terms at x = " + io::shortest(x) +
+                                " is more than the " + io::significant(kMaxAmplitudeTerms, 2) +
+                                " amplitude terms this command computes; give --angles a coarser step");
+}
+
 void run(const MieArgs& a, const CLI::App& cmd) {
   const mie::Options options = make_options(a);
   if (cmd.count("--x") == 0) {
@@ -117,6 +131,7 @@ void run(const MieArgs& a, const CLI::App& cmd) {
   const std::complex<double> m = mie::batch::parse_refractive_index(a.m);
   mie::Extras extras;
   if (!a.angles.empty()) extras.angles_deg = mie::batch::parse_angles(a.angles);
+  require_affordable_amplitudes(a.x, extras.angles_deg.size());
   const mie::Scattering<double> s = mie::scatter(a.x, m, extras, options);
   if (a.json) print_json(a, m, s);
   else print_text(a, m, s);

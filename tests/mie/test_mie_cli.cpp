@@ -232,3 +232,14 @@ TEST_CASE("mie echoes its inputs as the shortest text that reads back, results a
   REQUIRE(row.size() == 8);
   CHECK(row[3] == mie::sphere(0.1, {1.33, 0.001}).qext);  // the result still reads back exactly
 }
+
+TEST_CASE("mie --angles: a request of minutes is refused before it runs", "[mie][cli]") {
+  // 1e6 angles at x = 1e4 (about 1e4 terms each): 1e10 amplitude terms.
+  const Run big = run_cli("mie --x 1e4 --m 1.33 --angles 0:180:0.00018");
+  CHECK(big.status != 0);
+  CHECK(big.out.empty());
+  CHECK_THAT(big.err, Catch::Contains("attenuvis: error:") && Catch::Contains("1000001 angles") &&
+                          Catch::Contains("coarser step"));
+  // The same grid at x = 1 (a few terms) is affordable.
+  CHECK(run_cli("mie --x 1 --m 1.33 --angles 0:180:0.018").status == 0);
+}
