@@ -179,7 +179,7 @@ TEST_CASE("mie batch: the fuzzer's regression lines are errors, not NaN rows", "
   }
 }
 
-TEST_CASE("--version names the version, commit, build type, Embree and Boost", "[cli]") {
+TEST_CASE("attenuvis --version names the version, commit, build type, Embree and Boost", "[cli]") {
   const Run r = run_cli("--version");
   CHECK(r.status == 0);
   CHECK(r.err.empty());
