@@ -374,3 +374,23 @@ TEST_CASE("reproduce --quick: report files and key numbers", "[validation][slow]
     CHECK(key("mie.time.max_error.default") <= 1e-10);
   }
 }
+
+TEST_CASE("reproduce: an output name taken by a directory stops the job with nothing moved", "[validation][slow]") {
+  const fs::path dir = fs::temp_directory_path() / ("attenuvis-reproduce-taken-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "key.json");  // where the job's key numbers would go
+  const fs::path log = dir.string() + ".log";
+  const std::string cmd = std::string("'") + ATTENUVIS_CLI + "' reproduce --quick --threads 2 --out '" +
+                          dir.string() + "' >'" + log.string() + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  const std::string text = slurp(log);
+  INFO(text);
+  CHECK(status != 0);
+  CHECK_THAT(text, Catch::Contains("attenuvis: error:") && Catch::Contains("key.json") &&
+                       Catch::Contains("not a regular file"));
+  std::vector<std::string> left;
+  for (const auto& e : fs::directory_iterator(dir)) left.push_back(e.path().filename().string());
+  CHECK(left == std::vector<std::string>{"key.json"});  // no table, figure or report moved in
+  fs::remove_all(dir);
+  fs::remove(log);
+}

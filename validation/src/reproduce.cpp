@@ -3,6 +3,7 @@
 // only then moves everything into the output directory.
 #include "attenuvis/validation/reproduce.hpp"
 #include "attenuvis/io/shell.hpp"
+#include "attenuvis/io/staged_file.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -392,6 +393,10 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(staging))
     if (e.is_regular_file() && e.path().filename() != "report.html") files.push_back(e.path());
+  // Every destination is checked before the first move, so a name taken by a
+  // directory or a device stops the job with nothing moved.
+  for (const auto& f : files) io::require_regular_or_absent((out / f.filename()).string());
+  if (options.figures) io::require_regular_or_absent((out / "report.html").string());
   for (const auto& f : files) fs::rename(f, out / f.filename());
   if (options.figures) {
     fs::rename(staging / "report.html", out / "report.html");
