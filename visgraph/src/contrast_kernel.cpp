@@ -4,8 +4,13 @@
 // at run time (GCC target_clones).  GCC contracts a*b+c into FMA by default
 // in C++ (-ffp-contract=fast outside ISO C modes) wherever the target has
 // FMA, which the AVX-512 clone does: contraction is switched off for this
-// file so that every clone computes bit-identical results.
+// file so that every clone computes bit-identical results (clang's default
+// contracts only within one expression, and its pragma says off as well).
+#if defined(__clang__)
+#pragma clang fp contract(off)
+#else
 #pragma GCC optimize("fp-contract=off")
+#endif
 
 #include "contrast_kernel.hpp"
 
