@@ -173,8 +173,6 @@ def draw_lines(fig_spec, path):
     raw = fig_spec["series"]
     series = [(np.asarray(s["x"], dtype=float), np.asarray([np.nan if v is None else v for v in s["y"]], dtype=float),
                s.get("label", "")) for s in raw]
-    n_entries = len(raw) + len(fig_spec.get("points", []))
-    below = n_entries > 5   # a long legend goes under the plot, so the plot keeps the page's width
     size = fig_spec.get("size", (7, 4.5))
     fig, ax = plt.subplots(figsize=(size[0], size[1]))
     same = coincidence(series, fig_spec)
@@ -212,20 +210,18 @@ def draw_lines(fig_spec, path):
         ax.set_xscale("log")
     if fig_spec.get("ylog"):
         ax.set_yscale("log")
-    for h in fig_spec.get("hlines", []):
-        ax.axhline(h["y"], color="gray", linestyle=":", linewidth=1.2)
-        ax.text(0.01, h["y"], " " + h.get("label", ""), transform=ax.get_yaxis_transform(), fontsize=8,
-                color="dimgray", va="bottom")
+    for h in fig_spec.get("hlines", []):   # named in the legend: a label on the plot would sit on data
+        ax.axhline(h["y"], color="dimgray", linestyle=":", linewidth=1.4, label=h.get("label") or f"{h['y']:g}")
     ax.set_xlabel(fig_spec.get("xlabel", ""))
     ax.set_ylabel(fig_spec.get("ylabel", ""))
     if "title" in fig_spec:
         ax.set_title(fig_spec["title"])
     ax.grid(True, which="both", alpha=0.3)
-    if below:
-        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1 if any(len(str(h.get_label())) > 45
-                  for h in ax.get_legend_handles_labels()[0]) else 2, frameon=False)
-    else:
-        ax.legend()
+    # The legend goes under the plot, where it cannot cover a data point.
+    labels = ax.get_legend_handles_labels()[1]
+    longest = max((len(t) for t in labels), default=0)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.14), frameon=False,
+              ncol=1 if longest > 45 else 2 if (longest > 22 or len(labels) > 6) else min(3, len(labels)))
     fig.savefig(path, dpi=110, bbox_inches="tight")
     plt.close(fig)
 

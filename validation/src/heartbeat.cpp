@@ -38,8 +38,9 @@ void Heartbeat::run() {
     const double t = seconds_since(start_);
     char line[160];
     // Time left from the work done so far (items differ in cost; the work
-    // units say by how much).
-    if (work_done_ > 0 && work_done_ < total_work_)
+    // units say by how much), once enough is done for the rate to mean
+    // something: early on, finished items are the cheap ones.
+    if (work_done_ >= 0.2 * total_work_ && work_done_ < total_work_)
       std::snprintf(line, sizeof line, ": %zu of %zu done, %.0f s, about %.0f s left",
                     items_done_.load(std::memory_order_relaxed), items_, t, t * (total_work_ - work_done_) / work_done_);
     else
