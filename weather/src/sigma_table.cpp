@@ -58,7 +58,7 @@ std::string missing_value_rule() {
   return "sigma_sca, sigma_abs, ssa and g exist only for Mie conditions (a size distribution): they are missing "
          "for power laws, visibility models, clear air and a given sigma, and where the integral used the "
          "large-sphere expansion of Q_ext (rain drops beyond x = 2000), which gives no Q_sca; "
-         "koschmieder_visibility_m is missing where sigma_ext = 0 (unbounded)";
+         "the Koschmieder visibility is missing where sigma_ext = 0 (unbounded)";
 }
 
 QuantityValue table_value(const TableCell& cell, Quantity q) {
