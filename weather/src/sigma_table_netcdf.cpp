@@ -90,6 +90,55 @@ std::string define_condition_coordinates(io::NetcdfFile& f, const SigmaTable& t,
   return coordinates;
 }
 
+// The (wavelength, condition) fields: every quantity and its error, and the
+// Koschmieder visibility; their values in C order, written after enddef.
+struct Field {
+  int variable;
+  std::vector<double> values;
+};
+
+std::vector<Field> define_fields(io::NetcdfFile& f, const SigmaTable& t, SigmaUnit unit, int wdim, int cdim,
+                                 const std::string& coordinates) {
+  std::vector<Field> fields;
+  auto add = [&](const std::string& name, const std::string& units, const std::string& long_name,
+                 const std::string& standard_name, const std::function<double(const TableCell&)>& value) {
+    const int var = f.add_double_variable(name, {wdim, cdim});
+    f.set_attribute(var, "_FillValue", kMissing);
+    describe(f, var, units, long_name, standard_name);
+    f.set_attribute(var, "coordinates", coordinates);
+    std::vector<double> values(t.cells.size());
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = value(t.cells[i]);
+    fields.push_back({var, std::move(values)});
+    return var;
+  };
+  for (Quantity q : t.quantities) {
+    const QuantityInfo& qi = info(q);
+    const QuantityKind kind = qi.kind;
+    const std::string units = *udunits_text(kind, unit);
+    const int var = add(qi.name, units, qi.long_name, qi.standard_name, [q, kind, unit](const TableCell& c) {
+      return in_table_unit(kind, table_value(c, q).value, unit);
+    });
+    f.set_attribute(var, "ancillary_variables", qi.name + "_error");
+    const int err = add(qi.name + "_error", units, "error estimate of " + qi.name, "",
+                        [q, kind, unit](const TableCell& c) { return in_table_unit(kind, table_value(c, q).error, unit); });
+    f.set_attribute(err, "comment", "estimated bound on |" + qi.name + " - true value|; 0 for closed-form models");
+  }
+  const double threshold = t.settings.contrast_threshold;
+  add("koschmieder_visibility", "m",
+      "visibility from sigma_ext by Koschmieder at contrast threshold " + io::shortest(threshold),
+      "visibility_in_air", [threshold](const TableCell& c) {
+        return c.sigma.per_m > 0 ? koschmieder_visibility_m(c.sigma.per_m, threshold) : kMissing;
+      });
+  return fields;
+}
+
+// One string per condition (from the first wavelength's cell) or per cell.
+std::vector<std::string> per_condition(const SigmaTable& t, const std::function<std::string(std::size_t c)>& text) {
+  std::vector<std::string> out;
+  for (std::size_t c = 0; c < t.conditions.size(); ++c) out.push_back(text(c));
+  return out;
+}
+
 }  // namespace
 
 void write_sigma_table_netcdf(const SigmaTable& t, const std::string& path, SigmaUnit unit,
@@ -97,11 +146,11 @@ void write_sigma_table_netcdf(const SigmaTable& t, const std::string& path, Sigm
   if (!udunits_text(QuantityKind::coefficient, unit))
     throw std::invalid_argument("netCDF tables take --units m or km: " + to_string(unit) +
                                 " has no UDUNITS spelling, which CF requires of a units attribute");
-  const std::size_t nw = t.wavelengths_m.size(), nc = t.conditions.size();
+  if (t.wavelengths_m.empty() || t.conditions.empty()) throw std::invalid_argument("an empty table has no netCDF form");
   io::NetcdfFile f(path);
   set_global_attributes(f, t, provenance);
-  const int wdim = f.add_dimension("wavelength", nw), cdim = f.add_dimension("condition", nc);
-
+  const int wdim = f.add_dimension("wavelength", t.wavelengths_m.size());
+  const int cdim = f.add_dimension("condition", t.conditions.size());
   const int wvar = f.add_double_variable("wavelength", {wdim});
   describe(f, wvar, "nm", "wavelength in vacuum", "radiation_wavelength");
   const int label_var = f.add_string_variable("condition_label", {cdim});
@@ -112,38 +161,7 @@ void write_sigma_table_netcdf(const SigmaTable& t, const std::string& path, Sigm
   describe(f, convention_var, "", "power-law reading used (itu, seed; n/a where none enters)", "");
   std::vector<std::pair<int, std::vector<double>>> parameters;
   const std::string coordinates = define_condition_coordinates(f, t, cdim, unit, parameters);
-
-  // Every quantity and its error, plus the Koschmieder visibility: (variable id, values) in C order.
-  std::vector<std::pair<int, std::vector<double>>> fields;
-  auto add_field = [&](const std::string& name, const std::string& units, const std::string& long_name,
-                       const std::string& standard_name, const std::function<double(const TableCell&)>& value) {
-    const int var = f.add_double_variable(name, {wdim, cdim});
-    f.set_attribute(var, "_FillValue", kMissing);
-    describe(f, var, units, long_name, standard_name);
-    f.set_attribute(var, "coordinates", coordinates);
-    std::vector<double> values(nw * nc);
-    for (std::size_t i = 0; i < values.size(); ++i) values[i] = value(t.cells[i]);
-    fields.push_back({var, std::move(values)});
-    return var;
-  };
-  for (Quantity q : t.quantities) {
-    const QuantityInfo& qi = info(q);
-    const bool coefficient = qi.kind == QuantityKind::coefficient;
-    auto convert = [coefficient, unit](double v) { return coefficient && std::isfinite(v) ? convert_from_per_m(v, unit) : v; };
-    const std::string units = *udunits_text(qi.kind, unit);
-    const int var = add_field(qi.name, units, qi.long_name, qi.standard_name,
-                              [q, convert](const TableCell& c) { return convert(table_value(c, q).value); });
-    f.set_attribute(var, "ancillary_variables", qi.name + "_error");
-    const int err = add_field(qi.name + "_error", units, "error estimate of " + qi.name, "",
-                              [q, convert](const TableCell& c) { return convert(table_value(c, q).error); });
-    f.set_attribute(err, "comment", "estimated bound on |" + qi.name + " - true value|; 0 for closed-form models");
-  }
-  const double threshold = t.settings.contrast_threshold;
-  add_field("koschmieder_visibility", "m",
-            "visibility from sigma_ext by Koschmieder at contrast threshold " + io::shortest(threshold),
-            "visibility_in_air", [threshold](const TableCell& c) {
-              return c.sigma.per_m > 0 ? koschmieder_visibility_m(c.sigma.per_m, threshold) : kMissing;
-            });
+  const std::vector<Field> fields = define_fields(f, t, unit, wdim, cdim, coordinates);
   const int method_var = f.add_string_variable("sigma_ext_method", {wdim, cdim});
   describe(f, method_var, "", "how sigma_ext was computed: refractive index, integration method, warnings (empty: closed form)", "");
   f.end_definitions();
@@ -151,19 +169,14 @@ void write_sigma_table_netcdf(const SigmaTable& t, const std::string& path, Sigm
   std::vector<double> wavelengths;
   for (double w : t.wavelengths_m) wavelengths.push_back(wavelength_nm(w));
   f.write(wvar, wavelengths);
-  std::vector<std::string> labels, models, conventions, methods;
-  for (std::size_t c = 0; c < nc; ++c) {
-    labels.push_back(t.conditions[c].label);
-    models.push_back(nw ? t.at(0, c).sigma.model : "");
-    conventions.push_back(nw ? t.at(0, c).sigma.convention : "");
-  }
+  f.write(label_var, per_condition(t, [&](std::size_t c) { return t.conditions[c].label; }));
+  f.write(model_var, per_condition(t, [&](std::size_t c) { return t.at(0, c).sigma.model; }));
+  f.write(convention_var, per_condition(t, [&](std::size_t c) { return t.at(0, c).sigma.convention; }));
+  std::vector<std::string> methods;
   for (const auto& cell : t.cells) methods.push_back(cell.sigma.note);
-  f.write(label_var, labels);
-  f.write(model_var, models);
-  f.write(convention_var, conventions);
   f.write(method_var, methods);
   for (const auto& [var, values] : parameters) f.write(var, values);
-  for (const auto& [var, values] : fields) f.write(var, values);
+  for (const auto& field : fields) f.write(field.variable, field.values);
   f.commit();
 }
 

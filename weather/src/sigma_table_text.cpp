@@ -1,8 +1,10 @@
 // The text formats of a sigma table: CSV (numbers only, one header line) with
 // a JSON sidecar that says what every column is and how each cell was
 // computed, and one self-contained JSON document holding both.
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -45,13 +47,16 @@ std::vector<Column> numeric_columns(const SigmaTable& t, SigmaUnit unit) {
   }
   for (Quantity q : t.quantities) {
     const QuantityInfo& qi = info(q);
-    const bool coefficient = qi.kind == QuantityKind::coefficient;
-    const std::string suffix = coefficient ? "_" + unit_suffix(unit) : "";
-    auto convert = [coefficient, unit](double v) { return coefficient && std::isfinite(v) ? convert_from_per_m(v, unit) : v; };
-    out.push_back({qi.name + suffix, unit_text(qi.kind, unit), qi.long_name, qi.standard_name,
-                   [&t, q, convert](std::size_t w, std::size_t c) { return convert(table_value(t.at(w, c), q).value); }});
-    out.push_back({qi.name + "_error" + suffix, unit_text(qi.kind, unit), "error estimate of " + qi.name, "",
-                   [&t, q, convert](std::size_t w, std::size_t c) { return convert(table_value(t.at(w, c), q).error); }});
+    const std::string suffix = column_suffix(qi.kind, unit);
+    const QuantityKind kind = qi.kind;
+    out.push_back({qi.name + suffix, unit_text(kind, unit), qi.long_name, qi.standard_name,
+                   [&t, q, kind, unit](std::size_t w, std::size_t c) {
+                     return in_table_unit(kind, table_value(t.at(w, c), q).value, unit);
+                   }});
+    out.push_back({qi.name + "_error" + suffix, unit_text(kind, unit), "error estimate of " + qi.name, "",
+                   [&t, q, kind, unit](std::size_t w, std::size_t c) {
+                     return in_table_unit(kind, table_value(t.at(w, c), q).error, unit);
+                   }});
   }
   const double threshold = t.settings.contrast_threshold;
   out.push_back({"koschmieder_visibility_m", "m",

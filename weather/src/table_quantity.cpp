@@ -2,6 +2,7 @@
 #include "attenuvis/weather/table_quantity.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -72,6 +73,15 @@ std::string unit_suffix(SigmaUnit unit) {
     case SigmaUnit::dB_per_km: return "dB_per_km";
   }
   return "";
+}
+
+std::string column_suffix(QuantityKind kind, SigmaUnit unit) {
+  return kind == QuantityKind::coefficient ? "_" + unit_suffix(unit) : "";
+}
+
+double in_table_unit(QuantityKind kind, double value, SigmaUnit unit) {
+  if (kind == QuantityKind::dimensionless || !std::isfinite(value)) return value;
+  return convert_from_per_m(value, unit);
 }
 
 std::optional<ConditionParameter> condition_parameter(const Condition& condition) {

@@ -5,7 +5,10 @@
 // variable), a kind that fixes its unit, a long name and, where the CF
 // standard-name table has one, a standard name.  A new quantity is one enum
 // value, one registry row (table_quantity.cpp) and one case in table_value
-// (sigma_table.cpp); the writers need nothing more.
+// (sigma_table.cpp); the writers need nothing more.  A quantity of a new
+// unit (backscatter in 1/(m sr), a lidar ratio in sr) adds a QuantityKind and
+// its cases in the four unit functions below; one on a further axis (Legendre
+// moments, a phase function on angles) adds that dimension to the writers.
 #pragma once
 
 #include <optional>
@@ -48,6 +51,10 @@ std::string unit_text(QuantityKind kind, SigmaUnit unit);
 std::optional<std::string> udunits_text(QuantityKind kind, SigmaUnit unit);
 // The column-name suffix of a unit: "per_m", "per_km", "dB_per_km".
 std::string unit_suffix(SigmaUnit unit);
+// What the writers need of a kind: the column suffix ("_per_km"; "" for a
+// ratio) and a value in SI converted to the table's unit (NaN stays NaN).
+std::string column_suffix(QuantityKind kind, SigmaUnit unit);
+double in_table_unit(QuantityKind kind, double value, SigmaUnit unit);
 
 // The number a condition is set by (and that a sweep varies): the rain or
 // snow rate, a visibility or a given sigma.  Conditions set by nothing
