@@ -1,5 +1,6 @@
 // attenuvis sigma | table | distribution: argument parsing only; the work is
 // in attenuvis::weather.
+#include <cmath>
 #include <iostream>
 #include <sstream>
 
@@ -142,6 +143,22 @@ void run_table(const TableOptions& t, const CommonOptions& o) {
             << parsed.size() << " conditions to " << t.out;
   if (table_format == w::TableFormat::csv) std::cout << " (column descriptions in " << w::csv_sidecar_path(t.out) << ")";
   std::cout << "\n";
+  // Say which conditions leave quantities missing, so an empty column is no surprise.
+  std::vector<std::string> missing;
+  for (std::size_t c = 0; c < parsed.size(); ++c)
+    for (std::size_t wl = 0; wl < table.wavelengths_m.size() && (missing.empty() || missing.back() != parsed[c].label); ++wl)
+      for (auto q : quantities)
+        if (std::isnan(w::table_value(table.at(wl, c), q).value)) {
+          missing.push_back(parsed[c].label);
+          break;
+        }
+  if (!missing.empty()) {
+    std::cout << "note: " << missing.size() << " of " << parsed.size()
+              << " conditions have missing values (quantities beyond sigma_ext need a size distribution; see "
+                 "missing_values in the metadata):";
+    for (std::size_t i = 0; i < missing.size() && i < 5; ++i) std::cout << " " << missing[i];
+    std::cout << (missing.size() > 5 ? " ...\n" : "\n");
+  }
 }
 
 void run_distribution(const std::string& what, const std::string& density_text, bool json) {

@@ -93,6 +93,13 @@ TEST_CASE("table: bad quantities, and dB/km in netCDF, are refused before any wo
   CHECK(f.status != 0);
   CHECK_THAT(f.output, Contains("netcdf"));
   CHECK(!exists(nc));
+  // Quantities a condition cannot have are missing by rule, not an error, and the run says so.
+  const std::string csv = "weather_cli_table_missing.csv";
+  auto g = run("table --conditions rain:8 --quantities sigma_ext,g --out " + csv);
+  CHECK(g.status == 0);
+  CHECK_THAT(g.output, Contains("note: 1 of 1 conditions have missing values") && Contains("rain:8"));
+  std::remove(csv.c_str());
+  std::remove((csv + ".meta.json").c_str());
   // A failing cell leaves no netCDF file (nor a temporary) behind.
   auto cell = run("table --conditions rain:8,fog:file=does-not-exist.csv --format netcdf --out " + nc);
   CHECK(cell.status != 0);
