@@ -1,6 +1,5 @@
 // attenuvis sigma | table | distribution: argument parsing only; the work is
 // in attenuvis::weather.
-#include <cmath>
 #include <iostream>
 #include <sstream>
 
@@ -95,6 +94,19 @@ std::vector<NamedPath> condition_inputs(const std::vector<w::LabelledCondition>&
   return out;
 }
 
+// build_info()'s lines (version, commit, build type, libraries) as one line, runs of blanks squeezed.
+std::string producer() {
+  std::string out;
+  std::istringstream lines(build_info());
+  for (std::string line; std::getline(lines, line);) {
+    std::string squeezed;
+    for (char ch : line)
+      if (ch != ' ' || squeezed.empty() || squeezed.back() != ' ') squeezed += ch;
+    out += (out.empty() ? "" : "; ") + squeezed;
+  }
+  return out;
+}
+
 struct TableOptions {
   std::string conditions, wavelengths = "550nm", quantities = "sigma_ext", format = "csv", out;
   int threads = 0;
@@ -131,27 +143,13 @@ void run_table(const TableOptions& t, const CommonOptions& o) {
     }
   }();
   auto table = w::sigma_table(parsed, wavelengths_m, s, t.threads, quantities);
-  // Provenance: build_info()'s lines (version, commit, build type, libraries) on one line.
-  std::string producer;
-  std::istringstream lines(build_info());
-  for (std::string line; std::getline(lines, line);) {
-    const auto text = line.substr(0, line.find_first_of(' ') + 1) + line.substr(line.find_first_not_of(' ', line.find(' ')));
-    producer += (producer.empty() ? "" : "; ") + text;
-  }
-  w::write_sigma_table(table, t.out, table_format, unit, {producer});
+  w::write_sigma_table(table, t.out, table_format, unit, {producer()});
   std::cout << "wrote " << quantities.size() << " quantities x " << table.wavelengths_m.size() << " wavelengths x "
             << parsed.size() << " conditions to " << t.out;
   if (table_format == w::TableFormat::csv) std::cout << " (column descriptions in " << w::csv_sidecar_path(t.out) << ")";
   std::cout << "\n";
   // Say which conditions leave quantities missing, so an empty column is no surprise.
-  std::vector<std::string> missing;
-  for (std::size_t c = 0; c < parsed.size(); ++c)
-    for (std::size_t wl = 0; wl < table.wavelengths_m.size() && (missing.empty() || missing.back() != parsed[c].label); ++wl)
-      for (auto q : quantities)
-        if (std::isnan(w::table_value(table.at(wl, c), q).value)) {
-          missing.push_back(parsed[c].label);
-          break;
-        }
+  const auto missing = w::conditions_with_missing_values(table);
   if (!missing.empty()) {
     std::cout << "note: " << missing.size() << " of " << parsed.size()
               << " conditions have missing values (quantities beyond sigma_ext need a size distribution; see "

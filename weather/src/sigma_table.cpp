@@ -77,6 +77,17 @@ QuantityValue table_value(const TableCell& cell, Quantity q) {
   return {missing, missing};
 }
 
+std::vector<std::string> conditions_with_missing_values(const SigmaTable& t) {
+  std::vector<std::string> out;
+  for (std::size_t c = 0; c < t.conditions.size(); ++c) {
+    bool missing = false;
+    for (std::size_t w = 0; w < t.wavelengths_m.size() && !missing; ++w)
+      for (Quantity q : t.quantities) missing = missing || std::isnan(table_value(t.at(w, c), q).value);
+    if (missing) out.push_back(t.conditions[c].label);
+  }
+  return out;
+}
+
 SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const std::vector<double>& wavelengths,
                        const Settings& settings, int threads, const std::vector<Quantity>& quantities) {
   SigmaTable t;

@@ -46,6 +46,9 @@ struct SigmaTable {
 };
 
 QuantityValue table_value(const TableCell& cell, Quantity q);
+// The labels of the conditions with a missing value of some asked-for
+// quantity at some wavelength, in table order.
+std::vector<std::string> conditions_with_missing_values(const SigmaTable& t);
 // The rule above in one sentence, for the outputs' metadata.
 std::string missing_value_rule();
 // A table wavelength in nm as the outputs write it: 12 significant digits,
