@@ -117,3 +117,19 @@ TEST_CASE("CSV table: a plain header first, parameters as numeric columns, missi
   CHECK_THAT(sidecar, Contains("\"sigma_ext_per_km\"") && Contains("\"1/km\"") && Contains("missing_values") &&
                           Contains("attenuvis test"));
 }
+
+TEST_CASE("sigma's error parts add up to its error, on the contour and on the real axis", "[weather][table]") {
+  const std::string file = std::string(ATTENUVIS_TEST_DATA_DIR) + "/weather/one_bin.csv";
+  for (const std::string& text : {std::string("fog:advection"), "fog:file=" + file}) {
+    INFO(text);
+    const Sigma s = sigma(parse_condition(text), 550e-9, Settings{});
+    REQUIRE(s.error_terms.size() >= 3);
+    double sum = 0;
+    for (const auto& e : s.error_terms) {
+      CHECK(e.per_m >= 0);
+      sum += e.per_m;
+    }
+    CHECK(sum == Approx(s.error_per_m).epsilon(1e-12));
+    CHECK(s.note.find("1/m") == std::string::npos);  // the note carries no numbers in a unit
+  }
+}
