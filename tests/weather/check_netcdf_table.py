@@ -89,9 +89,11 @@ def main():
         check(bool(v.long_name), "%s long_name" % q)
         check(v.ancillary_variables == q + "_error", "%s ancillary_variables" % q)
         check("condition_label" in v.coordinates and "rate" in v.coordinates, "%s coordinates" % q)
-        if q == "sigma_ext":
-            check(v.standard_name == "volume_extinction_coefficient_in_air_due_to_ambient_aerosol_particles",
-                  "sigma_ext standard_name")
+        # CF's aerosol coefficients exclude cloud droplets: no aerosol standard_name on fog and rain, and
+        # the coefficients say why.
+        check("aerosol" not in getattr(v, "standard_name", ""), "%s standard_name" % q)
+        if q in COEFFICIENTS:
+            check("cloud droplets" in v.comment, "%s comment on its standard name" % q)
 
     compared = 0
     for row in rows:

@@ -47,8 +47,12 @@ TEST_CASE("the quantity registry names every quantity once, with units and long 
     CHECK(static_cast<std::size_t>(all[i].id) == i);
     CHECK(!all[i].long_name.empty());
     for (std::size_t j = 0; j < i; ++j) CHECK(all[i].name != all[j].name);
-    // The three coefficients have CF standard names; the ratios have none in the CF table.
-    CHECK(all[i].standard_name.empty() == (all[i].kind == QuantityKind::dimensionless));
+    // CF's particle coefficients are named for aerosol, "suspended liquid or solid particles in air
+    // (except cloud droplets)" (CF Standard Name Table, e.g. the description of
+    // number_concentration_of_ambient_aerosol_particles_in_air): no quantity of fog or rain may claim them,
+    // and a coefficient says why it has no standard name.
+    CHECK(all[i].standard_name.find("aerosol") == std::string::npos);
+    if (all[i].kind == QuantityKind::coefficient && all[i].standard_name.empty()) CHECK(!all[i].comment.empty());
   }
   CHECK(parse_quantity_list("g,sigma_ext,ssa") == std::vector<Quantity>{Quantity::g, Quantity::sigma_ext, Quantity::ssa});
   CHECK_THROWS_WITH(parse_quantity_list("sigma_ext,albedo"), Contains("unknown quantity 'albedo'") && Contains("ssa"));

@@ -10,7 +10,8 @@
 //                                the kinds present; _FillValue where a
 //                                condition has none (CF 1.8 sec. 5)
 //   Q(wavelength, condition)     every quantity asked for, with units,
-//                                long_name, standard_name where CF has one,
+//                                long_name, standard_name where CF has one
+//                                that fits (table_quantity.cpp: none yet),
 //                                coordinates and ancillary_variables = Q_error
 //   Q_error(wavelength, condition)  its error estimate, same units
 //   koschmieder_visibility(wavelength, condition), model(condition),
@@ -119,6 +120,7 @@ std::vector<Field> define_fields(io::NetcdfFile& f, const SigmaTable& t, SigmaUn
       return in_table_unit(kind, table_value(c, q).value, unit);
     });
     f.set_attribute(var, "ancillary_variables", qi.name + "_error");
+    if (!qi.comment.empty()) f.set_attribute(var, "comment", qi.comment);
     const int err = add(qi.name + "_error", units, "error estimate of " + qi.name, "",
                         [q, kind, unit](const TableCell& c) { return in_table_unit(kind, table_value(c, q).error, unit); });
     f.set_attribute(err, "comment", "estimated bound on |" + qi.name + " - true value|; 0 for closed-form models");

@@ -18,7 +18,7 @@ namespace {
 
 // One numeric column of the CSV (and member of a JSON row).
 struct Column {
-  std::string name, unit, long_name, standard_name;
+  std::string name, unit, long_name, standard_name, comment;
   std::function<double(std::size_t w, std::size_t c)> value;  // NaN: missing
 };
 
@@ -26,7 +26,7 @@ constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
 
 std::vector<Column> numeric_columns(const SigmaTable& t, SigmaUnit unit) {
   std::vector<Column> out;
-  out.push_back({"wavelength_nm", "nm", "wavelength in vacuum", "radiation_wavelength",
+  out.push_back({"wavelength_nm", "nm", "wavelength in vacuum", "radiation_wavelength", "",
                  [&t](std::size_t w, std::size_t) { return wavelength_nm(t.wavelengths_m[w]); }});
   // The parameters the conditions are set by (the swept ones among them), one column per kind present.
   for (ParameterKind kind : {ParameterKind::rate, ParameterKind::visibility, ParameterKind::given_sigma}) {
@@ -39,7 +39,7 @@ std::vector<Column> numeric_columns(const SigmaTable& t, SigmaUnit unit) {
     const bool coefficient = kind == ParameterKind::given_sigma;
     const std::string u = coefficient ? to_string(unit) : p.unit;
     const std::string name = p.name + "_" + (coefficient ? unit_suffix(unit) : kind == ParameterKind::rate ? "mm_h" : "m");
-    out.push_back({name, u, p.long_name, p.standard_name, [&t, kind, coefficient, unit](std::size_t, std::size_t c) {
+    out.push_back({name, u, p.long_name, p.standard_name, "", [&t, kind, coefficient, unit](std::size_t, std::size_t c) {
                      const auto q = condition_parameter(t.conditions[c].condition);
                      if (!q || q->kind != kind) return kMissing;
                      return coefficient ? convert_from_per_m(q->value, unit) : q->value;
@@ -49,11 +49,11 @@ std::vector<Column> numeric_columns(const SigmaTable& t, SigmaUnit unit) {
     const QuantityInfo& qi = info(q);
     const std::string suffix = column_suffix(qi.kind, unit);
     const QuantityKind kind = qi.kind;
-    out.push_back({qi.name + suffix, unit_text(kind, unit), qi.long_name, qi.standard_name,
+    out.push_back({qi.name + suffix, unit_text(kind, unit), qi.long_name, qi.standard_name, qi.comment,
                    [&t, q, kind, unit](std::size_t w, std::size_t c) {
                      return in_table_unit(kind, table_value(t.at(w, c), q).value, unit);
                    }});
-    out.push_back({qi.name + "_error" + suffix, unit_text(kind, unit), "error estimate of " + qi.name, "",
+    out.push_back({qi.name + "_error" + suffix, unit_text(kind, unit), "error estimate of " + qi.name, "", "",
                    [&t, q, kind, unit](std::size_t w, std::size_t c) {
                      return in_table_unit(kind, table_value(t.at(w, c), q).error, unit);
                    }});
@@ -61,7 +61,7 @@ std::vector<Column> numeric_columns(const SigmaTable& t, SigmaUnit unit) {
   const double threshold = t.settings.contrast_threshold;
   out.push_back({"koschmieder_visibility_m", "m",
                  "visibility from sigma_ext by Koschmieder at contrast threshold " + io::shortest(threshold),
-                 "visibility_in_air", [&t, threshold](std::size_t w, std::size_t c) {
+                 "visibility_in_air", "", [&t, threshold](std::size_t w, std::size_t c) {
                    const double s = t.at(w, c).sigma.per_m;
                    return s > 0 ? koschmieder_visibility_m(s, threshold) : kMissing;
                  }});
@@ -93,6 +93,7 @@ nlohmann::ordered_json metadata(const SigmaTable& t, SigmaUnit unit, const Table
   for (const auto& c : columns) {
     json col = {{"name", c.name}, {"units", c.unit}, {"long_name", c.long_name}};
     if (!c.standard_name.empty()) col["standard_name"] = c.standard_name;
+    if (!c.comment.empty()) col["comment"] = c.comment;
     cols.push_back(col);
   }
   cols.push_back({{"name", "convention"}, {"long_name", "power-law reading used for the row (n/a: none enters)"}});

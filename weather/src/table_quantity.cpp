@@ -9,18 +9,24 @@
 namespace attenuvis::weather {
 
 const std::vector<QuantityInfo>& table_quantities() {
-  // CF standard names (CF Standard Name Table): volume_*_coefficient_in_air_due_to_ambient_aerosol_particles
-  // are the CF names for the extinction, scattering and absorption of particles suspended in air, which
-  // is what a drop distribution is; CF has none for the bulk albedo or asymmetry parameter.
+  // CF (Standard Name Table) names the particle coefficients only for aerosol,
+  // volume_{extinction,scattering,absorption}_coefficient_in_air_due_to_ambient_aerosol_particles,
+  // and defines "aerosol" as suspended particles "except cloud droplets": fog drops are cloud
+  // droplets and rain and snow are precipitation, so those names would misdescribe every Mie
+  // condition here.  CF has no name for a hydrometeor's coefficient, the bulk albedo or the
+  // asymmetry parameter; the quantities carry long names and no standard name.
+  static const std::string no_cf_name =
+      "no CF standard_name: CF's volume_*_coefficient_in_air_due_to_ambient_aerosol_particles exclude cloud "
+      "droplets, and fog, rain and snow are hydrometeors";
   static const std::vector<QuantityInfo> table = {
-      {Quantity::sigma_ext, "sigma_ext", QuantityKind::coefficient, "volume extinction coefficient",
-       "volume_extinction_coefficient_in_air_due_to_ambient_aerosol_particles", false},
-      {Quantity::sigma_sca, "sigma_sca", QuantityKind::coefficient, "volume scattering coefficient",
-       "volume_scattering_coefficient_in_air_due_to_ambient_aerosol_particles", true},
-      {Quantity::sigma_abs, "sigma_abs", QuantityKind::coefficient, "volume absorption coefficient",
-       "volume_absorption_coefficient_in_air_due_to_ambient_aerosol_particles", true},
-      {Quantity::ssa, "ssa", QuantityKind::dimensionless, "single-scattering albedo sigma_sca/sigma_ext", "", true},
-      {Quantity::g, "g", QuantityKind::dimensionless, "asymmetry parameter <cos theta>, scattering-weighted", "",
+      {Quantity::sigma_ext, "sigma_ext", QuantityKind::coefficient, "volume extinction coefficient", "", no_cf_name,
+       false},
+      {Quantity::sigma_sca, "sigma_sca", QuantityKind::coefficient, "volume scattering coefficient", "", no_cf_name,
+       true},
+      {Quantity::sigma_abs, "sigma_abs", QuantityKind::coefficient, "volume absorption coefficient", "", no_cf_name,
+       true},
+      {Quantity::ssa, "ssa", QuantityKind::dimensionless, "single-scattering albedo sigma_sca/sigma_ext", "", "", true},
+      {Quantity::g, "g", QuantityKind::dimensionless, "asymmetry parameter <cos theta>, scattering-weighted", "", "",
        true},
   };
   return table;

@@ -3,7 +3,7 @@
 //
 // Each quantity has a name (the CSV column, the JSON member, the netCDF
 // variable), a kind that fixes its unit, a long name and, where the CF
-// standard-name table has one, a standard name.  A new quantity is one enum
+// standard-name table has one that fits hydrometeors, a standard name.  A new quantity is one enum
 // value, one registry row (table_quantity.cpp) and one case in table_value
 // (sigma_table.cpp); the writers need nothing more.  A quantity of a new
 // unit (backscatter in 1/(m sr), a lidar ratio in sr) adds a QuantityKind and
@@ -32,7 +32,8 @@ struct QuantityInfo {
   std::string name;           // "sigma_ext"
   QuantityKind kind;
   std::string long_name;      // "volume extinction coefficient"
-  std::string standard_name;  // CF standard name, "" where CF has none
+  std::string standard_name;  // CF standard name, "" where CF has none that fits
+  std::string comment;        // why there is no standard name, where one might be expected
   bool needs_size_distribution;  // only Mie conditions have it; other rows are empty
 };
 
