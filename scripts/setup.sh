@@ -11,6 +11,7 @@ packages=(
   libeigen3-dev libembree-dev libtinyobjloader-dev libtbb-dev libnanoflann-dev
   libcli11-dev nlohmann-json3-dev catch2 libbenchmark-dev libtinygltf-dev
   python3 python3-matplotlib python3-numpy
+  libnetcdf-dev python3-netcdf4 python3-xarray   # netCDF-4 tables and the test that reads them back
 )
 # Callers add what only they need (scripts/test.sh: clang and its libFuzzer runtime).
 read -r -a extra <<<"${ATTENUVIS_EXTRA_PACKAGES:-}"
