@@ -11,6 +11,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <chrono>
 #include <complex>
 #include <cstdint>
 #include <vector>
@@ -174,6 +175,22 @@ void bind_mie(py::module_ module) {
   module.def("scattering_matrix_expansion", &expansion, py::arg("x"), py::arg("m"),
              py::arg("max_order") = py::none());
   module.def("phase_function_from_moments", &phase_from_moments, py::arg("chi"), py::arg("angles_deg"));
+  // Benchmark baseline (validation/bench/python_overhead.py): one spheres()
+  // call over the whole array, as a C++ program makes it, timed in C++.
+  module.def(
+      "spheres_seconds",
+      [](Doubles x, std::complex<double> m, unsigned threads) {
+        std::vector<mie::Efficiencies<double>> out(static_cast<std::size_t>(x.size()));
+        mie::SpheresOptions options;
+        options.threads = threads;
+        py::gil_scoped_release release;
+        const auto start = std::chrono::steady_clock::now();
+        mie::spheres(x.data(), m, out.size(), out.data(), options);
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      },
+      py::arg("x"), py::arg("m"), py::arg("threads") = 0,
+      "Seconds one C++ spheres() call takes over x (contiguous float64) at one m: the baseline of the "
+      "Python overhead benchmark.");
   module.def(
       "sphere",
       [](double x, std::complex<double> m) {
