@@ -103,7 +103,8 @@ def efficiencies(x=None, m=None, *, radius=None, wavelength=None, medium_index=N
     Returns
     -------
     Efficiencies
-        Named tuple of arrays with the broadcast shape of x and m.
+        Named tuple of arrays with the broadcast shape of x and m (NumPy
+        scalars when x and m are scalars).
 
     x and m broadcast together (NumPy rules); any real dtype and any strides
     are accepted (converted to contiguous float64/complex128 only when they
@@ -140,7 +141,8 @@ def efficiencies(x=None, m=None, *, radius=None, wavelength=None, medium_index=N
             where += f" (index {tuple(int(i) for i in np.unravel_index(index, shape))})"
         more = f" (and {len(bad) - 1} more bad elements)" if len(bad) > 1 else ""
         raise ValueError(f"{where}: {reason}{more}")
-    return Efficiencies(*(a.reshape(shape) for a in (qext, qsca, qabs, qback, qpr, g, terms)))
+    # NumPy's rule: scalars in, scalars (0-d, np.float64) out.
+    return Efficiencies(*(a.reshape(shape)[()] for a in (qext, qsca, qabs, qback, qpr, g, terms)))
 
 
 def _one_sphere(x, m):
