@@ -421,17 +421,30 @@ def optics(condition, wavelength: float = 550e-9, *, rel_tolerance: float = 1e-9
     return Optics(d, float(wavelength))
 
 
+# Bulk-optics quantities a table can hold besides sigma: name -> (unit, how to
+# read it from Optics).  Add a line here when BulkOptics gains a field.
+_OPTICS_QUANTITIES = {
+    "scattering": ("1/m", lambda o: o.scattering.value),
+    "absorption": ("1/m", lambda o: o.absorption.value),
+    "albedo": ("1", lambda o: o.albedo[0]),
+    "asymmetry": ("1", lambda o: o.asymmetry[0]),
+}
+
+
 @dataclass
 class Table:
     """sigma over conditions x wavelengths: ``value`` and ``error`` are
     (conditions, wavelengths) arrays in 1/m; ``labels`` and ``models`` name
-    the conditions."""
+    the conditions; ``quantities`` holds any other quantity asked for
+    (name -> (conditions, wavelengths) array; NaN where a condition has no
+    bulk optics, i.e. is not a Mie condition)."""
 
     labels: Sequence[str]
     wavelengths: np.ndarray
     value: np.ndarray
     error: np.ndarray
     models: Sequence[str]
+    quantities: Dict[str, np.ndarray] = field(default_factory=dict)
 
     def to_xarray(self):
         """An xarray.Dataset (sigma, sigma_error over condition x wavelength);
@@ -444,16 +457,25 @@ class Table:
                 "sigma": (("condition", "wavelength"), self.value, {"units": "1/m", "long_name": "extinction coefficient"}),
                 "sigma_error": (("condition", "wavelength"), self.error, {"units": "1/m"}),
                 "model": (("condition",), list(self.models)),
+                **{name: (("condition", "wavelength"), v, {"units": _OPTICS_QUANTITIES[name][0]})
+                   for name, v in self.quantities.items()},
             },
             coords=coords,
         )
 
 
-def table(conditions, wavelengths, *, convention: str = "itu", contrast_threshold: float = 0.02,
-          rel_tolerance: float = 1e-9, water_table: str = "water", threads: int = 0) -> Table:
+def table(conditions, wavelengths, quantities: Sequence[str] = ("sigma",), *, convention: str = "itu",
+          contrast_threshold: float = 0.02, rel_tolerance: float = 1e-9, water_table: str = "water",
+          threads: int = 0) -> Table:
     """sigma for every condition (Condition objects or text; text may sweep,
     "rain:1..10") at every wavelength (m), computed in parallel without the
-    GIL.  Returns a Table; ``.to_xarray()`` gives an xarray Dataset."""
+    GIL.  ``quantities`` may add bulk optics: "scattering", "absorption"
+    (1/m), "albedo", "asymmetry" (computed cell by cell, Mie conditions
+    only).  Returns a Table; ``.to_xarray()`` gives an xarray Dataset."""
+    extra = [q for q in quantities if q != "sigma"]
+    for q in extra:
+        if q not in _OPTICS_QUANTITIES:
+            raise ValueError(f"unknown quantity {q!r}: sigma, {', '.join(_OPTICS_QUANTITIES)}")
     if isinstance(conditions, (str, Condition)):
         conditions = [conditions]
     pairs = []
@@ -468,7 +490,15 @@ def table(conditions, wavelengths, *, convention: str = "itu", contrast_threshol
     w = np.asarray(wavelengths, dtype=np.float64).reshape(-1)
     value, error, models = _core.table(pairs, list(w), *_settings(convention, contrast_threshold, rel_tolerance,
                                                                    water_table), int(threads))
-    return Table([p[0] for p in pairs], w, value, error, models)
+    more = {q: np.full(value.shape, np.nan) for q in extra}
+    for i, (label, cpp) in enumerate(pairs):
+        if not extra or not _core.needs_mie(cpp):
+            continue
+        for j, lam in enumerate(w):
+            o = Optics(_core.condition_optics(cpp, float(lam), float(rel_tolerance), str(water_table)), float(lam))
+            for q in extra:
+                more[q][i, j] = _OPTICS_QUANTITIES[q][1](o)
+    return Table([p[0] for p in pairs], w, value, error, models, more)
 
 
 def refractive_index(wavelength, table: str = "water"):

@@ -106,6 +106,18 @@ def test_table_matches_sigma_and_xarray():
     assert isinstance(ds, xr.Dataset) and ds.sigma.shape == (6, 2) and ds.sigma.attrs["units"] == "1/m"
 
 
+def test_table_with_bulk_optics():
+    wl = [550e-9, 1000e-9]
+    t = w.table(["clear", "fog:radiation"], wl, ["sigma", "albedo", "absorption"], rel_tolerance=1e-6)
+    assert np.isnan(t.quantities["albedo"][0]).all()  # clear air has no bulk optics
+    for j, lam in enumerate(wl):
+        o = w.optics("fog:radiation", lam, rel_tolerance=1e-6)
+        assert t.quantities["albedo"][1, j] == o.albedo[0]
+        assert t.quantities["absorption"][1, j] == o.absorption.value
+    with pytest.raises(ValueError, match="unknown quantity"):
+        w.table(["clear"], wl, ["colour"])
+
+
 def test_errors_carry_the_command_line_message(cli):
     with pytest.raises(ValueError) as info:
         w.parse("fog:nonsense")
