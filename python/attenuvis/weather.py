@@ -284,23 +284,41 @@ class Fog(Condition):
         return _core.to_text(self._cpp)
 
 
-class _Parsed(Condition):
-    """A condition read from text (parse); ``kind`` names its C++ type."""
+def _from_cpp(cpp) -> Condition:
+    """The Python class mirroring a typed C++ condition, its fields read back."""
+    def make(cls, **fields):
+        c = cls.__new__(cls)
+        c.__dict__.update(fields)
+        c._cpp = cpp
+        return c
 
-    def __init__(self, cpp):
-        self._cpp = cpp
-        self.kind = type(cpp).__name__
+    if isinstance(cpp, _core.ClearAir):
+        return make(Clear, visibility=cpp.visibility_m)
+    if isinstance(cpp, _core.Visibility):
+        return make(Visibility, distance=cpp.visibility_m)
+    if isinstance(cpp, _core.GivenSigma):
+        return make(Sigma, per_m=cpp.per_m)
+    if isinstance(cpp, _core.RainPowerLaw):
+        return make(Rain, rate=cpp.rate_mm_h, model=cpp.law.name)
+    if isinstance(cpp, _core.Snow):
+        return make(Snow, rate=cpp.rate_mm_h, type=cpp.type.name)
+    if isinstance(cpp, _core.FogFromVisibility):
+        return make(Fog, visibility=cpp.visibility_m, model=cpp.model.name.replace("_", "-"), distribution=None)
+    if isinstance(cpp.drops, _core.MarshallPalmerRain):
+        return make(Rain, rate=cpp.drops.rate_mm_h, model="mie")
+    return make(Fog, distribution=None)
 
 
 def parse(text: str) -> Condition:
     """A condition from the command line's grammar, e.g. "fog:advection", "rain:8:seed",
-    "snow:dry:4", "fog:kim:500m", "clear".  ValueError (with the grammar) when it is not one."""
-    return _Parsed(_core.parse(text))
+    "snow:dry:4", "fog:kim:500m", "clear", as the matching class (Rain, Fog, ...).
+    ValueError (with the grammar) when it is not one."""
+    return _from_cpp(_core.parse(text))
 
 
 def expand(text: str):
-    """A list with sweeps expanded: "rain:1..3" -> [("rain:1", cond), ("rain:2", cond), ...]."""
-    return [(label, _Parsed(c)) for label, c in _core.expand(text)]
+    """A list with sweeps expanded: "rain:1..3" -> [("rain:1", Rain), ("rain:2", Rain), ...]."""
+    return [(label, _from_cpp(c)) for label, c in _core.expand(text)]
 
 
 def grammar() -> str:

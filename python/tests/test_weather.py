@@ -42,12 +42,16 @@ def test_objects_match_the_grammar_and_the_command_line(cli, text, obj):
     ref = cli_sigma(cli, text, "1550nm")
     assert a.value == pytest.approx(ref["sigma"], rel=1e-9)
     assert w.parse(obj.text).text == obj.text
+    assert type(parsed) is type(obj)
 
 
 def test_conventions_and_repr():
     itu, seed = w.sigma(w.Rain(8), convention="itu"), w.sigma(w.Rain(8), convention="seed")
     assert itu.convention == "itu" and seed.convention == "seed" and itu.value != seed.value
     assert "Rain" in repr(w.Rain(8)) and "rain:8" in repr(w.Rain(8))
+    snow = w.parse("snow:wet:2.5")
+    assert isinstance(snow, w.Snow) and snow.rate == 2.5 and snow.type == "wet"
+    assert w.parse("rain:8:carbonneau").model == "carbonneau"
 
 
 def test_optics_of_a_fog_preset_and_a_user_distribution():
