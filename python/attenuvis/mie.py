@@ -40,6 +40,8 @@ __all__ = [
     "ScatteringMatrixExpansion",
     "scattering_matrix_expansion",
     "phase_function_from_moments",
+    "Lidar",
+    "lidar",
 ]
 
 
@@ -247,3 +249,30 @@ def phase_function_from_moments(chi, angles):
     a = np.asarray(angles, dtype=np.float64)
     p = _core.phase_function_from_moments(np.ascontiguousarray(chi, dtype=np.float64), a.reshape(-1))
     return p.reshape(a.shape)
+
+
+class Lidar(NamedTuple):
+    """Per-sphere lidar quantities (mie/scattering_matrix.hpp).
+
+    backscatter_per_sr: Qback / (4 pi), the efficiency counterpart of the
+    backscatter coefficient (1/(m sr) once multiplied by N pi r^2);
+    lidar_ratio_sr: extinction-to-backscatter ratio 4 pi Qext / Qback (sr;
+    inf where Qback = 0); linear_depolarisation: 0 for every homogeneous
+    sphere (S22 = S11), so a measured non-zero value means non-spherical
+    particles.
+    """
+
+    backscatter_per_sr: np.ndarray
+    lidar_ratio_sr: np.ndarray
+    linear_depolarisation: np.ndarray
+
+
+def lidar(x=None, m=None, **kwargs):
+    """Lidar quantities of spheres, broadcasting like efficiencies() (same
+    arguments: x or radius=/wavelength=/medium_index=, errors=, threads=)."""
+    q = efficiencies(x, m, **kwargs)
+    qext, qback = np.asarray(q.qext), np.asarray(q.qback)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(qback > 0, 4.0 * np.pi * qext / qback, np.inf)
+    ratio = np.where(np.isnan(qback), np.nan, ratio)
+    return Lidar((qback / (4.0 * np.pi))[()], ratio[()], np.where(np.isnan(qback), np.nan, 0.0)[()])

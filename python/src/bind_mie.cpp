@@ -210,6 +210,13 @@ void bind_mie(py::module_ module) {
       "Seconds one C++ spheres() call takes over x (contiguous float64) at one m: the baseline of the "
       "Python overhead benchmark.");
   module.def(
+      "lidar",
+      [](double x, std::complex<double> m) {
+        const auto l = mie::lidar(mie::sphere(x, m));
+        return py::make_tuple(l.backscatter_per_sr, l.lidar_ratio_sr, l.linear_depolarisation);
+      },
+      py::arg("x"), py::arg("m"), "lidar() of one sphere: (Qback/4pi, 4pi Qext/Qback, 0).");
+  module.def(
       "sphere",
       [](double x, std::complex<double> m) {
         const auto q = mie::sphere(x, m);

@@ -204,6 +204,17 @@ def test_phase_function_and_moments():
     assert np.allclose(mie.phase_function(x, m, angles, normalization="1"), p / (4 * np.pi))
 
 
+def test_lidar_matches_the_library():
+    x = np.array([0.5, 5.0, 50.0])
+    m = 1.33 + 1e-8j
+    got = mie.lidar(x, m)
+    for i, xi in enumerate(x):
+        ref = core.lidar(float(xi), m)
+        assert (got.backscatter_per_sr[i], got.lidar_ratio_sr[i], got.linear_depolarisation[i]) == pytest.approx(
+            ref, rel=1e-15)
+    assert np.isnan(mie.lidar([-1.0], m, errors="nan").lidar_ratio_sr[0])
+
+
 def test_docstrings():
     for f in (mie.efficiencies, mie.amplitudes, mie.scattering_matrix, mie.phase_function, mie.legendre_moments,
               mie.scattering_matrix_expansion, mie.coefficients):
