@@ -85,6 +85,7 @@ class Scene:
 
     @property
     def triangle_count(self) -> int:
+        """Number of triangles in the BVH."""
         return self._cpp.triangle_count
 
     @property
@@ -94,10 +95,12 @@ class Scene:
 
     @property
     def groups(self) -> Sequence[str]:
+        """Group names (OBJ ``g``/``o``, or materials), what ``walkable=`` selects."""
         return self._cpp.groups
 
     @property
     def warnings(self) -> Sequence[str]:
+        """What the reader noticed (an up axis that looks wrong, faces skipped)."""
         return self._cpp.warnings
 
     def __repr__(self) -> str:
