@@ -224,8 +224,17 @@ py::dict pass_result(const vg::VisibilityResult& r, std::size_t K) {
   return out;
 }
 
+// A NumPy array that takes over the vector's memory (no copy: the edge list
+// of a large graph is the biggest thing a pass returns).
+template <class T>
+py::array_t<T> take(std::vector<T>&& v) {
+  auto* owned = new std::vector<T>(std::move(v));
+  py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(static_cast<py::ssize_t>(owned->size()), owned->data(), owner);
+}
+
 // Edges collected on the worker thread (the sink is called there, without
-// the GIL), handed to NumPy at the end.
+// the GIL), handed to NumPy at the end without a copy.
 struct EdgeArrays {
   std::vector<std::uint32_t> i, j;
   std::vector<double> distance;
@@ -257,9 +266,9 @@ py::dict run(const PyScene& s, const std::vector<Eigen::Vector3d>& sources,
       options, progress);
   py::dict out = pass_result(result, sigmas.size());
   if (edges) {
-    out["edge_i"] = py::array_t<std::uint32_t>(collected.i.size(), collected.i.data());
-    out["edge_j"] = py::array_t<std::uint32_t>(collected.j.size(), collected.j.data());
-    out["edge_distance"] = Doubles(collected.distance.size(), collected.distance.data());
+    out["edge_i"] = take(std::move(collected.i));
+    out["edge_j"] = take(std::move(collected.j));
+    out["edge_distance"] = take(std::move(collected.distance));
   }
   return out;
 }
