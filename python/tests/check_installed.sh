@@ -21,7 +21,10 @@ command -v attenuvis >/dev/null || fail "attenuvis is not on PATH (not installed
 got=$(attenuvis --version) || fail "attenuvis --version failed"
 case "$got" in *"$version"*) ;; *) fail "attenuvis --version says '$got', expected $version" ;; esac
 [ "$(command -v attenuvis)" = "$prefix/bin/attenuvis" ] || fail "attenuvis on PATH is $(command -v attenuvis), not $prefix/bin/attenuvis"
-# A Mie fog needs the water table: the program must find share/attenuvis.
+# The program reads its tables from the installed share/attenuvis (not the
+# source tree), and a Mie fog, which needs the water table, works.
+data=$(attenuvis --version | sed -n 's/^data: *//p')
+[ "$data" = "$prefix/share/attenuvis" ] || fail "installed attenuvis reads its tables from '$data', not $prefix/share/attenuvis"
 attenuvis sigma fog:advection --wavelength 1550nm >/dev/null || fail "installed attenuvis cannot compute fog:advection"
 "$python" - "$site" "$version" <<'PY' || fail "installed Python package"
 import os, sys

@@ -88,15 +88,10 @@ bool has_tables(const std::string& dir) {
   return std::filesystem::is_directory(dir + "/refractive-index", ec);
 }
 
-// <prefix>/share/attenuvis for the file this library was loaded from: the
-// installed program (a static library lives inside it) or the installed Python
-// extension module (lib/python3.X/dist-packages/attenuvis/ -> up four levels).
-// dladdr names the object holding this function, whichever one that is.
-std::string installed_data_directory() {
-  Dl_info info{};
-  if (!dladdr(reinterpret_cast<void*>(&installed_data_directory), &info) || !info.dli_fname) return {};
+// <prefix>/share/attenuvis above `file`, at most four directories up.
+std::string share_above(const std::string& file) {
   std::error_code ec;
-  std::filesystem::path dir = std::filesystem::canonical(info.dli_fname, ec).parent_path();
+  std::filesystem::path dir = std::filesystem::canonical(file, ec).parent_path();
   if (ec) return {};
   for (int up = 0; up < 5 && !dir.empty(); ++up, dir = dir.parent_path()) {
     const std::string candidate = (dir / "share" / "attenuvis").string();
@@ -104,6 +99,20 @@ std::string installed_data_directory() {
     if (dir == dir.root_path()) break;
   }
   return {};
+}
+
+// <prefix>/share/attenuvis for the file this library was loaded from: the
+// installed Python extension module (lib/python3.X/dist-packages/attenuvis/,
+// four levels below the prefix), which dladdr names; or the installed program
+// (the static library lives inside it), for which dladdr gives only argv[0]
+// (a bare name when the program was found on PATH), so its own path is read
+// from /proc/self/exe.
+std::string installed_data_directory() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&installed_data_directory), &info) && info.dli_fname &&
+      std::string(info.dli_fname).find('/') != std::string::npos)
+    if (std::string dir = share_above(info.dli_fname); !dir.empty()) return dir;
+  return share_above("/proc/self/exe");
 }
 
 }  // namespace
