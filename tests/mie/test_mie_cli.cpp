@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -183,12 +184,13 @@ TEST_CASE("mie batch: the fuzzer's regression lines are errors, not NaN rows", "
   }
 }
 
-TEST_CASE("attenuvis --version names the version, commit, build type, Embree and Boost", "[cli]") {
+TEST_CASE("attenuvis --version names the version, commit, build type, Embree, Boost and the data directory",
+          "[cli]") {
   const Run r = run_cli("--version");
   CHECK(r.status == 0);
   CHECK(r.err.empty());
   const std::vector<std::string> v = lines(r.out);
-  REQUIRE(v.size() == 5);
+  REQUIRE(v.size() == 6);
   CHECK(v[0].rfind("attenuvis ", 0) == 0);
   CHECK(v[0].size() > std::string("attenuvis ").size());  // a version follows the name
   const auto value = [&](std::size_t i, const std::string& key) {
@@ -203,6 +205,7 @@ TEST_CASE("attenuvis --version names the version, commit, build type, Embree and
   // Embree 3 (the project's find_package floor) and Boost 1.x, as MAJOR.MINOR.PATCH.
   CHECK(value(3, "Embree:").rfind("3.", 0) == 0);
   CHECK(value(4, "Boost:").rfind("1.", 0) == 0);
+  CHECK(std::filesystem::is_directory(value(5, "data:") + "/refractive-index"));
 }
 
 TEST_CASE("mie --m takes n+ki, n,k and a bare n", "[mie][cli]") {
