@@ -298,7 +298,7 @@ void bind_weather(py::module_ module) {
         std::vector<std::string> models(static_cast<std::size_t>(C));
         for (py::ssize_t c = 0; c < C; ++c)
           for (py::ssize_t wl = 0; wl < W; ++wl) {
-            const w::Sigma& cell = t.at(static_cast<std::size_t>(wl), static_cast<std::size_t>(c));
+            const w::Sigma& cell = t.at(static_cast<std::size_t>(wl), static_cast<std::size_t>(c)).sigma;
             value.mutable_at(c, wl) = cell.per_m;
             error.mutable_at(c, wl) = cell.error_per_m;
             if (wl == 0) models[static_cast<std::size_t>(c)] = cell.model;
