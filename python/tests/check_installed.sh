@@ -26,6 +26,13 @@ case "$got" in *"$version"*) ;; *) fail "attenuvis --version says '$got', expect
 data=$(attenuvis --version | sed -n 's/^data: *//p')
 [ "$data" = "$prefix/share/attenuvis" ] || fail "installed attenuvis reads its tables from '$data', not $prefix/share/attenuvis"
 attenuvis sigma fog:advection --wavelength 1550nm >/dev/null || fail "installed attenuvis cannot compute fog:advection"
+# Its figure scripts and published tables are installed beside the tables.
+for f in scripts/vg_heatmap.py scripts/report_figures.py mie-published/bohren_huffman_appendix_a.csv; do
+  [ -f "$prefix/share/attenuvis/$f" ] || fail "$prefix/share/attenuvis/$f is not installed"
+done
+attenuvis vg layout:0 --spacing 8 --conditions clear --out nodes.csv --heatmap nodes.png --quiet ||
+  fail "installed attenuvis vg --heatmap"
+[ -s nodes.png ] || fail "installed attenuvis vg --heatmap wrote no figure"
 "$python" - "$site" "$version" <<'PY' || fail "installed Python package"
 import os, sys
 site, version = sys.argv[1], sys.argv[2]

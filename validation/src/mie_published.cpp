@@ -16,6 +16,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "attenuvis/io/install_paths.hpp"
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/mie.hpp"
 
@@ -260,9 +261,11 @@ void du2004(const std::string& dir, Collector& c) {
 }  // namespace
 
 std::string published_tables_dir() {
-  // ATTENUVIS_SCRIPTS_DIR is <source tree>/validation/scripts (validation/CMakeLists.txt).
-  return (std::filesystem::path(ATTENUVIS_SCRIPTS_DIR).parent_path().parent_path() / "tests" / "data" / "mie")
-      .string();
+  // ATTENUVIS_SCRIPTS_DIR is <source tree>/validation/scripts (validation/CMakeLists.txt);
+  // `cmake --install` copies tests/data/mie to <prefix>/share/attenuvis/mie-published.
+  return io::installed_or_source(
+      "mie-published",
+      (std::filesystem::path(ATTENUVIS_SCRIPTS_DIR).parent_path().parent_path() / "tests" / "data" / "mie").string());
 }
 
 PublishedComparison compare_published_mie(const std::string& tables_dir) {

@@ -2,6 +2,7 @@
 // directory, draws the figures with matplotlib, writes report.html last and
 // only then moves everything into the output directory.
 #include "attenuvis/validation/reproduce.hpp"
+#include "attenuvis/io/install_paths.hpp"
 #include "attenuvis/io/shell.hpp"
 #include "attenuvis/io/staged_file.hpp"
 
@@ -185,7 +186,8 @@ void draw_figures(const Report& report, const std::string& dir, detail::Progress
   write_file_atomically(spec_path.string(), spec.dump());
   const fs::path log = fs::path(dir) / "figures.log";
   const std::string python = ATTENUVIS_PYTHON;
-  const std::string script = std::string(ATTENUVIS_SCRIPTS_DIR) + "/report_figures.py";
+  const std::string script =
+      io::installed_or_source("scripts/report_figures.py", std::string(ATTENUVIS_SCRIPTS_DIR) + "/report_figures.py");
   if (python.empty() || !fs::exists(python))
     throw std::runtime_error("figures: no Python interpreter (ATTENUVIS_PYTHON='" + python +
                              "'); install python3-matplotlib and python3-numpy (scripts/setup.sh)");

@@ -1,6 +1,7 @@
 // CSV, PLY, heatmap and JSON outputs of a visibility pass.
 #include <attenuvis/visgraph/outputs.hpp>
 
+#include <attenuvis/io/install_paths.hpp>
 #include <attenuvis/io/number_text.hpp>
 #include <attenuvis/io/shell.hpp>
 #include <attenuvis/io/staged_file.hpp>
@@ -160,7 +161,7 @@ void write_heatmap(const std::string& png_path, const std::string& csv_path, con
 
 void draw_heatmap(const std::string& png_path, const std::string& csv_path, const HeatmapOptions& options) {
   if (options.columns.empty()) throw std::invalid_argument("heatmap: no column to draw");
-  std::string command = io::shell_quote(ATTENUVIS_PYTHON) + " " + io::shell_quote(ATTENUVIS_VG_HEATMAP_SCRIPT) + " " +
+  std::string command = io::shell_quote(ATTENUVIS_PYTHON) + " " + io::shell_quote(io::installed_or_source("scripts/vg_heatmap.py", ATTENUVIS_VG_HEATMAP_SCRIPT)) + " " +
                         io::shell_quote(csv_path) + " " + io::shell_quote(png_path);
   for (const std::string& c : options.columns) command += " " + io::shell_quote(c);
   if (!options.title.empty()) command += " --title " + io::shell_quote(options.title);

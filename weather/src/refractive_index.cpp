@@ -1,6 +1,8 @@
 // Refractive-index tables: loading, caching and interpolation in wavelength.
 #include "attenuvis/weather/refractive_index.hpp"
 
+#include "attenuvis/io/install_paths.hpp"
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -81,46 +83,12 @@ std::complex<double> RefractiveIndexTable::at(double w) const {
   return {n, k};
 }
 
-namespace {
-
-bool has_tables(const std::string& dir) {
-  std::error_code ec;
-  return std::filesystem::is_directory(dir + "/refractive-index", ec);
-}
-
-// <prefix>/share/attenuvis above `file`, at most four directories up.
-std::string share_above(const std::string& file) {
-  std::error_code ec;
-  std::filesystem::path dir = std::filesystem::canonical(file, ec).parent_path();
-  if (ec) return {};
-  for (int up = 0; up < 5 && !dir.empty(); ++up, dir = dir.parent_path()) {
-    const std::string candidate = (dir / "share" / "attenuvis").string();
-    if (has_tables(candidate)) return candidate;
-    if (dir == dir.root_path()) break;
-  }
-  return {};
-}
-
-// <prefix>/share/attenuvis for the file this library was loaded from: the
-// installed Python extension module (lib/python3.X/dist-packages/attenuvis/,
-// four levels below the prefix), which dladdr names; or the installed program
-// (the static library lives inside it), for which dladdr gives only argv[0]
-// (a bare name when the program was found on PATH), so its own path is read
-// from /proc/self/exe.
-std::string installed_data_directory() {
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&installed_data_directory), &info) && info.dli_fname &&
-      std::string(info.dli_fname).find('/') != std::string::npos)
-    if (std::string dir = share_above(info.dli_fname); !dir.empty()) return dir;
-  return share_above("/proc/self/exe");
-}
-
-}  // namespace
 
 std::string data_directory() {
   if (const char* env = std::getenv("ATTENUVIS_DATA_DIR"); env && *env) return env;
-  static const std::string installed = installed_data_directory();
-  if (!installed.empty()) return installed;
+  // The installed tables (<prefix>/share/attenuvis/refractive-index), else the source tree's.
+  const std::string installed = io::installed_or_source("refractive-index", "");
+  if (!installed.empty()) return io::installed_share_directory();
   return ATTENUVIS_DATA_DIR;
 }
 
