@@ -1,6 +1,8 @@
 // The bridge from attenuvis::mie to the bulk integrals (bulk_optics.hpp):
 // Lorenz-Mie efficiencies as an EfficiencyFunction, and bulk_optics() with them.
 #include "attenuvis/mie.hpp"
+#include "attenuvis/mie/legendre_moments.hpp"
+#include "attenuvis/mie/scattering_matrix.hpp"
 #include "attenuvis/weather/bulk_optics.hpp"
 
 namespace attenuvis::weather {
@@ -10,16 +12,40 @@ EfficiencyFunction mie_efficiencies(std::complex<double> m) {
   if (std::abs(m - 1.0) >= 0.01) options.extended_above = 3e4;  // automatic precision: double-only up to there
   return [m, options](double x) {
     auto e = mie::sphere(x, m, options);
-    return Efficiency{e.qext, e.qsca, e.qabs, e.g};
+    return Efficiency{e.qext, e.qsca, e.qabs, e.g, e.qback, {}, {}};
+  };
+}
+
+EfficiencyFunction mie_efficiencies(std::complex<double> m, const QuadratureSettings& s) {
+  if (s.legendre_moments < 0 && s.angles_deg.empty()) return mie_efficiencies(m);
+  mie::Options options;
+  if (std::abs(m - 1.0) >= 0.01) options.extended_above = 3e4;
+  mie::Extras extras;
+  extras.coefficients = s.legendre_moments >= 0;
+  extras.angles_deg = s.angles_deg;
+  const int L = s.legendre_moments;
+  return [m, options, extras, L](double x) {
+    const auto sc = mie::scatter(x, m, extras, options);
+    Efficiency e{sc.q.qext, sc.q.qsca, sc.q.qabs, sc.q.g, sc.q.qback, {}, {}};
+    if (L >= 0) {
+      e.moments = mie::phase_function_moments(sc, static_cast<std::size_t>(L));
+      e.moments.resize(static_cast<std::size_t>(L) + 1, 0.0);  // above 2N they are exact zeros
+    }
+    if (!extras.angles_deg.empty()) e.phase = mie::scattering_matrix(x, sc).phase;
+    return e;
   };
 }
 
 BulkOptics bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
                        const QuadratureSettings& s) {
-  EfficiencyFunction q = [m](double x) {
-    auto e = mie::sphere(x, m);
-    return Efficiency{e.qext, e.qsca, e.qabs, e.g};
-  };
+  EfficiencyFunction q;
+  if (s.legendre_moments < 0 && s.angles_deg.empty())
+    q = [m](double x) {
+      auto e = mie::sphere(x, m);
+      return Efficiency{e.qext, e.qsca, e.qabs, e.g, e.qback, {}, {}};
+    };
+  else
+    q = mie_efficiencies(m, s);
   return integrate_bulk_optics(d, wavelength_m, q, s, m);
 }
 
