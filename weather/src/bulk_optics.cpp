@@ -61,6 +61,7 @@ struct Layout {
 struct Panel {
   double a = 0, b = 0;  // in u = ln r
   Vec kronrod, error;
+  Vec difference;       // signed K - G (without the aliasing term): errors of ratios
   Vec q_max;            // largest |component / weight| sampled (for the tails)
   double qext_max = 0;
   double x_span = 0;  // size-parameter width of the panel
@@ -124,6 +125,7 @@ class Integrator {
     p.q_max.assign(n, 0.0);
     p.kronrod.assign(n, 0.0);
     p.error.assign(n, 0.0);
+    p.difference.assign(n, 0.0);
     for (std::size_t i = 0; i < rule_.abscissa.size(); ++i) {
       double xi = rule_.abscissa[i];
       int copies = (i == 0) ? 1 : 2;
@@ -146,6 +148,7 @@ class Integrator {
     }
     for (int c = 0; c < n; ++c) {
       p.kronrod[c] = half * k[c];
+      p.difference[c] = half * (k[c] - g[c]);
       p.error[c] = half * std::abs(k[c] - g[c]);
     }
     p.x_span = k_ * (std::exp(b) - std::exp(a));
@@ -439,10 +442,20 @@ void fill_optional(BulkOptics& out, const Refinement& r, const Support& support,
           out.lidar_ratio * (out.extinction.error() / out.extinction.value + out.backscatter.error() / beta);
     }
   }
+  // v = M_c / sigma_sca from the same panels: its error is that of
+  // M_c - v sigma_sca, whose Kronrod-Gauss differences cancel where the two
+  // sums err alike (a resonance hit by a node raises both), panel by panel;
+  // the aliasing terms of wide panels are added as they are.
   auto normalised = [&](int c, double& value, double& error) {
-    const IntegralEstimate e = component_estimate(r, c, support.omitted_moment, s.estimate_resonances);
-    value = e.value / sca;
-    error = (e.error() + std::abs(value) * out.scattering.error()) / sca;
+    value = r.value()[c] / sca;
+    double sum = 0;
+    for (const auto& p : r.panels()) {
+      const double aliasing_c = p.error[c] - std::abs(p.difference[c]);
+      const double aliasing_sca = p.error[kSca] - std::abs(p.difference[kSca]);
+      sum += std::abs(p.difference[c] - value * p.difference[kSca]) + aliasing_c + std::abs(value) * aliasing_sca;
+    }
+    const double tails = 2 * (sampled_max(r, c) + std::abs(value) * sampled_max(r, kSca)) * kPi * support.omitted_moment;
+    error = (sum + tails) / sca;
   };
   out.moments.assign(layout.moments, 0.0);
   out.moments_error.assign(layout.moments, 0.0);

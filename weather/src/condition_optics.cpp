@@ -36,7 +36,7 @@ ConditionOptics condition_optics(const MieCondition& c, double wavelength_m, con
     q.resonance_tolerance = 1e-3;
     q.max_evaluations = 1000000;
   }
-  out.bulk = integrate_bulk_optics(d, wavelength_m, mie_efficiencies(m, q), q, m);
+  out.bulk = mie_bulk_optics(d, wavelength_m, m, q);
   return out;
 }
 

@@ -1,5 +1,8 @@
 // The bridge from attenuvis::mie to the bulk integrals (bulk_optics.hpp):
 // Lorenz-Mie efficiencies as an EfficiencyFunction, and bulk_optics() with them.
+#include <algorithm>
+#include <string>
+
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/legendre_moments.hpp"
 #include "attenuvis/mie/scattering_matrix.hpp"
@@ -36,6 +39,34 @@ EfficiencyFunction mie_efficiencies(std::complex<double> m, const QuadratureSett
   };
 }
 
+BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
+                           const QuadratureSettings& s) {
+  const bool angular = s.legendre_moments >= 0 || !s.angles_deg.empty();
+  if (!angular) return integrate_bulk_optics(d, wavelength_m, mie_efficiencies(m), s, m);
+  // Pass A: everything but the angular quantities, with cheap evaluations.
+  QuadratureSettings cheap = s;
+  cheap.legendre_moments = -1;
+  cheap.angles_deg.clear();
+  BulkOptics out = integrate_bulk_optics(d, wavelength_m, mie_efficiencies(m), cheap, m);
+  if (!out.scattering_computed) return out;  // large-x expansion used: no angular quantities either
+  // Pass B: the angular quantities; sigma's resonance target was met in pass A,
+  // so only theirs drives the refinement of the resonance panels here.
+  QuadratureSettings angular_settings = s;
+  angular_settings.backscatter = false;
+  angular_settings.resonance_tolerance = 1.0;
+  const BulkOptics b = integrate_bulk_optics(d, wavelength_m, mie_efficiencies(m, angular_settings),
+                                             angular_settings, m);
+  out.moments = b.moments;
+  out.moments_error = b.moments_error;
+  out.angles_deg = b.angles_deg;
+  out.phase = b.phase;
+  out.phase_error = b.phase_error;
+  out.evaluations += b.evaluations;
+  out.method += "; moments/phase function in a second pass (" + std::to_string(b.evaluations) +
+                " evaluations with angular terms)";
+  return out;
+}
+
 BulkOptics bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
                        const QuadratureSettings& s) {
   EfficiencyFunction q;
@@ -45,7 +76,7 @@ BulkOptics bulk_optics(const SizeDistribution& d, double wavelength_m, std::comp
       return Efficiency{e.qext, e.qsca, e.qabs, e.g, e.qback, {}, {}};
     };
   else
-    q = mie_efficiencies(m, s);
+    return mie_bulk_optics(d, wavelength_m, m, s);
   return integrate_bulk_optics(d, wavelength_m, q, s, m);
 }
 

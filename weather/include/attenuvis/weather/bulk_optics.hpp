@@ -137,8 +137,20 @@ EfficiencyFunction mie_efficiencies(std::complex<double> m);
 // and the phase function at s.angles_deg (mie::scattering_matrix).
 EfficiencyFunction mie_efficiencies(std::complex<double> m, const QuadratureSettings& s);
 
-// With Lorenz-Mie efficiencies (attenuvis::mie::sphere) of a homogeneous sphere
-// of relative refractive index m = n + i k.
+// With Lorenz-Mie efficiencies of a homogeneous sphere of index m (mie_efficiencies),
+// in two passes when moments or a phase function are asked for: the angular
+// terms cost O(x^2) per sphere against O(x) for the efficiencies, and the
+// resonance panels that Q_back and sigma need (hundreds of thousands for fog at
+// 550 nm) are not needed to bring the moments' resonance error below
+// angular_resonance_tolerance.  So pass A integrates everything else with cheap
+// evaluations, pass B the moments and phase function, refining resonance
+// panels for their targets alone; `evaluations` counts both.
+BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
+                           const QuadratureSettings& s = {});
+
+// With Lorenz-Mie efficiencies (attenuvis::mie::sphere, its default precision)
+// of a homogeneous sphere of relative refractive index m = n + i k; as
+// mie_bulk_optics when angular quantities are asked for.
 BulkOptics bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
                        const QuadratureSettings& s = {});
 
