@@ -35,7 +35,9 @@ TEST_CASE("optics prints every bulk quantity with its error and units as JSON", 
         Approx(o["sigma_ext"]["value"].get<double>() / o["backscatter"]["value"].get<double>()).epsilon(1e-12));
   REQUIRE(o["moments"]["values"].size() == 5);
   CHECK(o["moments"]["values"][0].get<double>() == Approx(1.0).epsilon(1e-12));
-  CHECK(o["moments"]["values"][1].get<double>() == Approx(o["g"]["value"].get<double>()).epsilon(1e-12));
+  // chi_1 and g come from separate passes (moments cost O(x^2) per drop): equal within their errors.
+  CHECK(std::abs(o["moments"]["values"][1].get<double>() - o["g"]["value"].get<double>()) <=
+        o["moments"]["errors"][1].get<double>() + o["g"]["error"].get<double>());
   REQUIRE(o["phase_function"]["angles_deg"].size() == 3);
   CHECK(o["phase_function"]["angles_deg"][2].get<double>() == 180.0);
   // Same numbers as the library (one code path, condition_optics).
