@@ -14,142 +14,16 @@
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/weather/domains.hpp"
 #include "attenuvis/weather/units.hpp"
+#include "condition_fields.hpp"
 
 namespace attenuvis::weather {
 namespace {
 
-[[noreturn]] void bad(const std::string& text, const std::string& why) {
-  throw std::invalid_argument("bad condition " + quote_text(text, 80) + ": " + why + "\n" + condition_grammar());
-}
+using detail::bad;
+using detail::Fields;
+using detail::split;
+using detail::SweptValue;
 
-std::vector<std::string> split(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (char c : s) {
-    if (c == sep) {
-      out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
-  return out;
-}
-
-// One value of a sweep A..B[/STEP][UNIT]: the field it replaces, the number
-// (in the sweep's unit) and that unit.
-struct SweptValue {
-  std::size_t field = 0;
-  double value = 0;
-  std::string unit;
-};
-
-// The ':'-separated fields of one condition (fields[0] is the keyword) and
-// the readers of its numbers.  A swept field yields its number directly.
-class Fields {
- public:
-  Fields(std::string text, std::vector<std::string> fields, std::optional<SweptValue> swept)
-      : text_(std::move(text)), fields_(std::move(fields)), swept_(std::move(swept)) {}
-
-  const std::string& text() const { return text_; }
-  std::size_t size() const { return fields_.size(); }
-  const std::string& operator[](std::size_t i) const { return fields_[i]; }
-  [[noreturn]] void fail(const std::string& why) const { bad(text_, why); }
-  void require(std::size_t n) const {
-    if (fields_.size() < n) fail("missing field after '" + fields_.back() + "'");
-  }
-  void at_most(std::size_t n, const std::string& why) const {
-    if (fields_.size() > n) fail(why);
-  }
-  bool swept_field_read() const { return !swept_ || swept_read_; }
-
-  // Rate in mm/h within `range` (domains.hpp).
-  double rate(std::size_t i, const Domain& range) const {
-    try {
-      if (const auto v = swept(i)) {
-        if (!swept_->unit.empty()) fail("a rate is in mm/h and takes no unit ('" + swept_->unit + "')");
-        return require_in(range, *v);
-      }
-      return read_in(range, fields_[i]);
-    } catch (const std::invalid_argument& e) {
-      fail(e.what());
-    }
-  }
-  // A visibility in metres (units.hpp: parse_distance) within domain::visibility.
-  double distance(std::size_t i) const {
-    try {
-      if (const auto v = swept(i)) {
-        if (!(*v > 0)) throw std::invalid_argument("distance must be positive");
-        return require_in_si(domain::visibility, *v * distance_unit_m(swept_->unit));
-      }
-      const double m = parse_distance(fields_[i]);
-      if (!std::isfinite(m))  // 1e308km
-        throw std::invalid_argument("visibility " + quote_text(fields_[i]) + " is outside its valid range " +
-                                    range_text(domain::visibility));
-      return require_in_si(domain::visibility, m);
-    } catch (const std::invalid_argument& e) {
-      fail(e.what());
-    }
-  }
-  // sigma in 1/m, from VALUE[/m|/km|dB/km], within domain::sigma.
-  double sigma(std::size_t i) const {
-    if (const auto v = swept(i)) {
-      if (!swept_->unit.empty()) fail("a swept sigma is in 1/m and takes no unit");
-      return checked(domain::sigma, *v);
-    }
-    std::string v = fields_[i];
-    SigmaUnit unit = SigmaUnit::per_m;
-    for (auto [suffix, u] : {std::pair<const char*, SigmaUnit>{"dB/km", SigmaUnit::dB_per_km},
-                             {"/km", SigmaUnit::per_km},
-                             {"/m", SigmaUnit::per_m}}) {
-      const std::string s = suffix;
-      if (v.size() > s.size() && v.compare(v.size() - s.size(), s.size(), s) == 0) {
-        unit = u;
-        v = v.substr(0, v.size() - s.size());
-        break;
-      }
-    }
-    const double x = number(v, "sigma");
-    if (x < 0) fail("sigma must be >= 0");
-    return checked(domain::sigma, convert_to_per_m(x, unit));
-  }
-  // A number read and checked against `range`.
-  double in(const Domain& range, const std::string& text) const {
-    try {
-      return read_in(range, text);
-    } catch (const std::invalid_argument& e) {
-      fail(e.what());
-    }
-  }
-  double checked(const Domain& range, double value) const {
-    try {
-      return require_in(range, value);
-    } catch (const std::invalid_argument& e) {
-      fail(e.what());
-    }
-  }
-  double number(const std::string& text, const std::string& what) const {
-    try {
-      return io::parse_double(text, what);
-    } catch (const std::invalid_argument& e) {
-      fail(e.what());
-    }
-  }
-
- private:
-  double number(std::size_t i, const std::string& what) const { return number(fields_[i], what); }
-  std::optional<double> swept(std::size_t i) const {
-    if (!swept_ || swept_->field != i) return std::nullopt;
-    swept_read_ = true;
-    return swept_->value;
-  }
-
-  std::string text_;
-  std::vector<std::string> fields_;
-  std::optional<SweptValue> swept_;
-  mutable bool swept_read_ = false;
-};
 
 // ---- Mie options ------------------------------------------------------------
 
@@ -209,7 +83,9 @@ const MieOption* find_option(const std::string& field) {
   return nullptr;
 }
 
-MieCondition with_options(Drops drops, const Fields& f, std::size_t from) {
+}  // namespace
+
+MieCondition detail::with_options(Drops drops, const Fields& f, std::size_t from) {
   MieCondition c{std::move(drops), SettingsWaterTable{}, AsGiven{}};
   for (std::size_t i = from; i < f.size(); ++i) {
     const MieOption* o = find_option(f[i]);
@@ -219,90 +95,7 @@ MieCondition with_options(Drops drops, const Fields& f, std::size_t from) {
   return c;
 }
 
-// ---- Parametric drops ---------------------------------------------------------
-// drops:FAMILY:KEY=VALUE...[:OPTIONS]: the distribution's own parameters first
-// (any order), then the Mie options; errors name the parameter and its field.
-
-struct ParamValue {
-  std::string text;
-  std::size_t field = 0;
-};
-using Params = std::vector<std::pair<std::string, ParamValue>>;
-
-// Reads KEY=VALUE fields from `from` on while KEY is one of `keys`; returns
-// the index of the first field that is not (the options start there).
-std::size_t read_params(const Fields& f, std::size_t from, std::initializer_list<const char*> keys, Params& out) {
-  std::size_t i = from;
-  for (; i < f.size(); ++i) {
-    const auto eq = f[i].find('=');
-    if (eq == std::string::npos) break;
-    const std::string key = f[i].substr(0, eq);
-    if (std::none_of(keys.begin(), keys.end(), [&](const char* k) { return key == k; })) break;
-    for (const auto& [k, v] : out)
-      if (k == key) f.fail("drops:" + f[1] + " parameter " + key + "= given twice (fields " +
-                           std::to_string(v.field + 1) + " and " + std::to_string(i + 1) + ")");
-    out.push_back({key, {f[i].substr(eq + 1), i}});
-  }
-  return i;
-}
-
-const ParamValue* find_param(const Params& p, const std::string& key) {
-  for (const auto& [k, v] : p)
-    if (k == key) return &v;
-  return nullptr;
-}
-
-std::string where(const Fields& f, const std::string& key, const ParamValue& v) {
-  return "drops:" + f[1] + " parameter " + key + "= (field " + std::to_string(v.field + 1) + ")";
-}
-
-// A number parameter, required, checked by `ok` (which says what it must be).
-double number_param(const Fields& f, const Params& p, const std::string& key, bool (*ok)(double),
-                    const char* must) {
-  const ParamValue* v = find_param(p, key);
-  if (!v) f.fail("drops:" + f[1] + " needs the parameter " + key + "=");
-  double x = 0;
-  try {
-    x = io::parse_double(v->text, key);
-  } catch (const std::invalid_argument& e) {
-    f.fail(where(f, key, *v) + ": " + e.what());
-  }
-  if (!std::isfinite(x) || !ok(x)) f.fail(where(f, key, *v) + ": " + quote_text(v->text) + " must be " + must);
-  return x;
-}
-
-// A radius with its unit (nm, um, mm or m: 5um, 0.2mm), in metres, within domain::drop_radius.
-double radius_param(const Fields& f, const Params& p, const std::string& key) {
-  const ParamValue* v = find_param(p, key);
-  if (!v) f.fail("drops:" + f[1] + " needs the parameter " + key + "=RADIUS (with unit nm, um, mm or m)");
-  std::string number = v->text, unit;
-  while (!number.empty() && std::isalpha(static_cast<unsigned char>(number.back()))) {
-    unit.insert(unit.begin(), number.back());
-    number.pop_back();
-  }
-  const double scale = unit == "nm" ? 1e-9 : unit == "um" ? 1e-6 : unit == "mm" ? 1e-3 : unit == "m" ? 1.0 : 0.0;
-  if (scale == 0) f.fail(where(f, key, *v) + ": " + quote_text(v->text) + " needs a unit nm, um, mm or m");
-  double r = 0;
-  try {
-    r = require_in_si(domain::drop_radius, io::parse_double(number, key) * scale);
-  } catch (const std::invalid_argument& e) {
-    f.fail(where(f, key, *v) + ": " + e.what());
-  }
-  return r;
-}
-
-bool positive(double x) { return x > 0; }
-bool above_one(double x) { return x > 1 && x <= 20; }
-bool shape(double x) { return x > -1 && x <= 100; }  // alpha > -1: the number moment exists
-
-Condition parametric(const Fields& f, ParametricDrops drops, std::size_t options_from) {
-  MieCondition c = with_options(Drops{drops}, f, options_from);
-  if (needs_amount(drops) && std::holds_alternative<AsGiven>(c.rescaling))
-    f.fail("drops:" + f[1] + " needs its amount: :N=PER_CM3 or :lwc=G_PER_M3");
-  return c;
-}
-
-bool family_is(const Fields& f, const char* name) { return f.size() >= 2 && f[1] == name; }
+namespace {
 
 // ---- The kinds --------------------------------------------------------------
 
@@ -315,6 +108,7 @@ struct Kind {
 };
 
 bool always(const Fields&) { return true; }
+bool family_is(const Fields& f, const char* name) { return f.size() >= 2 && f[1] == name; }
 
 bool is_empirical_fog(const std::string& name) {
   return name == "kruse" || name == "kim" || name == "naboulsi-advection" || name == "naboulsi-radiation";
@@ -385,68 +179,24 @@ const Kind kKinds[] = {
     {"drops", "drops:lognormal:r=RADIUS:sg=SG  [:OPTIONS]",
      "Mie over a log-normal: median radius, geometric std. dev. SG in (1, 20]; needs N= or lwc=",
      [](const Fields& f) { return family_is(f, "lognormal"); },
-     [](const Fields& f) -> Condition {
-       Params p;
-       const std::size_t i = read_params(f, 2, {"r", "sg"}, p);
-       const double r = radius_param(f, p, "r");
-       const double sg = number_param(f, p, "sg", above_one, "in (1, 20]");
-       return parametric(f, ParametricDrops{LogNormalDrops{r, sg}}, i);
-     }},
+     detail::parse_lognormal_drops},
     {"drops", "drops:gamma:r=RADIUS:alpha=A  [:OPTIONS]",
-     "Mie over a gamma n ~ r^A exp(-A r/RADIUS): mode radius, shape A in (-1, 100]; needs N= or lwc=",
+     "Mie over a gamma n ~ r^A exp(-A r/RADIUS): mode radius, shape A in (0, 100]; needs N= or lwc=",
      [](const Fields& f) { return family_is(f, "gamma"); },
-     [](const Fields& f) -> Condition {
-       Params p;
-       const std::size_t i = read_params(f, 2, {"r", "alpha"}, p);
-       const double r = radius_param(f, p, "r");
-       const double alpha = number_param(f, p, "alpha", [](double x) { return x > 0 && x <= 100; }, "in (0, 100]");
-       return parametric(f, ParametricDrops{GammaDrops{r, alpha}}, i);
-     }},
+     detail::parse_gamma_drops},
     {"drops", "drops:mgamma:a=A:alpha=AL:b=B[:gamma=G] | drops:mgamma:rc=RADIUS:alpha=AL[:gamma=G]",
      "Mie over Deirmendjian's n = A r^AL exp(-B r^G), r in um, n in cm^-3 um^-1 (G = 1 by default); "
      "with rc= (mode radius, B = AL/(G rc^G)) it needs N= or lwc=",
      [](const Fields& f) { return family_is(f, "mgamma"); },
-     [](const Fields& f) -> Condition {
-       Params p;
-       const std::size_t i = read_params(f, 2, {"a", "alpha", "b", "gamma", "rc"}, p);
-       const double alpha = number_param(f, p, "alpha", shape, "in (-1, 100]");
-       const double gamma =
-           find_param(p, "gamma") ? number_param(f, p, "gamma", [](double x) { return x > 0 && x <= 10; }, "in (0, 10]")
-                                  : 1.0;
-       if (find_param(p, "rc")) {
-         if (find_param(p, "a") || find_param(p, "b")) f.fail("drops:mgamma takes rc= or a= and b=, not both");
-         if (!(alpha > 0)) f.fail("drops:mgamma with rc= needs alpha > 0 (a mode at rc)");
-         const double rc_um = radius_param(f, p, "rc") * 1e6;
-         ModifiedGammaDrops g{1.0, alpha, alpha / (gamma * std::pow(rc_um, gamma)), gamma};
-         MieCondition c = with_options(Drops{ParametricDrops{g}}, f, i);
-         if (std::holds_alternative<AsGiven>(c.rescaling)) f.fail("drops:mgamma with rc= needs its amount: :N=PER_CM3 or :lwc=G_PER_M3");
-         return c;
-       }
-       const double a = number_param(f, p, "a", positive, "> 0");
-       const double b = number_param(f, p, "b", positive, "> 0");
-       return parametric(f, ParametricDrops{ModifiedGammaDrops{a, alpha, b, gamma}}, i);
-     }},
+     detail::parse_mgamma_drops},
     {"drops", "drops:exponential:n0=N0:lambda=L  [:OPTIONS]",
      "Mie over N(D) = N0 exp(-L D) in diameter D: N0 in m^-3 mm^-1, L in mm^-1 (Marshall & Palmer form)",
      [](const Fields& f) { return family_is(f, "exponential"); },
-     [](const Fields& f) -> Condition {
-       Params p;
-       const std::size_t i = read_params(f, 2, {"n0", "lambda"}, p);
-       const double n0 = number_param(f, p, "n0", positive, "> 0");
-       const double lambda = number_param(f, p, "lambda", positive, "> 0");
-       return parametric(f, ParametricDrops{ExponentialDrops{n0, lambda}}, i);
-     }},
+     detail::parse_exponential_drops},
     {"drops", "drops:powerlaw:nu=NU:rmin=RADIUS:rmax=RADIUS  [:OPTIONS]",
      "Mie over a Junge power law n ~ r^-NU on [rmin, rmax]; needs N= or lwc=",
      [](const Fields& f) { return family_is(f, "powerlaw"); },
-     [](const Fields& f) -> Condition {
-       Params p;
-       const std::size_t i = read_params(f, 2, {"nu", "rmin", "rmax"}, p);
-       const double nu = number_param(f, p, "nu", [](double x) { return std::abs(x) <= 20; }, "in [-20, 20]");
-       const double lo = radius_param(f, p, "rmin"), hi = radius_param(f, p, "rmax");
-       if (!(hi > lo)) f.fail("drops:powerlaw needs rmin < rmax");
-       return parametric(f, ParametricDrops{PowerLawDrops{nu, lo, hi}}, i);
-     }},
+     detail::parse_powerlaw_drops},
     {"fog", "fog:kruse|kim|naboulsi-advection|naboulsi-radiation:DIST", "empirical fog from visibility DIST",
      [](const Fields& f) { return f.size() >= 2 && is_empirical_fog(f[1]); },
      [](const Fields& f) -> Condition {
@@ -581,31 +331,6 @@ std::vector<LabelledCondition> expand_conditions(const std::string& text) {
 
 // ---- Back to text -------------------------------------------------------------
 
-namespace {
-std::string drops_text(const ParametricDrops& d) {
-  using io::shortest;
-  struct Visitor {
-    std::string operator()(const LogNormalDrops& f) const {
-      return "drops:lognormal:r=" + shortest(f.median_radius_m) + "m:sg=" + shortest(f.sigma_g);
-    }
-    std::string operator()(const GammaDrops& f) const {
-      return "drops:gamma:r=" + shortest(f.mode_radius_m) + "m:alpha=" + shortest(f.alpha);
-    }
-    std::string operator()(const ModifiedGammaDrops& f) const {
-      return "drops:mgamma:a=" + shortest(f.a) + ":alpha=" + shortest(f.alpha) + ":b=" + shortest(f.b) +
-             ":gamma=" + shortest(f.gamma);
-    }
-    std::string operator()(const ExponentialDrops& f) const {
-      return "drops:exponential:n0=" + shortest(f.n0_per_m3_per_mm) + ":lambda=" + shortest(f.lambda_per_mm);
-    }
-    std::string operator()(const PowerLawDrops& f) const {
-      return "drops:powerlaw:nu=" + shortest(f.nu) + ":rmin=" + shortest(f.r_min_m) + "m:rmax=" +
-             shortest(f.r_max_m) + "m";
-    }
-  };
-  return std::visit(Visitor{}, d.family);
-}
-}  // namespace
 
 std::string to_text(const Condition& condition) {
   using io::shortest;
@@ -626,7 +351,7 @@ std::string to_text(const Condition& condition) {
       std::string out;
       if (const auto* r = std::get_if<MarshallPalmerRain>(&c.drops)) out = "rain:" + shortest(r->rate_mm_h) + ":mie";
       else if (const auto* p = std::get_if<FogPreset>(&c.drops)) out = "fog:" + to_string(*p);
-      else if (const auto* d = std::get_if<ParametricDrops>(&c.drops)) out = drops_text(*d);
+      else if (const auto* d = std::get_if<ParametricDrops>(&c.drops)) out = detail::drops_text(*d);
       else out = "fog:file=" + std::get<DistributionFile>(c.drops).path;
       if (const auto* t = std::get_if<WaterTable>(&c.index)) out += ":water=" + to_string(*t);
       if (const auto* m = std::get_if<ConstantIndex>(&c.index))
