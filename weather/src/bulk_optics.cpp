@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "attenuvis/weather/resonance.hpp"
+#include "bulk_components.hpp"
 #include "extinction_tail.hpp"
 #include "gauss_kronrod_rule.hpp"
 #include "attenuvis/io/number_text.hpp"
@@ -23,40 +24,16 @@ using io::significant;
 namespace {
 
 constexpr double kPi = boost::math::constants::pi<double>();
-// Components integrated together: ext, sca, abs, g*sca, asymptotic-bound,
-// the weight pi r^2 n(r) alone (the geometric cross-section of the panel),
-// Q_back/(4 pi), then as requested chi_l Q_sca (l = 0..L) and p(theta_j) Q_sca.
-constexpr int kExt = 0, kSca = 1, kAbs = 2, kGSca = 3, kAsym = 4, kWeight = 5, kBack = 6, kFixed = 7;
-using Vec = std::vector<double>;
-
-// Where the optional components sit, and which components the tolerances
-// govern, each with the scale its error is measured against.
-struct Layout {
-  bool back = false;
-  int moments = 0;  // L + 1, or 0
-  int angles = 0;
-  explicit Layout(const QuadratureSettings& s)
-      : back(s.backscatter), moments(s.legendre_moments >= 0 ? s.legendre_moments + 1 : 0),
-        angles(static_cast<int>(s.angles_deg.size())) {}
-  int moment(int l) const { return kFixed + l; }
-  int angle(int j) const { return kFixed + moments + j; }
-  int size() const { return kFixed + moments + angles; }
-  bool angular(int c) const { return c >= kBack; }
-  // The components whose errors must meet the tolerances.
-  std::vector<int> checked() const {
-    std::vector<int> c{kExt, kSca, kAbs, kGSca};
-    if (back) c.push_back(kBack);
-    for (int i = kFixed; i < size(); ++i) c.push_back(i);
-    return c;
-  }
-  // sigma_ext for ext/sca/abs, sigma_sca for g and chi_l (absolute on the
-  // normalised value), the component itself for beta_pi and p(theta).
-  double scale(int c, const Vec& v) const {
-    if (c == kGSca || (c >= kFixed && c < kFixed + moments)) return std::max(std::abs(v[kSca]), 1e-300);
-    if (c == kBack || c >= kFixed + moments) return std::max(std::abs(v[c]), 1e-300);
-    return std::max(std::abs(v[kExt]), 1e-300);
-  }
-};
+using detail::kExt;
+using detail::kSca;
+using detail::kAbs;
+using detail::kGSca;
+using detail::kAsym;
+using detail::kWeight;
+using detail::kBack;
+using detail::kFixed;
+using detail::Layout;
+using detail::Vec;
 
 struct Panel {
   double a = 0, b = 0;  // in u = ln r
