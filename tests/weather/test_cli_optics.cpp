@@ -73,3 +73,17 @@ TEST_CASE("optics rejects bad input with a message naming it", "[weather][cli][o
   CHECK(r.status != 0);
   CHECK_THAT(r.output, Contains("nonesuch"));
 }
+
+TEST_CASE("optics takes parametric drops with the user's numbers", "[weather][cli][optics][parametric]") {
+  const auto r = run("optics drops:lognormal:r=2um:sg=1.5:N=100 drops:gamma:r=3um:alpha=6:lwc=0.1:water=ice "
+                     "--wavelength 1.55um --angles 0,180 --json");
+  REQUIRE(r.status == 0);
+  const auto j = nlohmann::json::parse(r.output);
+  REQUIRE(j.size() == 2);
+  CHECK(j[0]["condition"] == "drops:lognormal:r=2um:sg=1.5:N=100");
+  CHECK_THAT(j[1]["refractive_index"].get<std::string>(), Contains("ice"));
+  for (const auto& o : j) {
+    CHECK(o["sigma_ext"]["value"].get<double>() > 0);
+    CHECK(o["phase_function"]["values"][0].get<double>() > o["phase_function"]["values"][1].get<double>());
+  }
+}
