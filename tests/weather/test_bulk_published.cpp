@@ -52,3 +52,20 @@ TEST_CASE("lidar ratio of water clouds at 1.06 um (Pinnick et al. 1983)", "[weat
     CHECK(b.lidar_ratio <= 18.2 * 1.5);
   }
 }
+
+TEST_CASE("asymmetry parameter of cloud droplets in the visible (AMS Glossary of Meteorology)",
+          "[weather][bulk][published][slow]") {
+  // American Meteorological Society, Glossary of Meteorology, "Asymmetry factor": "cloud
+  // droplets typically have asymmetry factors ~0.85 for visible radiation".  The entry gives
+  // two digits and no spread; read as 0.85 +- 0.02, one unit of the second digit either side
+  // with margin.  Computed here: 0.8534, 0.8598, 0.8638.  Drop spectra: gamma, alpha = 6, effective radii
+  // 6, 8 and 10 um (non-drizzling stratiform cloud); 550 nm, water from Hale & Querry (1973).
+  for (double r_eff_um : {6.0, 8.0, 10.0}) {
+    QuadratureSettings s;
+    s.rel_tolerance = 1e-6;
+    const BulkOptics b = bulk_optics(gamma_with_effective_radius(6.0, r_eff_um * 1e-6), 550e-9,
+                                     refractive_index_table("water").at(550e-9), s);
+    INFO(std::setprecision(6) << "r_eff " << r_eff_um << " um: g = " << b.asymmetry << " +- " << b.asymmetry_error);
+    CHECK(std::abs(b.asymmetry - 0.85) <= 0.02 + b.asymmetry_error);
+  }
+}
