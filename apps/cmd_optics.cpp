@@ -100,6 +100,17 @@ nlohmann::json optics_json(const std::string& label, const w::ConditionOptics& o
     j["moments"] = {{"normalisation", "p(mu) = sum (2l+1) chi_l P_l(mu), chi_0 = 1, chi_1 = g; DISORT PMOM(l) = chi_l"},
                     {"values", b.moments},
                     {"errors", b.moments_error}};
+  if (!b.expansion.alpha1.empty()) {
+    const auto& v = b.expansion;
+    const auto& e = b.expansion_error;
+    j["expansion"] = {{"convention", "Mishchenko, Travis & Lacis 2002 sec. 4.11; alpha1_l = (2l+1) chi_l"},
+                      {"alpha1", {{"values", v.alpha1}, {"errors", e.alpha1}}},
+                      {"alpha2", {{"values", v.alpha2}, {"errors", e.alpha2}}},
+                      {"alpha3", {{"values", v.alpha3}, {"errors", e.alpha3}}},
+                      {"alpha4", {{"values", v.alpha4}, {"errors", e.alpha4}}},
+                      {"beta1", {{"values", v.beta1}, {"errors", e.beta1}}},
+                      {"beta2", {{"values", v.beta2}, {"errors", e.beta2}}}};
+  }
   if (!b.phase.empty())
     j["phase_function"] = {{"normalisation", "int p dOmega = 4 pi (isotropic p = 1)"},
                            {"angles_deg", b.angles_deg},
@@ -129,6 +140,14 @@ void print_text(const std::string& label, const w::ConditionOptics& o) {
       for (std::size_t l = 0; l < b.moments.size(); ++l)
         std::cout << "    " << l << "  " << num(b.moments[l], 12) << " +- " << num(b.moments_error[l], 3) << "\n";
     }
+    if (!b.expansion.alpha1.empty()) {
+      const auto& v = b.expansion;
+      std::cout << "  scattering-matrix expansion (MTL 2002 sec. 4.11): l alpha1 alpha2 alpha3 alpha4 beta1 beta2\n";
+      for (std::size_t l = 0; l < v.alpha1.size(); ++l)
+        std::cout << "    " << l << "  " << num(v.alpha1[l], 8) << " " << num(v.alpha2[l], 8) << " "
+                  << num(v.alpha3[l], 8) << " " << num(v.alpha4[l], 8) << " " << num(v.beta1[l], 8) << " "
+                  << num(v.beta2[l], 8) << "\n";
+    }
     if (!b.phase.empty()) {
       std::cout << "  phase function p(theta) (int p dOmega = 4 pi):\n";
       for (std::size_t i = 0; i < b.phase.size(); ++i)
@@ -146,6 +165,7 @@ struct OpticsOptions {
   WeatherOptions weather;
   int moments = -1;
   std::string angles;
+  bool polarised = false;
   bool json = false;
 };
 
@@ -154,6 +174,8 @@ void run_optics(const std::vector<std::string>& conditions, const OpticsOptions&
   const double wavelength = wavelength_m(o.weather);
   w::OpticsRequest request;
   request.legendre_moments = o.moments;
+  if (o.polarised && o.moments < 0) throw std::invalid_argument("--polarised needs --moments L");
+  request.polarised = o.polarised;
   if (!o.angles.empty()) request.angles_deg = parse_angles(o.angles);
   std::vector<std::pair<std::string, w::MieCondition>> parsed;  // all parse before any work
   for (std::size_t i = 0; i < conditions.size(); ++i) {
@@ -190,6 +212,8 @@ void register_optics(CLI::App& app) {
                   "Legendre moments chi_0..chi_L of the phase function (costs O(x^2) per drop); [0, 100000]")
       ->check(CLI::Range(0, 100000));
   cmd->add_option("--angles", opts->angles, "phase function at START:STOP:STEP or a list A,B,... (degrees)");
+  cmd->add_flag("--polarised", opts->polarised,
+                "with --moments: alpha1..alpha4, beta1, beta2 of the bulk scattering matrix");
   cmd->add_flag("--json", opts->json, "print JSON");
   cmd->callback([opts, conditions] { run_optics(*conditions, *opts); });
 }

@@ -27,7 +27,7 @@ const double kPi = boost::math::constants::pi<double>();
 // Constant efficiencies: every bulk quantity is a multiple of the exact
 // geometric cross-section pi int r^2 n dr.
 Efficiency constant_sphere(double) {
-  Efficiency e{2.0, 1.5, 0.5, 0.6, 4 * kPi * 0.05, {1.0, 0.6, 0.4}, {7.0, 0.2}};
+  Efficiency e{2.0, 1.5, 0.5, 0.6, 4 * kPi * 0.05, {1.0, 0.6, 0.4}, {7.0, 0.2}, {}};
   return e;
 }
 
@@ -214,4 +214,31 @@ TEST_CASE("bulk Legendre moment errors cover the resonances: radiation fog, 550 
   // Without a phase function the moments' own (looser) resonance target drives the refinement.
   check_against_brute_force(preset_distribution("radiation"), 550e-9, {}, 8);
   check_against_brute_force(preset_distribution("radiation"), 1.55e-6, {180.0}, 8);
+}
+
+TEST_CASE("bulk scattering-matrix expansion: identities of de Rooij & van der Stap (Mie)",
+          "[weather][bulk][polarised]") {
+  // Radiation fog at 1.55 um (P.1817-1 / seed; water from Hale & Querry 1973).  Each sphere's
+  // alpha1_l = (2l+1) chi_l, alpha1_0 = 1; alpha2, alpha3, beta1, beta2 vanish for l < 2;
+  // |alpha1,4|, |beta1,2| <= 2l+1 (legendre_moments.hpp); all survive the weighted average.
+  const auto m = refractive_index_table("water").at(1.55e-6);
+  QuadratureSettings s;
+  s.legendre_moments = 6;
+  s.polarised = true;
+  const BulkOptics b = mie_bulk_optics(preset_distribution("radiation"), 1.55e-6, m, s);
+  const auto& e = b.expansion;
+  REQUIRE(e.alpha1.size() == 7);
+  REQUIRE(e.beta2.size() == 7);
+  CHECK(std::abs(e.alpha1[0] - 1.0) <= b.expansion_error.alpha1[0] + 1e-14);
+  for (int l = 0; l <= 6; ++l) {
+    INFO("l = " << l);
+    CHECK(std::abs(e.alpha1[l] - (2 * l + 1) * b.moments[l]) <= 1e-12 * (2 * l + 1));
+    for (const auto* v : {&e.alpha1, &e.alpha4, &e.beta1, &e.beta2}) CHECK(std::abs((*v)[l]) <= 2 * l + 1 + 1e-12);
+    CHECK(b.expansion_error.alpha2[l] >= 0);
+    if (l < 2)
+      for (const auto* v : {&e.alpha2, &e.alpha3, &e.beta1, &e.beta2}) CHECK(std::abs((*v)[l]) < 1e-12);
+  }
+  // Requested alone, nothing polarised is computed.
+  s.polarised = false;
+  CHECK(mie_bulk_optics(preset_distribution("radiation"), 1.55e-6, m, s).expansion.alpha1.empty());
 }

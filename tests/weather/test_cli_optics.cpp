@@ -67,6 +67,9 @@ TEST_CASE("optics rejects bad input with a message naming it", "[weather][cli][o
   r = run("optics fog:radiation --angles 0:x:10");
   CHECK(r.status != 0);
   CHECK_THAT(r.output, Contains("--angles") && Contains("'x'"));
+  r = run("optics fog:radiation --polarised");
+  CHECK(r.status != 0);
+  CHECK_THAT(r.output, Contains("--polarised needs --moments"));
   r = run("optics fog:radiation --moments -3");
   CHECK(r.status != 0);
   r = run("optics fog:nonesuch");

@@ -23,12 +23,14 @@ struct Layout {
   bool back = false;
   int moments = 0;  // L + 1, or 0
   int angles = 0;
+  int expansion = 0;  // 6 (L + 1): alpha1..4, beta1, beta2
   explicit Layout(const QuadratureSettings& s)
       : back(s.backscatter), moments(s.legendre_moments >= 0 ? s.legendre_moments + 1 : 0),
-        angles(static_cast<int>(s.angles_deg.size())) {}
+        angles(static_cast<int>(s.angles_deg.size())), expansion(s.polarised ? 6 * moments : 0) {}
   int moment(int l) const { return kFixed + l; }
   int angle(int j) const { return kFixed + moments + j; }
-  int size() const { return kFixed + moments + angles; }
+  int expansion_at(int i) const { return kFixed + moments + angles + i; }
+  int size() const { return kFixed + moments + angles + expansion; }
   bool angular(int c) const { return c >= kBack; }
   // The components whose errors must meet the tolerances.
   std::vector<int> checked() const {
@@ -40,7 +42,8 @@ struct Layout {
   // sigma_ext for ext/sca/abs, sigma_sca for g and chi_l (absolute on the
   // normalised value), the component itself for beta_pi and p(theta).
   double scale(int c, const Vec& v) const {
-    if (c == kGSca || (c >= kFixed && c < kFixed + moments)) return std::max(std::abs(v[kSca]), 1e-300);
+    if (c == kGSca || (c >= kFixed && c < kFixed + moments) || c >= kFixed + moments + angles)
+      return std::max(std::abs(v[kSca]), 1e-300);
     if (c == kBack || c >= kFixed + moments) return std::max(std::abs(v[c]), 1e-300);
     return std::max(std::abs(v[kExt]), 1e-300);
   }

@@ -84,11 +84,13 @@ class Integrator {
     f[kWeight] = w;
     f[kBack] = w * e.qback / (4 * kPi);
     if (e.moments.size() < static_cast<std::size_t>(layout_.moments) ||
-        e.phase.size() < static_cast<std::size_t>(layout_.angles))
+        e.phase.size() < static_cast<std::size_t>(layout_.angles) ||
+        e.expansion.size() < static_cast<std::size_t>(layout_.expansion))
       throw std::invalid_argument("bulk optics: the efficiency function does not supply the Legendre moments or "
                                   "phase function asked for");
     for (int l = 0; l < layout_.moments; ++l) f[layout_.moment(l)] = w * e.qsca * e.moments[l];
     for (int j = 0; j < layout_.angles; ++j) f[layout_.angle(j)] = w * e.qsca * e.phase[j];
+    for (int i = 0; i < layout_.expansion; ++i) f[layout_.expansion_at(i)] = w * e.qsca * e.expansion[i];
     return f;
   }
 
@@ -441,6 +443,19 @@ void fill_optional(BulkOptics& out, const Refinement& r, const Support& support,
   out.phase.assign(layout.angles, 0.0);
   out.phase_error.assign(layout.angles, 0.0);
   for (int j = 0; j < layout.angles; ++j) normalised(layout.angle(j), out.phase[j], out.phase_error[j]);
+  if (layout.expansion > 0) {
+    std::vector<double>* values[] = {&out.expansion.alpha1, &out.expansion.alpha2, &out.expansion.alpha3,
+                                     &out.expansion.alpha4, &out.expansion.beta1,  &out.expansion.beta2};
+    std::vector<double>* errors[] = {&out.expansion_error.alpha1, &out.expansion_error.alpha2,
+                                     &out.expansion_error.alpha3, &out.expansion_error.alpha4,
+                                     &out.expansion_error.beta1,  &out.expansion_error.beta2};
+    for (int k = 0; k < 6; ++k) {
+      values[k]->assign(layout.moments, 0.0);
+      errors[k]->assign(layout.moments, 0.0);
+      for (int l = 0; l < layout.moments; ++l)
+        normalised(layout.expansion_at(k * layout.moments + l), (*values[k])[l], (*errors[k])[l]);
+    }
+  }
 }
 
 // The estimates, errors and method of the refined panels.

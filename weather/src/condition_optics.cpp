@@ -28,6 +28,7 @@ ConditionOptics condition_optics(const MieCondition& c, double wavelength_m, con
   q.backscatter = request.backscatter;
   q.legendre_moments = request.legendre_moments;
   q.angles_deg = request.angles_deg;
+  q.polarised = request.polarised;
   if (std::holds_alternative<MarshallPalmerRain>(c.drops)) {
     // As sigma(): beyond rain_asymptotic_x only Q_ext's large-x expansion is
     // known, so rain at short wavelengths gives sigma_ext alone

@@ -65,6 +65,16 @@ struct Efficiency {
   double qext = 0, qsca = 0, qabs = 0, g = 0;
   double qback = 0;
   std::vector<double> moments, phase;
+  // alpha1..alpha4, beta1, beta2 for l = 0..L, each L + 1 long, concatenated
+  // (legendre_moments.hpp: scattering_matrix_expansion)
+  std::vector<double> expansion;
+};
+
+// Expansion of the bulk scattering matrix in generalised spherical functions
+// (de Rooij & van der Stap 1984; Mishchenko, Travis & Lacis 2002, §4.11;
+// legendre_moments.hpp gives the convention): alpha1_l = (2l+1) chi_l.
+struct MatrixExpansion {
+  std::vector<double> alpha1, alpha2, alpha3, alpha4, beta1, beta2;
 };
 using EfficiencyFunction = std::function<Efficiency(double x)>;
 
@@ -84,6 +94,7 @@ struct QuadratureSettings {
   bool backscatter = false;           // beta_pi and the lidar ratio
   int legendre_moments = -1;          // L >= 0: chi_0..chi_L
   std::vector<double> angles_deg;     // bulk phase function at these angles
+  bool polarised = false;             // with legendre_moments >= 0: alpha1..4, beta1, 2 of the bulk matrix
   // Resonance target of those quantities (relative to beta_pi, to p(theta),
   // absolute on chi_l): Q_back and the angular quantities of nearly lossless
   // drops carry resonances ~10-100x stronger than Q_ext's, so meeting
@@ -115,6 +126,7 @@ struct BulkOptics {
   double lidar_ratio = 0, lidar_ratio_error = 0;  // sigma_ext / beta_pi, sr
   std::vector<double> moments, moments_error;     // chi_0..chi_L (dimensionless, chi_0 = 1)
   std::vector<double> angles_deg, phase, phase_error;  // p(theta), int p dOmega = 4 pi
+  MatrixExpansion expansion, expansion_error;          // scattering-weighted, as chi_l
 };
 
 // With any efficiency function (analytic test integrands, a cached Mie table...).

@@ -17,6 +17,7 @@ struct OpticsRequest {
   bool backscatter = true;
   int legendre_moments = -1;       // L >= 0: chi_0..chi_L
   std::vector<double> angles_deg;  // phase function at these angles, each in [0, 180]
+  bool polarised = false;          // with legendre_moments >= 0: the whole matrix's expansion
 };
 
 struct ConditionOptics {
