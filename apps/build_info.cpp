@@ -4,6 +4,8 @@
 
 #include <boost/version.hpp>
 
+#include "attenuvis/weather/refractive_index.hpp"
+
 namespace attenuvis::cli {
 
 std::string build_info() {
@@ -14,7 +16,8 @@ std::string build_info() {
          "commit:     " + ATTENUVIS_GIT_COMMIT + " (at configure time)\n" +
          "build type: " + ATTENUVIS_BUILD_TYPE + "\n" +
          "Embree:     " + ATTENUVIS_EMBREE_VERSION + "\n" +
-         "Boost:      " + boost + "\n";
+         "Boost:      " + boost + "\n" +
+         "data:       " + weather::data_directory() + "\n";  // where the refractive-index tables are read
 }
 
 }  // namespace attenuvis::cli

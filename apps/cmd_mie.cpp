@@ -1,18 +1,19 @@
-// `attenuvis mie`: Lorenz–Mie efficiencies of one sphere (--x, --m), or a
-// batch read from stdin (no --x).  Parsing and formatting of the batch live in
+// `attenuvis mie`: Lorenz–Mie efficiencies of one sphere (--x and --m, or
+// --radius, --wavelength and --medium-index), with its amplitudes, scattering
+// matrix and moments on request, or a batch read from stdin (no sphere given).  Parsing and formatting of the batch live in
 // attenuvis/mie/batch.hpp; this file only maps options to library calls.
-#include <cstdio>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <streambuf>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/batch.hpp"
+#include "attenuvis/weather/units.hpp"
 #include "commands.hpp"
+#include "mie_output.hpp"
 
 namespace attenuvis::cli {
 namespace {
@@ -44,8 +45,12 @@ class ErrorPrefixBuf : public std::streambuf {
 
 struct MieArgs {
   double x = 0;
+  std::string radius, wavelength;  // with units, e.g. 5um and 550nm
+  double medium_index = 1.0;
   std::string m = "1.33,0";
-  std::string angles;
+  std::string angles, phase;
+  std::size_t moments = 0;
+  bool polarised = false;
   std::string terms = "converged";
   std::string working = "auto";
   bool json = false;
@@ -59,82 +64,92 @@ mie::Options make_options(const MieArgs& a) {
   return o;
 }
 
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+// Amplitudes cost one series term per angle and order, and moments O(N^2)
+// term products: refuse a request that would run for minutes (e.g. 1e6 angles
+// at x = 1e4) before spending it.
+constexpr double kMaxSeriesWork = 1e9;  // a few seconds on one core
 
-void print_text(const MieArgs& a, std::complex<double> m, const mie::Scattering<double>& s) {
-  const auto& q = s.q;
-  // The input echoed as the shortest text that reads back to it; results at 17 digits.
-  std::cout << "Mie sphere  x = " << io::shortest(a.x) << "  m = " << io::shortest(m.real()) << " + "
-            << io::shortest(m.imag()) << "i\n"
-            << "  Qext  = " << num(q.qext) << "\n"
-            << "  Qsca  = " << num(q.qsca) << "\n"
-            << "  Qabs  = " << num(q.qabs) << "\n"
-            << "  Qback = " << num(q.qback) << "   (Bohren-Huffman 4|S1(180)|^2/x^2; BHMIE's is this/4pi)\n"
-            << "  Qpr   = " << num(q.qpr) << "\n"
-            << "  g     = " << num(q.g) << "\n"
-            << "  terms = " << q.terms << " (" << a.terms << ")\n";
-  if (!s.angles_deg.empty()) {
-    std::cout << "  theta_deg  Re S1  Im S1  Re S2  Im S2\n";
-    for (std::size_t i = 0; i < s.angles_deg.size(); ++i)
-      std::cout << "  " << num(s.angles_deg[i]) << "  " << num(s.s1[i].real()) << "  " << num(s.s1[i].imag())
-                << "  " << num(s.s2[i].real()) << "  " << num(s.s2[i].imag()) << "\n";
-  }
-}
-
-void print_json(const MieArgs& a, std::complex<double> m, const mie::Scattering<double>& s) {
-  const auto& q = s.q;
-  nlohmann::json j = {{"x", a.x},         {"m", {m.real(), m.imag()}}, {"qext", q.qext}, {"qsca", q.qsca},
-                      {"qabs", q.qabs},   {"qback", q.qback},          {"qpr", q.qpr},   {"g", q.g},
-                      {"terms", q.terms}, {"term_rule", a.terms}};
-  if (!s.angles_deg.empty()) {
-    nlohmann::json s1 = nlohmann::json::array(), s2 = nlohmann::json::array();
-    for (std::size_t i = 0; i < s.angles_deg.size(); ++i) {
-      s1.push_back({s.s1[i].real(), s.s1[i].imag()});
-      s2.push_back({s.s2[i].real(), s.s2[i].imag()});
-    }
-    j["angles_deg"] = s.angles_deg;
-    j["s1"] = s1;
-    j["s2"] = s2;
-  }
-  std::cout << j.dump(2) << "\n";
-}
-
-// Amplitudes cost one series term per angle and order: refuse a request that
-// would run for minutes (e.g. 1e6 angles at x = 1e4) before spending it.
-constexpr double kMaxAmplitudeTerms = 1e9;  // a few seconds on one core
-
-void require_affordable_amplitudes(double x, std::size_t angles) {
+void require_affordable(double x, double work_per_term, const std::string& what, const std::string& advice) {
   if (!(x > 0 && x <= 1e6)) return;  // outside the domain: scatter() says so
-  const double work = static_cast<double>(angles) * static_cast<double>(mie::wiscombe_terms(x));
-  if (work > kMaxAmplitudeTerms)
-    throw std::invalid_argument("mie: " + std::to_string(angles) + " angles x about " +
-                                std::to_string(mie::wiscombe_terms(x)) + " series terms at x = " + io::shortest(x) +
-                                " is more than the " + io::significant(kMaxAmplitudeTerms, 2) +
-                                " amplitude terms this command computes; give --angles a coarser step");
+  const double terms = static_cast<double>(mie::wiscombe_terms(x));
+  const double work = work_per_term * terms;
+  if (work > kMaxSeriesWork)
+    throw std::invalid_argument("mie: " + what + " at x = " + io::shortest(x) + " (about " + io::shortest(terms) +
+                                " series terms) is more than the " + io::significant(kMaxSeriesWork, 2) +
+                                " term evaluations this command computes; " + advice);
+}
+
+// The sphere as the user gave it: --x and --m, or --radius and --wavelength
+// (x = 2 pi n_medium r / lambda, m relative = m / n_medium).
+MieEcho resolve_sphere(const MieArgs& a, const CLI::App& cmd) {
+  MieEcho e;
+  e.term_rule = a.terms;
+  const std::complex<double> m = mie::batch::parse_refractive_index(a.m);
+  const bool by_size = cmd.count("--radius") || cmd.count("--wavelength");
+  if (!by_size) {
+    if (cmd.count("--medium-index")) throw std::invalid_argument("mie: --medium-index needs --radius and --wavelength");
+    e.x = a.x;
+    e.m = m;
+    return e;
+  }
+  if (cmd.count("--x")) throw std::invalid_argument("mie: give --x, or --radius with --wavelength, not both");
+  if (!cmd.count("--radius") || !cmd.count("--wavelength"))
+    throw std::invalid_argument("mie: --radius and --wavelength go together (or give --x)");
+  if (!(std::isfinite(a.medium_index) && a.medium_index >= 1e-3 && a.medium_index <= 1e3))
+    throw std::invalid_argument("mie: --medium-index must be a real index in [0.001, 1000], got " +
+                                io::shortest(a.medium_index));
+  const double r = weather::parse_length(a.radius, "--radius");
+  const double lambda = weather::parse_wavelength(a.wavelength);
+  e.x = 2 * M_PI * a.medium_index * r / lambda;
+  e.m = m / a.medium_index;
+  e.size_text = "radius " + a.radius + ", wavelength " + a.wavelength + " in vacuum, medium index " +
+                io::shortest(a.medium_index);
+  return e;
+}
+
+MieResult compute(const MieArgs& a, const CLI::App& cmd, const MieEcho& e) {
+  mie::Extras extras;
+  std::vector<double> matrix_angles;
+  if (!a.angles.empty()) extras.angles_deg = mie::batch::parse_angles(a.angles);
+  if (!a.phase.empty()) matrix_angles = mie::batch::parse_angles(a.phase);
+  require_affordable(e.x, static_cast<double>(extras.angles_deg.size() + matrix_angles.size()),
+                     "amplitudes at " + std::to_string(extras.angles_deg.size() + matrix_angles.size()) + " angles",
+                     "give --angles/--phase a coarser step");
+  const bool want_moments = cmd.count("--moments") > 0;
+  if (a.polarised && !want_moments) throw std::invalid_argument("mie: --polarised needs --moments L");
+  if (want_moments) {
+    extras.coefficients = true;
+    // 2N+1 quadrature nodes x N terms (legendre_moments.hpp), six products each with --polarised.
+    const double per_term = 2.0 * static_cast<double>(mie::wiscombe_terms(e.x)) * (a.polarised ? 3.0 : 1.0);
+    require_affordable(e.x, per_term, "Legendre moments", "they cost O(N^2); use a smaller x");
+  }
+  const mie::Options options = make_options(a);
+  MieResult r;
+  r.s = mie::scatter(e.x, e.m, extras, options);
+  if (!matrix_angles.empty()) r.matrix = mie::scattering_matrix(e.x, e.m, matrix_angles);
+  if (want_moments) {
+    r.moments = mie::phase_function_moments(r.s, a.moments);
+    if (a.polarised) r.expansion = mie::scattering_matrix_expansion(r.s, a.moments);
+  }
+  return r;
 }
 
 void run(const MieArgs& a, const CLI::App& cmd) {
-  const mie::Options options = make_options(a);
-  if (cmd.count("--x") == 0) {
+  const bool one_sphere = cmd.count("--x") || cmd.count("--radius") || cmd.count("--wavelength");
+  if (!one_sphere) {
     // Batch mode: stdin -> CSV on stdout, bad lines on stderr, exit 1 if any.
-    if (!a.angles.empty() || a.json) throw std::invalid_argument("mie: --angles and --json need --x");
+    for (const char* o : {"--angles", "--phase", "--moments", "--polarised", "--json", "--medium-index"})
+      if (cmd.count(o)) throw std::invalid_argument(std::string("mie: ") + o + " needs one sphere (--x, or --radius and --wavelength)");
     ErrorPrefixBuf prefix(std::cerr);
     std::ostream errors(&prefix);
-    const std::size_t bad = mie::batch::run(std::cin, std::cout, errors, options);
+    const std::size_t bad = mie::batch::run(std::cin, std::cout, errors, make_options(a));
     if (bad) exit_status() = 1;
     return;
   }
-  const std::complex<double> m = mie::batch::parse_refractive_index(a.m);
-  mie::Extras extras;
-  if (!a.angles.empty()) extras.angles_deg = mie::batch::parse_angles(a.angles);
-  require_affordable_amplitudes(a.x, extras.angles_deg.size());
-  const mie::Scattering<double> s = mie::scatter(a.x, m, extras, options);
-  if (a.json) print_json(a, m, s);
-  else print_text(a, m, s);
+  const MieEcho echo = resolve_sphere(a, cmd);
+  const MieResult r = compute(a, cmd, echo);
+  if (a.json) print_mie_json(echo, r);
+  else print_mie_text(echo, r);
 }
 
 }  // namespace
@@ -145,9 +160,19 @@ void register_mie(CLI::App& app) {
       "mie",
       "Lorenz-Mie efficiencies of a homogeneous sphere (Bohren & Huffman conventions, m = n + ik, k >= 0 "
       "absorbing). Without --x: batch mode, lines 'x m_re m_im' on stdin -> CSV on stdout.");
-  cmd->add_option("--x", args->x, "size parameter 2*pi*r/lambda (> 0)");
+  cmd->add_option("--x", args->x, "size parameter 2*pi*r/lambda, in [1e-8, 1e6]");
+  cmd->add_option("--radius", args->radius, "sphere radius with unit (nm, um, mm, m), e.g. 5um; with --wavelength instead of --x");
+  cmd->add_option("--wavelength", args->wavelength, "vacuum wavelength with unit, e.g. 550nm; with --radius");
+  cmd->add_option("--medium-index", args->medium_index,
+                  "real refractive index of the medium (default 1): x = 2 pi n r / lambda, m relative = m / n");
   cmd->add_option("--m", args->m, "relative refractive index m = n + ik: 'n+ki', 'n,k' or 'n' (e.g. 1.5+0.1i, 1.5,0.1; default 1.33,0)");
   cmd->add_option("--angles", args->angles, "scattering angles in degrees for S1, S2: start:stop:step or a,b,c");
+  cmd->add_option("--phase", args->phase,
+                  "angles (degrees, as --angles) for the scattering matrix S11, S12, S33, S34 and the phase function p "
+                  "(integral of p over 4 pi sr = 4 pi)");
+  cmd->add_option("--moments", args->moments,
+                  "Legendre moments chi_0..chi_L of the phase function (chi_0 = 1, chi_1 = g; zero above 2N)");
+  cmd->add_flag("--polarised", args->polarised, "with --moments: also alpha1..alpha4, beta1, beta2 of the whole matrix");
   cmd->add_flag("--json", args->json, "print JSON instead of text");
   cmd->add_option("--terms", args->terms, "term count: converged (default) or wiscombe")
       ->check(CLI::IsMember({"converged", "wiscombe"}));

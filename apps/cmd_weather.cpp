@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "attenuvis/weather.hpp"
+#include "build_info.hpp"
 #include "commands.hpp"
 #include "path_clashes.hpp"
 #include "weather_options.hpp"
@@ -48,10 +49,14 @@ void run_sigma(const std::vector<std::string>& conditions, const CommonOptions& 
     const bool bounded = r.per_m > 0;
     const double vis = bounded ? w::koschmieder_visibility_m(r.per_m, s.contrast_threshold) : 0.0;
     if (json) {
+      // Every sigma-like number of the output in the unit asked for, the error's parts included.
+      nlohmann::json terms = nlohmann::json::object();
+      for (const auto& e : r.error_terms) terms[e.name] = w::convert_from_per_m(e.per_m, unit);
       nlohmann::json row = {{"condition", c.label},
                             {"wavelength_nm", wavelength_m * 1e9},
                             {"sigma", w::convert_from_per_m(r.per_m, unit)},
                             {"error", w::convert_from_per_m(r.error_per_m, unit)},
+                            {"error_terms", terms},
                             {"units", w::to_string(unit)},
                             {"convention", r.convention},
                             {"contrast_threshold", s.contrast_threshold},
@@ -67,6 +72,13 @@ void run_sigma(const std::vector<std::string>& conditions, const CommonOptions& 
                 << (bounded ? num(vis) + " m" : std::string("unbounded")) << " (contrast " << num(100 * s.contrast_threshold)
                 << " %)\n"
                 << "  model: " << r.model << "\n";
+      if (!r.error_terms.empty()) {
+        std::cout << "  error:";
+        for (std::size_t i = 0; i < r.error_terms.size(); ++i)
+          std::cout << (i ? " + " : " ") << r.error_terms[i].name << " "
+                    << num(w::convert_from_per_m(r.error_terms[i].per_m, unit), 3);
+        std::cout << " " << w::to_string(unit) << "\n";
+      }
       if (!r.note.empty()) std::cout << "  note: " << r.note << "\n";
     }
   }
@@ -82,29 +94,69 @@ std::vector<NamedPath> condition_inputs(const std::vector<w::LabelledCondition>&
   return out;
 }
 
-void run_table(const std::string& conditions, const std::string& wavelengths, const std::string& format,
-               const std::string& path, int threads, const CommonOptions& o) {
+// build_info()'s lines (version, commit, build type, libraries) as one line, runs of blanks squeezed.
+std::string producer() {
+  std::string out;
+  std::istringstream lines(build_info());
+  for (std::string line; std::getline(lines, line);) {
+    std::string squeezed;
+    for (char ch : line)
+      if (ch != ' ' || squeezed.empty() || squeezed.back() != ' ') squeezed += ch;
+    out += (out.empty() ? "" : "; ") + squeezed;
+  }
+  return out;
+}
+
+struct TableOptions {
+  std::string conditions, wavelengths = "550nm", quantities = "sigma_ext", format = "csv", out;
+  int threads = 0;
+};
+
+void run_table(const TableOptions& t, const CommonOptions& o) {
   const w::Settings s = weather_settings(o.weather);
   std::vector<w::LabelledCondition> parsed;
-  for (const auto& text : w::split_condition_list(conditions)) {
+  for (const auto& text : w::split_condition_list(t.conditions)) {
     auto expanded = w::expand_conditions(text);
     parsed.insert(parsed.end(), expanded.begin(), expanded.end());
   }
   if (parsed.empty()) throw std::invalid_argument("--conditions is empty\n" + w::condition_grammar());
-  refuse_path_clashes({{"--out", path}}, condition_inputs(parsed));
-  const auto table_format = w::parse_table_format(format);
+  const auto table_format = w::parse_table_format(t.format);
+  // A CSV table writes its sidecar beside it: neither may replace an input.
+  std::vector<NamedPath> outputs = {{"--out", t.out}};
+  if (table_format == w::TableFormat::csv) outputs.push_back({"--out's sidecar", w::csv_sidecar_path(t.out)});
+  refuse_path_clashes(outputs, condition_inputs(parsed));
   const auto unit = w::parse_sigma_unit(o.units);
+  if (table_format == w::TableFormat::netcdf && unit == w::SigmaUnit::dB_per_km)
+    throw std::invalid_argument("--units dB/km: netCDF tables take --units m or km (CF units must be UDUNITS units)");
+  const auto quantities = [&] {
+    try {
+      return w::parse_quantity_list(t.quantities);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("--quantities: ") + e.what());
+    }
+  }();
   const auto wavelengths_m = [&] {
     try {
-      return w::parse_wavelength_list(wavelengths);
+      return w::parse_wavelength_list(t.wavelengths);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string("--wavelengths: ") + e.what());
     }
   }();
-  auto table = w::sigma_table(parsed, wavelengths_m, s, threads);
-  w::write_sigma_table(table, path, table_format, unit);
-  std::cout << "wrote " << table.cells.size() << " sigma values (" << table.wavelengths_m.size() << " wavelengths x "
-            << parsed.size() << " conditions) to " << path << "\n";
+  auto table = w::sigma_table(parsed, wavelengths_m, s, t.threads, quantities);
+  w::write_sigma_table(table, t.out, table_format, unit, {producer()});
+  std::cout << "wrote " << quantities.size() << " quantities x " << table.wavelengths_m.size() << " wavelengths x "
+            << parsed.size() << " conditions to " << t.out;
+  if (table_format == w::TableFormat::csv) std::cout << " (column descriptions in " << w::csv_sidecar_path(t.out) << ")";
+  std::cout << "\n";
+  // Say which conditions leave quantities missing, so an empty column is no surprise.
+  const auto missing = w::conditions_with_missing_values(table);
+  if (!missing.empty()) {
+    std::cout << "note: " << missing.size() << " of " << parsed.size()
+              << " conditions have missing values (quantities beyond sigma_ext need a size distribution; see "
+                 "missing_values in the metadata):";
+    for (std::size_t i = 0; i < missing.size() && i < 5; ++i) std::cout << " " << missing[i];
+    std::cout << (missing.size() > 5 ? " ...\n" : "\n");
+  }
 }
 
 void run_distribution(const std::string& what, const std::string& density_text, bool json) {
@@ -179,23 +231,24 @@ void register_weather(CLI::App& app) {
     cmd->callback([=] { run_sigma(*conditions, *opts, *json); });
   }
   {
-    auto* cmd = app.add_subcommand("table", "sigma over wavelengths x conditions, written atomically");
-    auto conditions = std::make_shared<std::string>();
-    auto wavelengths = std::make_shared<std::string>("550nm");
-    auto format = std::make_shared<std::string>("csv");
-    auto out = std::make_shared<std::string>();
-    auto threads = std::make_shared<int>(0);
+    auto* cmd = app.add_subcommand("table", "optical quantities over wavelengths x conditions, written atomically "
+                                            "as CSV (+ .meta.json sidecar), JSON or netCDF-4 (CF-1.8)");
+    auto t = std::make_shared<TableOptions>();
     auto opts = std::make_shared<CommonOptions>();
-    cmd->add_option("--conditions", *conditions, "comma-separated conditions; sweeps like rain:1..100")->required();
-    cmd->add_option("--wavelengths", *wavelengths, "START:STOP:STEPunit (400:800:10nm) or a list (550nm,10.6um)")
+    cmd->add_option("--conditions", t->conditions, "comma-separated conditions; sweeps like rain:1..100")->required();
+    cmd->add_option("--wavelengths", t->wavelengths, "START:STOP:STEPunit (400:800:10nm) or a list (550nm,10.6um)")
         ->capture_default_str();
-    cmd->add_option("--format", *format, "csv or json")->capture_default_str();
-    cmd->add_option("--out", *out, "output file")->required();
-    cmd->add_option("--threads", *threads, "worker threads (0: all cores); [0, 1024]")
+    cmd->add_option("--quantities", t->quantities,
+                    "comma-separated: " + w::quantity_names() + "; all but sigma_ext need a Mie condition (else "
+                    "empty)")
+        ->capture_default_str();
+    cmd->add_option("--format", t->format, "csv, json or netcdf")->capture_default_str();
+    cmd->add_option("--out", t->out, "output file")->required();
+    cmd->add_option("--threads", t->threads, "worker threads (0: all cores); [0, 1024]")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();
     add_common(cmd, *opts, {/*wavelength=*/false, /*tolerance=*/true});
-    cmd->callback([=] { run_table(*conditions, *wavelengths, *format, *out, *threads, *opts); });
+    cmd->callback([=] { run_table(*t, *opts); });
   }
   {
     auto* cmd = app.add_subcommand("distribution", std::string("moments and checks of a size distribution: a preset "

@@ -11,6 +11,9 @@ packages=(
   libeigen3-dev libembree-dev libtinyobjloader-dev libtbb-dev libnanoflann-dev
   libcli11-dev nlohmann-json3-dev catch2 libbenchmark-dev libtinygltf-dev
   python3 python3-matplotlib python3-numpy
+  libnetcdf-dev                             # netCDF-4 tables
+  pybind11-dev python3-dev python3-pytest  # the Python package (python/) and its tests
+  python3-xarray python3-netcdf4           # optional there; its tests and examples use them
 )
 # Callers add what only they need (scripts/test.sh: clang and its libFuzzer runtime).
 read -r -a extra <<<"${ATTENUVIS_EXTRA_PACKAGES:-}"
@@ -30,3 +33,11 @@ set -f  # ATTENUVIS_CMAKE_ARGS may hold a Catch2 spec like ~[slow]; never glob i
 build_dir=${ATTENUVIS_BUILD_DIR:-build}
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release ${ATTENUVIS_CMAKE_ARGS:-} >/dev/null
 cmake --build "$build_dir" --parallel "$(nproc)"
+# The Release tree is installed (the program to /usr/local/bin, its data to
+# /usr/local/share/attenuvis, the Python package to Debian's
+# /usr/local/lib/python3.X/dist-packages), so `attenuvis` and
+# `import attenuvis` work from any directory.  Other trees are not installed.
+if [ "$build_dir" = build ]; then
+  if [ "$(id -u)" -eq 0 ]; then sudo=""; else sudo="sudo"; fi
+  $sudo cmake --install "$build_dir" >/dev/null
+fi

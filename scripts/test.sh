@@ -9,7 +9,7 @@ ctest --test-dir build --output-on-failure --parallel "$(nproc)"
 
 ATTENUVIS_BUILD_DIR=build-asan \
 ATTENUVIS_EXTRA_PACKAGES="clang libclang-rt-14-dev" \
-ATTENUVIS_CMAKE_ARGS="-DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DATTENUVIS_SANITIZE=ON -DATTENUVIS_FUZZ=ON -DATTENUVIS_BUILD_BENCHMARKS=OFF -DATTENUVIS_TEST_SPEC=~[slow]" \
+ATTENUVIS_CMAKE_ARGS="-DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DATTENUVIS_SANITIZE=ON -DATTENUVIS_FUZZ=ON -DATTENUVIS_BUILD_BENCHMARKS=OFF -DATTENUVIS_TEST_SPEC=~[slow] -DATTENUVIS_PYTHON_PACKAGE=OFF" \
   bash scripts/setup.sh
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-asan --output-on-failure --parallel "$(nproc)"

@@ -4,6 +4,7 @@
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/mie/spheres.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -52,11 +53,14 @@ void append_number(std::string& out, double v) {
 // The output's own header (all of it, or its first three names "x m_re
 // m_im"), so that a CSV written by `attenuvis mie` can be fed back.
 bool is_header(const std::vector<std::string>& f) {
-  static const std::vector<std::string> names = {"x", "m_re", "m_im", "qext", "qsca", "qabs", "qback", "g"};
-  if (f.size() != 3 && f.size() != names.size()) return false;
-  for (std::size_t i = 0; i < f.size(); ++i)
-    if (f[i] != names[i]) return false;
-  return true;
+  // Today's header, and the one written before qpr and terms were added.
+  static const std::vector<std::string> names = {"x", "m_re", "m_im", "qext", "qsca", "qabs", "qback", "qpr", "g", "terms"};
+  static const std::vector<std::string> older = {"x", "m_re", "m_im", "qext", "qsca", "qabs", "qback", "g"};
+  for (const auto* h : {&names, &older}) {
+    if (f.size() != 3 && f.size() != h->size()) continue;
+    if (std::equal(f.begin(), f.end(), h->begin())) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -79,17 +83,19 @@ std::optional<Problem> parse_line(const std::string& line) {
   return p;
 }
 
-const char* csv_header() { return "x,m_re,m_im,qext,qsca,qabs,qback,g"; }
+const char* csv_header() { return "x,m_re,m_im,qext,qsca,qabs,qback,qpr,g,terms"; }
 
 std::string csv_row(const Problem& p, const Efficiencies<double>& q) {
   std::string row;
   // The input as the shortest text that reads back to it (1.33, not
   // 1.3300000000000001); the results at 17 digits, which read back exactly.
   row += io::shortest(p.x) + ',' + io::shortest(p.m.real()) + ',' + io::shortest(p.m.imag());
-  for (double v : {q.qext, q.qsca, q.qabs, q.qback, q.g}) {
+  for (double v : {q.qext, q.qsca, q.qabs, q.qback, q.qpr, q.g}) {
     row += ',';
     append_number(row, v);
   }
+  row += ',';
+  row += std::to_string(q.terms);
   return row;
 }
 

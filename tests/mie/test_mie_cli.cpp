@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -18,6 +19,8 @@
 
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/batch.hpp"
+#include "attenuvis/mie/legendre_moments.hpp"
+#include "attenuvis/mie/scattering_matrix.hpp"
 
 namespace {
 
@@ -113,19 +116,21 @@ TEST_CASE("mie batch: CSV with 17 digits, comments, commas; bad lines reported, 
   CHECK(r.status != 0);
   const auto out = lines(r.out);
   REQUIRE(out.size() == 4);
-  CHECK(out[0] == "x,m_re,m_im,qext,qsca,qabs,qback,g");
+  CHECK(out[0] == "x,m_re,m_im,qext,qsca,qabs,qback,qpr,g,terms");
   const double xs[3] = {100, 1, 0.001};
   const std::complex<double> ms[3] = {{1.33, 1e-8}, {1.5, 0}, {1.5, 0.1}};
   for (int i = 0; i < 3; ++i) {
     const auto v = csv_numbers(out[i + 1]);
-    REQUIRE(v.size() == 8);
+    REQUIRE(v.size() == 10);
     const auto q = mie::sphere(xs[i], ms[i]);
     CHECK(v[0] == xs[i]);
     CHECK(v[3] == q.qext);  // %.17g round-trips exactly
     CHECK(v[4] == q.qsca);
     CHECK(v[5] == q.qabs);
     CHECK(v[6] == q.qback);
-    CHECK(v[7] == q.g);
+    CHECK(v[7] == q.qpr);
+    CHECK(v[8] == q.g);
+    CHECK(v[9] == static_cast<double>(q.terms));  // the same columns as the single-sphere output
   }
   for (const char* where : {"line 5:", "line 6:", "line 7:", "line 8:", "line 9:"})
     CHECK_THAT(r.err, Catch::Contains(where));
@@ -179,12 +184,13 @@ TEST_CASE("mie batch: the fuzzer's regression lines are errors, not NaN rows", "
   }
 }
 
-TEST_CASE("attenuvis --version names the version, commit, build type, Embree and Boost", "[cli]") {
+TEST_CASE("attenuvis --version names the version, commit, build type, Embree, Boost and the data directory",
+          "[cli]") {
   const Run r = run_cli("--version");
   CHECK(r.status == 0);
   CHECK(r.err.empty());
   const std::vector<std::string> v = lines(r.out);
-  REQUIRE(v.size() == 5);
+  REQUIRE(v.size() == 6);
   CHECK(v[0].rfind("attenuvis ", 0) == 0);
   CHECK(v[0].size() > std::string("attenuvis ").size());  // a version follows the name
   const auto value = [&](std::size_t i, const std::string& key) {
@@ -199,6 +205,7 @@ TEST_CASE("attenuvis --version names the version, commit, build type, Embree and
   // Embree 3 (the project's find_package floor) and Boost 1.x, as MAJOR.MINOR.PATCH.
   CHECK(value(3, "Embree:").rfind("3.", 0) == 0);
   CHECK(value(4, "Boost:").rfind("1.", 0) == 0);
+  CHECK(std::filesystem::is_directory(value(5, "data:") + "/refractive-index"));
 }
 
 TEST_CASE("mie --m takes n+ki, n,k and a bare n", "[mie][cli]") {
@@ -229,7 +236,7 @@ TEST_CASE("mie echoes its inputs as the shortest text that reads back, results a
   REQUIRE(v.size() == 2);
   CHECK(v[1].rfind("0.1,1.33,0.001,", 0) == 0);
   const std::vector<double> row = csv_numbers(v[1]);
-  REQUIRE(row.size() == 8);
+  REQUIRE(row.size() == 10);
   CHECK(row[3] == mie::sphere(0.1, {1.33, 0.001}).qext);  // the result still reads back exactly
 }
 
@@ -242,4 +249,55 @@ TEST_CASE("mie --angles: a request of minutes is refused before it runs", "[mie]
                           Catch::Contains("coarser step"));
   // The same grid at x = 1 (a few terms) is affordable.
   CHECK(run_cli("mie --x 1 --m 1.33 --angles 0:180:0.018").status == 0);
+}
+
+TEST_CASE("mie --radius --wavelength --medium-index: x = 2 pi n r / lambda and m / n, as --x would give", "[mie][cli]") {
+  const Run by_size = run_cli("mie --radius 5um --wavelength 550nm --medium-index 1.33 --m 1.5+0.01i --json");
+  REQUIRE(by_size.status == 0);
+  const auto j = nlohmann::json::parse(by_size.out);
+  const double x = 2 * M_PI * 1.33 * 5e-6 / 550e-9;
+  const std::complex<double> m = std::complex<double>(1.5, 0.01) / 1.33;
+  CHECK(j["x"].get<double>() == Approx(x).epsilon(1e-15));
+  CHECK(j["m"][0].get<double>() == Approx(m.real()).epsilon(1e-15));
+  const auto q = mie::sphere(j["x"].get<double>(), {j["m"][0].get<double>(), j["m"][1].get<double>()});
+  CHECK(j["qext"].get<double>() == q.qext);
+  CHECK_THAT(j["size"].get<std::string>(), Catch::Contains("radius 5um") && Catch::Contains("wavelength 550nm"));
+  // Either --x or the pair; half a pair, or both, is an error naming the options.
+  for (const char* bad : {"mie --x 3 --radius 1um --wavelength 1um", "mie --radius 1um", "mie --wavelength 1um",
+                          "mie --x 3 --medium-index 1.33", "mie --radius 1 --wavelength 1um",
+                          "mie --radius 1um --wavelength 1um --medium-index -1"}) {
+    const Run r = run_cli(bad);
+    CHECK(r.status != 0);
+    CHECK(r.out.empty());
+    CHECK_THAT(r.err, Catch::StartsWith("attenuvis: error:"));
+  }
+}
+
+TEST_CASE("mie --phase, --moments, --polarised print what the library computes", "[mie][cli]") {
+  const Run r = run_cli("mie --x 5 --m 1.33+0.001i --phase 0:180:30 --moments 12 --polarised --json");
+  REQUIRE(r.status == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  const auto f = mie::scattering_matrix(5, {1.33, 0.001}, {0, 30, 60, 90, 120, 150, 180});
+  const auto& sm = j["scattering_matrix"];
+  REQUIRE(sm["phase"].size() == 7);
+  for (std::size_t i = 0; i < 7; ++i) {
+    CHECK(sm["s11"][i].get<double>() == f.s11[i]);
+    CHECK(sm["s34"][i].get<double>() == f.s34[i]);
+    CHECK(sm["phase"][i].get<double>() == f.phase[i]);
+  }
+  const auto chi = mie::phase_function_moments(5, {1.33, 0.001}, 12);
+  REQUIRE(j["legendre_moments"].size() == 13);
+  for (std::size_t l = 0; l <= 12; ++l) CHECK(j["legendre_moments"][l].get<double>() == chi[l]);
+  // chi_1 is g (legendre_moments.hpp), here from two different sums.
+  CHECK(j["legendre_moments"][1].get<double>() == Approx(j["g"].get<double>()).margin(1e-14));
+  REQUIRE(j["expansion"]["alpha1"].size() == 13);
+  CHECK(j["expansion"]["alpha1"][2].get<double>() == Approx(5 * chi[2]).margin(1e-13));
+  // A sphere does not depolarise (scattering_matrix.hpp): exactly 0.
+  CHECK(j["lidar"]["linear_depolarisation"].get<double>() == 0.0);
+  CHECK(j["lidar"]["lidar_ratio_sr"].get<double>() ==
+        Approx(4 * M_PI * j["qext"].get<double>() / j["qback"].get<double>()).epsilon(1e-15));
+  // In batch mode they have no sphere to apply to.
+  const Run batch = run_cli("mie --moments 4", "1 1.33 0\n");
+  CHECK(batch.status != 0);
+  CHECK_THAT(batch.err, Catch::Contains("--moments needs one sphere"));
 }

@@ -51,18 +51,21 @@ TEST_CASE("table writes CSV and JSON atomically", "[weather][cli]") {
   std::remove(json.c_str());
   auto r = run("table --conditions clear,rain:1..3,snow:wet:2 --wavelengths 400:800:100nm --out " + csv);
   REQUIRE(r.status == 0);
+  CHECK(exists(csv + ".meta.json"));  // the column descriptions and method notes
   std::ifstream in(csv);
   std::string line;
   int rows = 0;
-  while (std::getline(in, line))
-    if (!line.empty() && line[0] != '#') ++rows;
-  CHECK(rows == 1 + 5 * 5);  // header + 5 wavelengths x (clear, rain 1, 2, 3, snow)
+  std::getline(in, line);
+  CHECK(line.rfind("wavelength_nm,condition,rate_mm_h,sigma_ext_per_m,", 0) == 0);  // the header, first
+  while (std::getline(in, line)) ++rows;
+  CHECK(rows == 5 * 5);  // 5 wavelengths x (clear, rain 1, 2, 3, snow)
   auto rj = run("table --conditions rain:8 --wavelengths 550nm --format json --convention seed --out " + json);
   REQUIRE(rj.status == 0);
   std::ifstream jin(json);
   auto j = nlohmann::json::parse(jin);
   CHECK(j["convention"] == "seed");
-  CHECK(j["rows"][0]["sigma"].get<double>() == Approx(0.0045).margin(5e-5));
+  CHECK(j["rows"][0]["sigma_ext_per_m"].get<double>() == Approx(0.0045).margin(5e-5));
+  CHECK(j["rows"][0]["rate_mm_h"].get<double>() == 8.0);
   // A failing table leaves no file behind.
   std::string bad = "weather_cli_table_bad.csv";
   std::remove(bad.c_str());
@@ -70,8 +73,61 @@ TEST_CASE("table writes CSV and JSON atomically", "[weather][cli]") {
   CHECK(rb.status != 0);
   CHECK_THAT(rb.output, Contains("does-not-exist.csv"));
   CHECK(!exists(bad));
+  CHECK(!exists(bad + ".meta.json"));
   std::remove(csv.c_str());
+  std::remove((csv + ".meta.json").c_str());
   std::remove(json.c_str());
+}
+
+TEST_CASE("table: bad quantities, and dB/km in netCDF, are refused before any work, no file left",
+          "[weather][cli][table]") {
+  const std::string nc = "weather_cli_table_bad.nc";
+  std::remove(nc.c_str());
+  auto q = run("table --conditions rain:8 --quantities sigma_ext,albedo --format netcdf --out " + nc);
+  CHECK(q.status != 0);
+  CHECK_THAT(q.output, Contains("attenuvis: error: --quantities: unknown quantity 'albedo'") && Contains("ssa"));
+  auto db = run("table --conditions rain:8 --units dB/km --format netcdf --out " + nc);
+  CHECK(db.status != 0);
+  CHECK_THAT(db.output, Contains("--units dB/km") && Contains("m or km"));
+  auto f = run("table --conditions rain:8 --format hdf5 --out " + nc);
+  CHECK(f.status != 0);
+  CHECK_THAT(f.output, Contains("netcdf"));
+  CHECK(!exists(nc));
+  // Quantities a condition cannot have are missing by rule, not an error, and the run says so.
+  const std::string csv = "weather_cli_table_missing.csv";
+  auto g = run("table --conditions rain:8 --quantities sigma_ext,g --out " + csv);
+  CHECK(g.status == 0);
+  CHECK_THAT(g.output, Contains("note: 1 of 1 conditions have missing values") && Contains("rain:8"));
+  std::remove(csv.c_str());
+  std::remove((csv + ".meta.json").c_str());
+  // A failing cell leaves no netCDF file (nor a temporary) behind.
+  auto cell = run("table --conditions rain:8,fog:file=does-not-exist.csv --format netcdf --out " + nc);
+  CHECK(cell.status != 0);
+  CHECK(!exists(nc));
+}
+
+TEST_CASE("sigma --units km: sigma, its error and the error's parts all in 1/km", "[weather][cli]") {
+  // The contour integral of a fog preset reports its error in parts (quadrature, tails, rounding).
+  const auto m = run("sigma fog:advection --json");
+  const auto km = run("sigma fog:advection --units km --json");
+  REQUIRE(m.status == 0);
+  REQUIRE(km.status == 0);
+  const auto jm = nlohmann::json::parse(m.output)[0], jk = nlohmann::json::parse(km.output)[0];
+  CHECK(jk["units"] == "1/km");
+  REQUIRE(jk["error_terms"].size() >= 2);
+  double sum = 0;
+  for (const auto& [name, value] : jk["error_terms"].items()) {
+    CHECK(value.get<double>() == Approx(1e3 * jm["error_terms"][name].get<double>()).epsilon(1e-12));
+    sum += value.get<double>();
+  }
+  CHECK(sum == Approx(jk["error"].get<double>()).epsilon(1e-12));  // the parts add up to the error
+  // Text: the breakdown line names the unit asked for, and no number in 1/m is left in the output.
+  const auto text = run("sigma fog:advection --units km");
+  REQUIRE(text.status == 0);
+  CHECK_THAT(text.output, Contains("  error: quadrature ") && Contains(" 1/km\n"));
+  CHECK_THAT(text.output, !Contains("1/m"));
+  const auto db = run("sigma fog:advection --units dB/km");
+  CHECK_THAT(db.output, Contains("  error: quadrature ") && !Contains("1/m"));
 }
 
 TEST_CASE("distribution reports moments and validates files", "[weather][cli]") {

@@ -159,11 +159,13 @@ TEST_CASE("to_text writes a condition that parses back to the same one", "[weath
 
 TEST_CASE("sweeps set the swept number in the typed value", "[weather][conditions][grammar]") {
   // The labels echo the text as written; the values are A + i STEP, not a
-  // re-parse of the label (0.1 + 2 x 0.1 = 0.30000000000000004 in binary).
-  const auto snow = expand_conditions("snow:dry:0.1..0.3/0.1");
-  REQUIRE(snow.size() == 3);
+  // re-parse of the label (0.1 + 2 x 0.1 = 0.30000000000000004 in binary);
+  // the last value is B as written.
+  const auto snow = expand_conditions("snow:dry:0.1..0.4/0.1");
+  REQUIRE(snow.size() == 4);
   CHECK(snow[2].label == "snow:dry:0.3");
   CHECK(std::get<Snow>(snow[2].condition).rate_mm_h == 0.1 + 2 * 0.1);
+  CHECK(std::get<Snow>(snow[3].condition).rate_mm_h == 0.4);
   const auto vis = expand_conditions("visibility:1..2/0.5km");
   REQUIRE(vis.size() == 3);
   CHECK(vis[1].label == "visibility:1.5km");

@@ -20,11 +20,11 @@ kinds
 
 What the script derives so that every figure reads on its own, whatever the spec says:
   * every axis has a label with its unit (node maps: x [m], y [m]); every colour bar a label (from
-    `colorbar`, else from the column name: degree, ss_* = S_S, c_* = C);
+    `colorbar`, else from the column name: degree, sum:* = S_S, avg:* = S_A, c:* = C);
   * multi-panel figures are at most ~11.5 in wide, with constrained layout: titles, tick labels and
     colour bars do not overlap at the report's width;
   * node maps show "no node" as white and, where the value is a contrast ratio to one point (`zero`
-    given, or a column named c_*), nodes that do not see the point (C = 0) in grey, both in a legend;
+    given, or a column named c:*), nodes that do not see the point (C = 0) in grey, both in a legend;
   * curves of a lines figure that coincide with an earlier curve are drawn with hollow markers on top
     and say so in the legend ("coincides with ... for ..."); curves get distinct markers;
   * a marker-only series with one point per earlier curve, all at one x outside their range (e.g. a
@@ -80,9 +80,11 @@ def value_label(column):
     """A colour-bar label for a node column, from the report's column names."""
     if column == "degree":
         return "degree (number of visible nodes)"
-    if column.startswith("ss_"):
+    if column.startswith("sum:"):
         return "S_S (sum of C over visible nodes)"
-    if column.startswith("c_"):
+    if column.startswith("avg:"):
+        return "S_A (mean C over visible nodes)"
+    if column.startswith("c:"):
         return "C = exp(-sigma d) to the point"
     return column
 
@@ -284,7 +286,7 @@ def draw_node_maps(fig_spec, base, path):
     any_zero = False
     for k, (p, (x, y, v)) in enumerate(zip(panels, data)):
         ax = axes[k // ncols][k % ncols]
-        zero = p.get("zero", fig_spec.get("zero", "does not see the point" if p["value"].startswith("c_") else None))
+        zero = p.get("zero", fig_spec.get("zero", "does not see the point" if p["value"].startswith("c:") else None))
         hidden = (v == 0) if zero else np.zeros(len(v), dtype=bool)
         any_zero |= bool(hidden.any())
         shown = np.where(hidden, np.nan, v)

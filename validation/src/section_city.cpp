@@ -242,10 +242,10 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
   for (std::size_t i = 0; i < n; ++i) x[i] = eyes[i].x(), y[i] = eyes[i].y(), z[i] = eyes[i].z(), deg[i] = all.degree[i];
   std::vector<std::string> header = {"x", "y", "z", "degree"};
   std::vector<const std::vector<double>*> cols = {&x, &y, &z, &deg};
-  for (std::size_t k = 0; k < conds.size(); ++k) header.push_back("ss_" + conds[k].tag), cols.push_back(&all.sum[k]);
+  for (std::size_t k = 0; k < conds.size(); ++k) header.push_back("sum:" + conds[k].column_label()), cols.push_back(&all.sum[k]);
   for (int p = 0; p < 3; ++p)
     for (std::size_t k = 0; k < conds.size(); ++k)
-      header.push_back("c_" + P[p].name + "_" + conds[k].tag), cols.push_back(&point_c[p][k]);
+      header.push_back("c:" + P[p].name + ":" + conds[k].column_label()), cols.push_back(&point_c[p][k]);
   write_data_csv(ctx, "city_nodes.csv", header, cols);
   s.data("city_nodes.csv", "per-node x, y, z, degree, S_S per condition and C to P1, P2, P3 per condition");
   // P1-P3 each with its own symbol, so that the three can be told apart
@@ -273,18 +273,18 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
             "vg_city_region) and a close-up of the junction with P1 (circle), P2 (square) and P3 (triangle) "
             "(right). Boxes mark the next panel's window. White: no node (buildings, roads, parks).",
             {{"kind", "node_maps"},
-             {"panels", {{{"csv", "city_nodes.csv"}, {"value", "ss_" + conds[0].tag}, {"title", "whole city"},
+             {"panels", {{{"csv", "city_nodes.csv"}, {"value", "sum:" + conds[0].column_label()}, {"title", "whole city"},
                           {"boxes", region_box}},
-                         {{"csv", "city_nodes.csv"}, {"value", "ss_" + conds[0].tag}, {"title", "central region"},
+                         {{"csv", "city_nodes.csv"}, {"value", "sum:" + conds[0].column_label()}, {"title", "central region"},
                           {"xlim", xl}, {"ylim", yl}, {"boxes", close_box}},
-                         {{"csv", "city_nodes.csv"}, {"value", "ss_" + conds[0].tag},
+                         {{"csv", "city_nodes.csv"}, {"value", "sum:" + conds[0].column_label()},
                           {"title", "close-up of the junction"}, {"markers", markers}, {"xlim", xc}, {"ylim", yc}}}},
              {"ncols", 3}, {"common_scale", true}, {"cmap", "jet"}, {"panel_size", 4.2}, {"dpi", 120},
              {"colorbar", ss_label}}});
   nlohmann::json sp = nlohmann::json::array();
   for (std::size_t k = 0; k < conds.size(); ++k)
     for (int p = 0; p < 3; ++p)
-      sp.push_back({{"csv", "city_nodes.csv"}, {"value", "c_" + P[p].name + "_" + conds[k].tag},
+      sp.push_back({{"csv", "city_nodes.csv"}, {"value", "c:" + P[p].name + ":" + conds[k].column_label()},
                     {"title", P[p].name + ", " + conds[k].short_label}, {"markers", nlohmann::json::array({markers[p]})},
                     {"xlim", xl}, {"ylim", yl}});
   s.figure({"city_single_point", "Single-point analysis over the central region: C from every node to P1, P2, P3 "

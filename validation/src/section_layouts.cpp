@@ -120,11 +120,11 @@ void write_node_files(Context& ctx, const std::vector<LayoutRun>& runs, const La
     std::vector<std::string> header = {"x", "y", "z", "degree"};
     std::vector<const std::vector<double>*> cols = {&r.x, &r.y, &r.z, &r.degree};
     for (std::size_t k = 0; k < conds.all.size(); ++k) {
-      header.push_back("ss_" + conds.all[k].tag);
+      header.push_back("sum:" + conds.all[k].column_label());
       cols.push_back(&r.ss[k]);
     }
     for (std::size_t k = 0; k < conds.point.size(); ++k) {
-      header.push_back("c_corner_" + conds.point[k].tag);
+      header.push_back("c:corner:" + conds.point[k].column_label());
       cols.push_back(&r.corner_c[k]);
     }
     write_data_csv(ctx, "layout" + std::to_string(r.index) + "_nodes.csv", header, cols);
@@ -330,13 +330,13 @@ void layout_figures(Section& s, const std::vector<LayoutRun>& runs, const std::v
              {"colorbar", "degree"}}});
   s.figure({"layouts_ss_clear", "S_S in clear weather (sigma = " + sig(all[0].sigma) +
                                     " 1/m), common colour scale: indistinguishable from the degree (seed Fig. vg_clear).",
-            {{"kind", "node_maps"}, {"panels", panels("ss_" + all[0].tag, "", false)}, {"ncols", 5},
+            {{"kind", "node_maps"}, {"panels", panels("sum:" + all[0].column_label(), "", false)}, {"ncols", 5},
              {"common_scale", true}, {"colorbar", "S_S clear"}}});
   for (std::size_t k = 1; k < all.size(); ++k) {
     s.figure({"layouts_ss_" + all[k].tag,
               "S_S under " + all[k].label + ", sigma = " + sig(all[k].sigma, 4) +
                   " 1/m, common colour scale (seed Fig. vg_weather).",
-              {{"kind", "node_maps"}, {"panels", panels("ss_" + all[k].tag, "", false)}, {"ncols", 5},
+              {{"kind", "node_maps"}, {"panels", panels("sum:" + all[k].column_label(), "", false)}, {"ncols", 5},
                {"common_scale", true}, {"colorbar", "S_S"}}});
   }
 }
@@ -364,7 +364,7 @@ void single_point_analysis(Context& ctx, Section& s, const std::vector<LayoutRun
   for (std::size_t k = 0; k < point.size(); ++k)
     for (const auto& r : runs)
       sp_panels.push_back({{"csv", "layout" + std::to_string(r.index) + "_nodes.csv"},
-                           {"value", "c_corner_" + point[k].tag},
+                           {"value", "c:corner:" + point[k].column_label()},
                            {"title", std::to_string(r.index) + ": " + point[k].short_label},
                            {"markers", nlohmann::json::array({{{"x", r.x[r.corner]}, {"y", r.y[r.corner]}}})}});
   add_table(ctx, s, sp);

@@ -85,6 +85,11 @@ struct VgCondition {
   std::string condition;  // grammar string, e.g. "rain:8"
   std::string convention; // "itu", "seed" or "both" (σ the same in both)
   double sigma = 0;       // 1/m
+  // The label in score column names ("sum:" + column_label): the condition as
+  // the command line writes it, with "@itu" or "@seed" where the two
+  // conventions give different σ — the same scheme as `attenuvis vg`'s
+  // sum:LABEL / avg:LABEL columns.
+  std::string column_label() const { return convention == "both" ? condition : condition + "@" + convention; }
 };
 // The σ values of `condition` for the visibility sections: one entry when
 // both conventions give the same σ, two (itu, then seed) otherwise.  Needs

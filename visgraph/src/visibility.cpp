@@ -333,13 +333,16 @@ void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const Visi
                           ThreadState& ts = states.local();
                           std::uint64_t done = 0;
                           for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                            if (options.cancel && options.cancel->load(std::memory_order_relaxed)) break;
                             std::vector<Edge>* edges = options.edge_sink ? &row_edges[i - block] : nullptr;
                             if (edges) edges->clear();
                             done += pass.symmetric ? N - 1 - i : M;
                             run_row(pass, plan, tree, i, ts, edges, pruned);
                           }
                           progress.add(done);
+                          if (options.pairs_done) options.pairs_done->fetch_add(done, std::memory_order_relaxed);
                         });
+      if (options.cancel && options.cancel->load(std::memory_order_relaxed)) throw Cancelled();
       if (options.edge_sink) {
         std::vector<Edge> out;
         for (std::size_t i = block; i < block_end; ++i)

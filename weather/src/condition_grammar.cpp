@@ -223,7 +223,8 @@ std::string generate_grammar() {
   out << "  OPTIONS after a Mie condition (fog:..., rain:RATE:mie, drops:...), any order:\n";
   for (const auto& o : kMieOptions) line(std::string("  ") + o.grammar, o.help);
   out << "  RATE in mm/h; DIST a number with unit " << distance_units() << " (bare number: m), e.g. 500m, 2km\n"
-      << "  in tables a RATE, DIST or VALUE may sweep: A..B or A..B/STEP (rain:1..100, fog:kim:200..1000/200m)\n"
+      << "  in tables a RATE, DIST or VALUE may sweep: A..B or A..B/STEP (rain:1..100, fog:kim:200..1000/200m);\n"
+      << "  a sweep ends at B (rain:1..100/10: 1, 11, ..., 91, 100)\n"
       << "  valid ranges: rain RATE " << range_text(domain::rain_rate) << ", snow RATE "
       << range_text(domain::snow_rate) << ", DIST " << range_text(domain::visibility) << ",\n"
       << "    sigma VALUE " << range_text(domain::sigma) << " (in any unit), N= " << range_text(domain::number_density)
@@ -311,11 +312,15 @@ std::vector<LabelledCondition> expand_conditions(const std::string& text) {
     bad(text, e.what());
   }
   if (!(step > 0) || !(hi >= lo)) bad(text, "sweep A..B/STEP needs A <= B and STEP > 0");
-  const double count = std::floor((hi - lo) / step + 1e-9) + 1;
-  if (count > 10000) bad(text, "sweep has more than 10000 values");
+  // A, A + STEP, ... below B, then B itself: a sweep ends where it says.  A
+  // grid point within 1e-6 STEP of B (decimal steps such as 0.1 are not exact
+  // in binary) is B; where B is off the grid the last step is shorter.
+  const double below = std::ceil((hi - lo) / step - 1e-6);  // grid points before B
+  if (below + 1 > 10000) bad(text, "sweep has more than 10000 values");
+  const int count = static_cast<int>(below) + 1;
   std::vector<LabelledCondition> out;
-  for (int i = 0; i < static_cast<int>(count); ++i) {
-    const double value = lo + i * step;
+  for (int i = 0; i < count; ++i) {
+    const double value = i + 1 == count ? hi : lo + i * step;
     // The label: the text as written with the sweep replaced by its value.
     std::ostringstream v;
     v.precision(12);

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -11,6 +12,8 @@
 #include <stdexcept>
 
 #include "attenuvis/io/number_text.hpp"
+
+#include <dlfcn.h>  // dladdr: where the running program or module was loaded from
 
 #ifndef ATTENUVIS_DATA_DIR
 #define ATTENUVIS_DATA_DIR "data"
@@ -78,8 +81,46 @@ std::complex<double> RefractiveIndexTable::at(double w) const {
   return {n, k};
 }
 
+namespace {
+
+bool has_tables(const std::string& dir) {
+  std::error_code ec;
+  return std::filesystem::is_directory(dir + "/refractive-index", ec);
+}
+
+// <prefix>/share/attenuvis above `file`, at most four directories up.
+std::string share_above(const std::string& file) {
+  std::error_code ec;
+  std::filesystem::path dir = std::filesystem::canonical(file, ec).parent_path();
+  if (ec) return {};
+  for (int up = 0; up < 5 && !dir.empty(); ++up, dir = dir.parent_path()) {
+    const std::string candidate = (dir / "share" / "attenuvis").string();
+    if (has_tables(candidate)) return candidate;
+    if (dir == dir.root_path()) break;
+  }
+  return {};
+}
+
+// <prefix>/share/attenuvis for the file this library was loaded from: the
+// installed Python extension module (lib/python3.X/dist-packages/attenuvis/,
+// four levels below the prefix), which dladdr names; or the installed program
+// (the static library lives inside it), for which dladdr gives only argv[0]
+// (a bare name when the program was found on PATH), so its own path is read
+// from /proc/self/exe.
+std::string installed_data_directory() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&installed_data_directory), &info) && info.dli_fname &&
+      std::string(info.dli_fname).find('/') != std::string::npos)
+    if (std::string dir = share_above(info.dli_fname); !dir.empty()) return dir;
+  return share_above("/proc/self/exe");
+}
+
+}  // namespace
+
 std::string data_directory() {
   if (const char* env = std::getenv("ATTENUVIS_DATA_DIR"); env && *env) return env;
+  static const std::string installed = installed_data_directory();
+  if (!installed.empty()) return installed;
   return ATTENUVIS_DATA_DIR;
 }
 

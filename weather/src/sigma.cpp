@@ -80,17 +80,20 @@ Sigma mie_sigma(const MieCondition& c, double wavelength_m, const Settings& s) {
   if (const auto ce = contour_extinction(d, wavelength_m, m, cs)) {
     out.per_m = ce->extinction.value;
     out.error_per_m = ce->extinction.error();
-    note << index_source << "; " << ce->method << "; error = quadrature " << ce->extinction.quadrature_error
-         << " + tails " << ce->extinction.tail_error << " + rounding " << ce->extinction.rounding_error;
+    note << index_source << "; " << ce->method;
+    out.error_terms = {{"quadrature", ce->extinction.quadrature_error},
+                       {"tails", ce->extinction.tail_error},
+                       {"rounding", ce->extinction.rounding_error}};
   } else {
     const BulkOptics b = bulk_optics_of(c, wavelength_m, s, d, m);
     out.per_m = b.extinction.value;
     out.error_per_m = b.extinction.error();
-    note << index_source << "; " << b.method << "; error = quadrature " << b.extinction.quadrature_error
-         << " + tails " << b.extinction.tail_error << " + unresolved resonances " << b.extinction.resonance_error;
-    if (b.extinction.asymptotic_error > 0) note << " + large-x expansion " << b.extinction.asymptotic_error;
+    note << index_source << "; " << b.method;
+    out.error_terms = {{"quadrature", b.extinction.quadrature_error},
+                       {"tails", b.extinction.tail_error},
+                       {"unresolved resonances", b.extinction.resonance_error}};
+    if (b.extinction.asymptotic_error > 0) out.error_terms.push_back({"large-x expansion", b.extinction.asymptotic_error});
   }
-  note << " 1/m";
   out.note = note.str();
   return out;
 }

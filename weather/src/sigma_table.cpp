@@ -1,8 +1,9 @@
-// Parallel sigma tables and their atomic CSV/JSON output.
+// Parallel tables of optical quantities; the choice of output format.
 #include "attenuvis/weather/sigma_table.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <limits>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
@@ -10,9 +11,9 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include "attenuvis/io/number_text.hpp"
 #include "attenuvis/io/staged_file.hpp"
 #include "attenuvis/weather/units.hpp"
-#include "attenuvis/weather/visibility.hpp"
 
 namespace attenuvis::weather {
 
@@ -38,7 +39,8 @@ std::vector<double> parse_wavelength_list(const std::string& text) {
     };
     double a = with_unit(f[0]), b = with_unit(f[1]), h = parse_length(step + unit, "wavelength step");
     if (!(b >= a)) throw std::invalid_argument("wavelength range '" + text + "': STOP must be >= START");
-    double n = std::floor((b - a) / h + 1e-9);
+    // STOP is on the grid when within 1e-6 STEP of it (rounding of the decimal inputs).
+    double n = std::floor((b - a) / h + 1e-6);
     if (n > 100000) throw std::invalid_argument("wavelength range '" + text + "' has too many values");
     for (int i = 0; i <= static_cast<int>(n); ++i) out.push_back(a + i * h);
   } else {
@@ -50,24 +52,66 @@ std::vector<double> parse_wavelength_list(const std::string& text) {
   return out;
 }
 
+double wavelength_nm(double wavelength_m) { return std::stod(io::significant(wavelength_m * 1e9, 12)); }
+
+std::string missing_value_rule() {
+  return "sigma_sca, sigma_abs, ssa and g exist only for Mie conditions (a size distribution): they are missing "
+         "for power laws, visibility models, clear air and a given sigma, and where the integral used the "
+         "large-sphere expansion of Q_ext (rain drops beyond x = 2000), which gives no Q_sca; "
+         "the Koschmieder visibility is missing where sigma_ext = 0 (unbounded)";
+}
+
+QuantityValue table_value(const TableCell& cell, Quantity q) {
+  constexpr double missing = std::numeric_limits<double>::quiet_NaN();
+  if (q == Quantity::sigma_ext) return {cell.sigma.per_m, cell.sigma.error_per_m};
+  // Only Mie conditions have optics; the large-x expansion of Q_ext (rain) gives no Q_sca.
+  if (!cell.optics || !cell.optics->scattering_computed) return {missing, missing};
+  const BulkOptics& b = *cell.optics;
+  switch (q) {
+    case Quantity::sigma_ext: break;
+    case Quantity::sigma_sca: return {b.scattering.value, b.scattering.error()};
+    case Quantity::sigma_abs: return {b.absorption.value, b.absorption.error()};
+    case Quantity::ssa: return {b.albedo, b.albedo_error};
+    case Quantity::g: return {b.asymmetry, b.asymmetry_error};
+  }
+  return {missing, missing};
+}
+
+std::vector<std::string> conditions_with_missing_values(const SigmaTable& t) {
+  std::vector<std::string> out;
+  for (std::size_t c = 0; c < t.conditions.size(); ++c) {
+    bool missing = false;
+    for (std::size_t w = 0; w < t.wavelengths_m.size() && !missing; ++w)
+      for (Quantity q : t.quantities) missing = missing || std::isnan(table_value(t.at(w, c), q).value);
+    if (missing) out.push_back(t.conditions[c].label);
+  }
+  return out;
+}
+
 SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const std::vector<double>& wavelengths,
-                       const Settings& settings, int threads) {
+                       const Settings& settings, int threads, const std::vector<Quantity>& quantities) {
   SigmaTable t;
   t.wavelengths_m = wavelengths;
   t.conditions = conditions;
+  t.quantities = quantities;
   t.settings = settings;
   t.cells.resize(wavelengths.size() * conditions.size());
+  const bool needs_optics = std::any_of(quantities.begin(), quantities.end(),
+                                        [](Quantity q) { return info(q).needs_size_distribution; });
   std::mutex error_mutex;
   std::string first_error;
   auto work = [&] {
     tbb::parallel_for(std::size_t(0), t.cells.size(), [&](std::size_t i) {
       std::size_t w = i / conditions.size(), c = i % conditions.size();
       try {
-        t.cells[i] = sigma(conditions[c].condition, wavelengths[w], settings);
+        t.cells[i].sigma = sigma(conditions[c].condition, wavelengths[w], settings);
+        if (const auto* mie = std::get_if<MieCondition>(&conditions[c].condition); mie && needs_optics)
+          t.cells[i].optics = condition_bulk_optics(*mie, wavelengths[w], settings);
       } catch (const std::exception& e) {
         std::lock_guard<std::mutex> lock(error_mutex);
         std::ostringstream msg;
-        msg << "condition '" << conditions[c].label << "' at " << wavelengths[w] * 1e9 << " nm: " << e.what();
+        msg << "condition '" << conditions[c].label << "' at " << io::shortest(wavelengths[w] * 1e9)
+            << " nm: " << e.what();
         if (first_error.empty()) first_error = msg.str();
       }
     });
@@ -85,78 +129,25 @@ SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const s
 TableFormat parse_table_format(const std::string& text) {
   if (text == "csv") return TableFormat::csv;
   if (text == "json") return TableFormat::json;
-  throw std::invalid_argument("unknown table format '" + text + "' (csv or json)");
+  if (text == "netcdf") return TableFormat::netcdf;
+  throw std::invalid_argument("unknown table format '" + text + "' (csv, json or netcdf)");
 }
 
-namespace {
-std::string json_escape(const std::string& s) {
-  std::string o;
-  for (char ch : s) {
-    switch (ch) {
-      case '"': o += "\\\""; break;
-      case '\\': o += "\\\\"; break;
-      case '\n': o += "\\n"; break;
-      case '\t': o += "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(ch) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", ch);
-          o += buf;
-        } else {
-          o += ch;
-        }
+std::string csv_sidecar_path(const std::string& csv_path) { return csv_path + ".meta.json"; }
+
+void write_sigma_table(const SigmaTable& t, const std::string& path, TableFormat format, SigmaUnit unit,
+                       const TableProvenance& provenance) {
+  switch (format) {
+    case TableFormat::csv: {
+      io::StagedFiles files;
+      files.add(path).write(format_sigma_table_csv(t, unit));
+      files.add(csv_sidecar_path(path)).write(format_sigma_table_sidecar(t, unit, provenance));
+      files.commit_all();
+      return;
     }
+    case TableFormat::json: io::write_file_atomically(path, format_sigma_table_json(t, unit, provenance)); return;
+    case TableFormat::netcdf: write_sigma_table_netcdf(t, path, unit, provenance); return;
   }
-  return o;
-}
-std::string csv_quote(const std::string& s) {
-  std::string o = "\"";
-  for (char ch : s) o += (ch == '"') ? std::string("\"\"") : std::string(1, ch);
-  return o + "\"";
-}
-}  // namespace
-
-std::string format_sigma_table(const SigmaTable& t, TableFormat format, SigmaUnit unit) {
-  std::ostringstream o;
-  o.precision(10);
-  std::string u = to_string(unit);
-  if (format == TableFormat::csv) {
-    o << "# sigma table; units " << u << "; convention " << to_string(t.settings.convention)
-      << " (applies to power-law rows); visibility at contrast threshold " << t.settings.contrast_threshold << "\n";
-    o << "wavelength_nm,condition,sigma_" << u << ",error_" << u << ",visibility_m,convention,model,note\n";
-    for (std::size_t w = 0; w < t.wavelengths_m.size(); ++w)
-      for (std::size_t c = 0; c < t.conditions.size(); ++c) {
-        const Sigma& s = t.at(w, c);
-        // sigma = 0 has no visibility (unbounded): the cell stays empty, as the JSON omits it.
-        std::ostringstream vis;
-        vis.precision(10);
-        if (s.per_m > 0) vis << koschmieder_visibility_m(s.per_m, t.settings.contrast_threshold);
-        o << t.wavelengths_m[w] * 1e9 << "," << csv_quote(t.conditions[c].label) << ","
-          << convert_from_per_m(s.per_m, unit) << "," << convert_from_per_m(s.error_per_m, unit) << "," << vis.str() << ","
-          << s.convention << "," << csv_quote(s.model) << "," << csv_quote(s.note) << "\n";
-      }
-  } else {
-    o << "{\n  \"units\": \"" << json_escape(u) << "\",\n  \"convention\": \"" << to_string(t.settings.convention)
-      << "\",\n  \"contrast_threshold\": " << t.settings.contrast_threshold << ",\n  \"rows\": [\n";
-    bool first = true;
-    for (std::size_t w = 0; w < t.wavelengths_m.size(); ++w)
-      for (std::size_t c = 0; c < t.conditions.size(); ++c) {
-        const Sigma& s = t.at(w, c);
-        o << (first ? "" : ",\n") << "    {\"wavelength_nm\": " << t.wavelengths_m[w] * 1e9 << ", \"condition\": \""
-          << json_escape(t.conditions[c].label) << "\", \"sigma\": " << convert_from_per_m(s.per_m, unit)
-          << ", \"error\": " << convert_from_per_m(s.error_per_m, unit);
-        if (s.per_m > 0) o << ", \"visibility_m\": " << koschmieder_visibility_m(s.per_m, t.settings.contrast_threshold);
-        o << ", \"convention\": \"" << s.convention << "\", \"model\": \"" << json_escape(s.model)
-          << "\", \"note\": \"" << json_escape(s.note) << "\"}";
-        first = false;
-      }
-    o << "\n  ]\n}\n";
-  }
-  return o.str();
-}
-
-void write_sigma_table(const SigmaTable& t, const std::string& path, TableFormat format, SigmaUnit unit) {
-  io::write_file_atomically(path, format_sigma_table(t, format, unit));
 }
 
 }  // namespace attenuvis::weather

@@ -3,7 +3,8 @@
 // Batch input: one problem per line, "x m_re m_im" separated by whitespace
 // and/or commas; '#' starts a comment; blank lines and the output's own
 // header line (x,m_re,m_im[,qext,...]) are skipped.  Output: CSV
-// with the header x,m_re,m_im,qext,qsca,qabs,qback,g; the input x, m_re, m_im
+// with the header x,m_re,m_im,qext,qsca,qabs,qback,qpr,g,terms (the columns of
+// the single-sphere output); the input x, m_re, m_im
 // as the shortest text that reads back to the same double, the results with
 // 17 significant digits (round-trip for double).  A bad line (parse error, x <= 0, k < 0,
 // non-finite value, wrong number of fields) is reported with its line number
@@ -30,7 +31,7 @@ struct Problem {
 // std::invalid_argument (message without the line number) for a bad one.
 std::optional<Problem> parse_line(const std::string& line);
 
-const char* csv_header();  // "x,m_re,m_im,qext,qsca,qabs,qback,g"
+const char* csv_header();  // "x,m_re,m_im,qext,qsca,qabs,qback,qpr,g,terms"
 std::string csv_row(const Problem& p, const Efficiencies<double>& q);
 
 // Reads `in` to the end, writes the header and one row per good line to

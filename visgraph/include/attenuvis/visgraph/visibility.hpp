@@ -39,10 +39,12 @@
 
 #include <Eigen/Core>
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 namespace attenuvis::visgraph {
@@ -65,6 +67,17 @@ struct VisibilityOptions {
   // source order.  Asking for edges never changes the scores.
   std::function<void(const std::vector<Edge>&)> edge_sink;
   bool progress = false;                 // progress line on stderr after ~3 s
+  // For a caller watching the pass from another thread (the Python binding
+  // polls for Ctrl-C and reports progress): `pairs_done`, if set, counts the
+  // pairs processed so far (of pairs_total); once `cancel` reads true the pass
+  // stops after the rows in flight and throws Cancelled.
+  std::atomic<std::uint64_t>* pairs_done = nullptr;
+  const std::atomic<bool>* cancel = nullptr;
+};
+
+// Thrown by all_to_all and to_targets when VisibilityOptions::cancel was set.
+struct Cancelled : std::runtime_error {
+  Cancelled() : std::runtime_error("visibility pass cancelled") {}
 };
 
 struct VisibilityResult {

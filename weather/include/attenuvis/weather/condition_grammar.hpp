@@ -36,8 +36,9 @@ std::vector<std::string> split_condition_list(const std::string& text);
 
 // Like parse_condition, but a sweep gives one condition per value, each
 // labelled with the text as written with the sweep replaced by its value
-// (rain:1..3 -> rain:1, rain:2, rain:3).  The swept number is A + i STEP, set
-// directly in the typed value.
+// (rain:1..3 -> rain:1, rain:2, rain:3).  The swept numbers are A + i STEP
+// below B, then B itself (rain:1..100/10 ends 91, 100; a grid point within
+// 1e-6 STEP of B is B), set directly in the typed value.
 std::vector<LabelledCondition> expand_conditions(const std::string& text);
 
 }  // namespace attenuvis::weather

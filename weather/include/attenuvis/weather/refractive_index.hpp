@@ -12,8 +12,11 @@
 // neighbour has k = 0, k is linear in ln(lambda)).  Outside the table's range
 // is an error, never an extrapolation.
 //
-// The data directory is $ATTENUVIS_DATA_DIR if set, else the path compiled in
-// by CMake (<repo>/data); tables are read once and cached (thread-safe).
+// The data directory is searched in this order: $ATTENUVIS_DATA_DIR if set;
+// <prefix>/share/attenuvis of an installed copy (found from the file the
+// library was loaded from, the program or the Python extension module, going
+// up at most four directories); else the source tree's data/ compiled in by
+// CMake.  Tables are read once and cached (thread-safe).
 #pragma once
 
 #include <complex>
@@ -38,7 +41,7 @@ class RefractiveIndexTable {
   std::vector<double> wavelength_m_, n_, k_;
 };
 
-// Directory holding refractive-index/: $ATTENUVIS_DATA_DIR, else the compiled-in path.
+// Directory holding refractive-index/, searched as described above.
 std::string data_directory();
 
 // Named tables: "water-hale-querry-1973", "water-segelstein-1981", "ice-warren-brandt-2008",

@@ -3,6 +3,7 @@
 
 #include <complex>
 #include <string>
+#include <vector>
 
 #include "attenuvis/weather/bulk_optics.hpp"
 #include "attenuvis/weather/condition.hpp"
@@ -10,12 +11,20 @@
 
 namespace attenuvis::weather {
 
+// One part of a sigma's error estimate ("quadrature", "tails", ...), in 1/m;
+// outputs convert it to the unit they print sigma in.
+struct ErrorTerm {
+  std::string name;
+  double per_m = 0;
+};
+
 struct Sigma {
   double per_m = 0;        // extinction coefficient, 1/m (neper)
   double error_per_m = 0;  // estimated bound on |per_m - true|; 0 for closed-form models (exact by definition)
+  std::vector<ErrorTerm> error_terms;  // the parts of error_per_m (Mie conditions); they add up to it
   std::string model;       // what was computed, with its source
   std::string convention;  // "itu" or "seed" for power laws; "n/a" where the convention does not enter
-  std::string note;        // warnings, error breakdown, refractive index used
+  std::string note;        // warnings, refractive index used, integration method (numbers free of units)
 };
 
 // Does Mie work only for a MieCondition.  Mie results are cached per process,

@@ -1,39 +1,96 @@
-// sigma over wavelengths x conditions, computed in parallel (TBB), written
-// atomically as CSV or JSON.
+// Optical quantities over wavelengths x conditions, computed in parallel
+// (TBB), written atomically as CSV (with a JSON sidecar), JSON or netCDF-4.
+//
+// sigma_ext is sigma() (sigma.hpp): for an analytic drop distribution the
+// contour integral, otherwise the real-axis quadrature.  The quantities that
+// need the whole single-scattering result (sigma_sca, sigma_abs, ssa, g) come
+// from condition_bulk_optics(), the real-axis quadrature, computed only when
+// one of them is asked for.  Only Mie conditions have a size distribution:
+// for every other condition (power laws, visibility models, clear air, a
+// given sigma) those quantities are missing — an empty CSV cell, JSON null,
+// the netCDF _FillValue — and so are they where the integral used the
+// large-sphere expansion of Q_ext (rain drops beyond x = 2000), which gives
+// no Q_sca.  Asking for them is not an error: a table may mix both kinds.
 #pragma once
 
+#include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "attenuvis/weather/bulk_optics.hpp"
 #include "attenuvis/weather/condition.hpp"
 #include "attenuvis/weather/sigma.hpp"
+#include "attenuvis/weather/table_quantity.hpp"
 
 namespace attenuvis::weather {
 
-struct SigmaTable {
-  std::vector<double> wavelengths_m;
-  std::vector<LabelledCondition> conditions;  // labels: the CSV/JSON "condition" column
-  std::vector<Sigma> cells;  // cells[w * conditions.size() + c]
-  Settings settings;
-  const Sigma& at(std::size_t w, std::size_t c) const { return cells[w * conditions.size() + c]; }
+struct TableCell {
+  Sigma sigma;                       // always
+  std::optional<BulkOptics> optics;  // Mie conditions, when a quantity needs it
 };
 
-// "400:800:10nm" (start:stop:step with one unit at the end), "550nm", "400nm,550nm,10.6um".
+// A value and its error estimate in SI (1/m for coefficients); NaN where the
+// quantity does not exist for the cell (see above).
+struct QuantityValue {
+  double value, error;
+};
+
+struct SigmaTable {
+  std::vector<double> wavelengths_m;
+  std::vector<LabelledCondition> conditions;  // labels: the "condition" column
+  std::vector<Quantity> quantities;           // in the order asked for
+  std::vector<TableCell> cells;               // cells[w * conditions.size() + c]
+  Settings settings;
+  const TableCell& at(std::size_t w, std::size_t c) const { return cells[w * conditions.size() + c]; }
+};
+
+QuantityValue table_value(const TableCell& cell, Quantity q);
+// The labels of the conditions with a missing value of some asked-for
+// quantity at some wavelength, in table order.
+std::vector<std::string> conditions_with_missing_values(const SigmaTable& t);
+// The rule above in one sentence, for the outputs' metadata.
+std::string missing_value_rule();
+// A table wavelength in nm as the outputs write it: 12 significant digits,
+// so a grid built in metres prints 550, not 550.0000000000001.
+double wavelength_nm(double wavelength_m);
+
+// "400:800:10nm" (start:stop:step with one unit at the end; STOP is included
+// when it lies on the grid, within 1e-6 STEP), "550nm", "400nm,550nm,10.6um".
 std::vector<double> parse_wavelength_list(const std::string& text);
 
 // Every cell is independent; TBB spreads them over the cores (threads: 0 = all).
 // Conditions that do not depend on wavelength are still reported per row (cheap).
 // Any failing cell makes the whole call throw, naming the cell.
 SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const std::vector<double>& wavelengths_m,
-                       const Settings& settings, int threads = 0);
+                       const Settings& settings, int threads = 0,
+                       const std::vector<Quantity>& quantities = {Quantity::sigma_ext});
 
-enum class TableFormat { csv, json };
-TableFormat parse_table_format(const std::string& text);
-// Writes through attenuvis::io::StagedFile (a temporary renamed onto `path`):
-// a failure leaves no partial file.  Every number is finite (sigma() checks
-// its results); where sigma = 0 the visibility is unbounded: an empty CSV
-// cell, no "visibility_m" member in JSON.
-void write_sigma_table(const SigmaTable& t, const std::string& path, TableFormat format, SigmaUnit unit);
-std::string format_sigma_table(const SigmaTable& t, TableFormat format, SigmaUnit unit);
+enum class TableFormat { csv, json, netcdf };
+TableFormat parse_table_format(const std::string& text);  // "csv" | "json" | "netcdf"
+
+// What every output says about where it came from.
+struct TableProvenance {
+  std::string producer;  // "attenuvis 0.1.0 (commit abc1234)"
+};
+
+// The sidecar of a CSV table: "<csv path>.meta.json".
+std::string csv_sidecar_path(const std::string& csv_path);
+
+// Writes through attenuvis::io::StagedFile(s) (temporaries renamed onto the
+// paths): a failure leaves no partial file.  CSV writes the table and its
+// sidecar together (both or neither).  Every number is finite or missing;
+// where sigma_ext = 0 the Koschmieder visibility is unbounded: missing too.
+// netCDF refuses SigmaUnit::dB_per_km (no UDUNITS spelling; CF needs one).
+void write_sigma_table(const SigmaTable& t, const std::string& path, TableFormat format, SigmaUnit unit,
+                       const TableProvenance& provenance);
+
+// The text formats as strings (sigma_table_text.cpp): the CSV, its sidecar, the JSON document.
+std::string format_sigma_table_csv(const SigmaTable& t, SigmaUnit unit);
+std::string format_sigma_table_sidecar(const SigmaTable& t, SigmaUnit unit, const TableProvenance& provenance);
+std::string format_sigma_table_json(const SigmaTable& t, SigmaUnit unit, const TableProvenance& provenance);
+// netCDF-4, CF-1.8 (sigma_table_netcdf.cpp).
+void write_sigma_table_netcdf(const SigmaTable& t, const std::string& path, SigmaUnit unit,
+                              const TableProvenance& provenance);
 
 }  // namespace attenuvis::weather

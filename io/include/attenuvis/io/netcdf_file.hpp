@@ -1,0 +1,53 @@
+// A netCDF-4 file that appears whole or not at all.
+//
+// A thin typed layer over Debian's libnetcdf C API (netcdf.h): dimensions,
+// double and string variables, text and number attributes.  The file is
+// created at a StagedFile's temporary path (staged_file.hpp) and renamed onto
+// the destination by commit(); an object destroyed before commit() aborts the
+// dataset and removes the temporary, so an error never leaves a partial file.
+// Every libnetcdf failure throws std::runtime_error naming the destination,
+// the call's object and nc_strerror's text.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "attenuvis/io/staged_file.hpp"
+
+namespace attenuvis::io {
+
+class NetcdfFile {
+ public:
+  static constexpr int global = -1;  // NC_GLOBAL: the variable id of the global attributes
+
+  // Stages `path` and creates a netCDF-4 (HDF5-based) dataset in define mode.
+  explicit NetcdfFile(const std::string& path);
+  NetcdfFile(const NetcdfFile&) = delete;
+  NetcdfFile& operator=(const NetcdfFile&) = delete;
+  ~NetcdfFile();  // aborts the dataset and removes the temporary unless committed
+
+  // Define mode.
+  int add_dimension(const std::string& name, std::size_t length);
+  int add_double_variable(const std::string& name, const std::vector<int>& dimensions);
+  int add_string_variable(const std::string& name, const std::vector<int>& dimensions);
+  void set_attribute(int variable, const std::string& name, const std::string& text);
+  void set_attribute(int variable, const std::string& name, double value);
+  void set_attribute(int variable, const std::string& name, const std::vector<double>& values);
+  void end_definitions();
+
+  // Data mode: the whole variable, in C (row-major) order.
+  void write(int variable, const std::vector<double>& values);
+  void write(int variable, const std::vector<std::string>& values);
+
+  // Closes the dataset and renames it onto the destination.
+  void commit();
+
+ private:
+  void check(int status, const std::string& what) const;
+  StagedFile staged_;
+  int id_ = -1;
+  bool open_ = false;
+};
+
+}  // namespace attenuvis::io

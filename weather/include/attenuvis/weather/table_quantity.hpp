@@ -1,0 +1,80 @@
+// What a sigma table can hold: the quantities (one registry, read by every
+// output format and by --help) and the parameter each condition is set by.
+//
+// Each quantity has a name (the CSV column, the JSON member, the netCDF
+// variable), a kind that fixes its unit, a long name and, where the CF
+// standard-name table has one that fits hydrometeors, a standard name.  A new quantity is one enum
+// value, one registry row (table_quantity.cpp) and one case in table_value
+// (sigma_table.cpp); the writers need nothing more.  A quantity of a new
+// unit (backscatter in 1/(m sr), a lidar ratio in sr) adds a QuantityKind and
+// its cases in the four unit functions below; one on a further axis (Legendre
+// moments, a phase function on angles) adds that dimension to the writers.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "attenuvis/weather/condition.hpp"
+#include "attenuvis/weather/units.hpp"
+
+namespace attenuvis::weather {
+
+enum class Quantity { sigma_ext, sigma_sca, sigma_abs, ssa, g };
+
+enum class QuantityKind {
+  coefficient,    // an attenuation coefficient: 1/m, 1/km or dB/km as the table's unit says
+  dimensionless,  // a ratio (single-scattering albedo, asymmetry parameter): unit 1
+};
+
+struct QuantityInfo {
+  Quantity id;
+  std::string name;           // "sigma_ext"
+  QuantityKind kind;
+  std::string long_name;      // "volume extinction coefficient"
+  std::string standard_name;  // CF standard name, "" where CF has none that fits
+  std::string comment;        // why there is no standard name, where one might be expected
+  bool needs_size_distribution;  // only Mie conditions have it; other rows are empty
+};
+
+// Every quantity, in the order of the enum.
+const std::vector<QuantityInfo>& table_quantities();
+const QuantityInfo& info(Quantity q);
+// "sigma_ext,ssa,g": names from table_quantities(), each at most once.  Throws
+// std::invalid_argument naming the unknown or repeated name and listing the known ones.
+std::vector<Quantity> parse_quantity_list(const std::string& text);
+// The names joined by ", " (help text, messages).
+std::string quantity_names();
+
+// The unit of a quantity in a table written in `unit`, as text ("1/km", "1")
+// and as UDUNITS text for netCDF ("km-1", "1"); dB/km has no UDUNITS spelling.
+std::string unit_text(QuantityKind kind, SigmaUnit unit);
+std::optional<std::string> udunits_text(QuantityKind kind, SigmaUnit unit);
+// The column-name suffix of a unit: "per_m", "per_km", "dB_per_km".
+std::string unit_suffix(SigmaUnit unit);
+// What the writers need of a kind: the column suffix ("_per_km"; "" for a
+// ratio) and a value in SI converted to the table's unit (NaN stays NaN).
+std::string column_suffix(QuantityKind kind, SigmaUnit unit);
+double in_table_unit(QuantityKind kind, double value, SigmaUnit unit);
+
+// The number a condition is set by (and that a sweep varies): the rain or
+// snow rate, a visibility or a given sigma.  Conditions set by nothing
+// (clear, the fog presets, a distribution file) have none.
+enum class ParameterKind { rate, visibility, given_sigma };
+struct ConditionParameter {
+  ParameterKind kind;
+  double value;  // mm/h, m, or 1/m
+};
+std::optional<ConditionParameter> condition_parameter(const Condition& c);
+
+struct ParameterInfo {
+  ParameterKind kind;
+  std::string name;           // base of the column / variable name: "rate", "visibility", "given_sigma"
+  std::string long_name;
+  std::string standard_name;  // CF standard name or ""
+  std::string unit;           // "mm/h", "m"; empty for given_sigma (it follows the table's unit)
+  std::string udunits;        // "mm h-1", "m"; empty for given_sigma
+};
+const ParameterInfo& info(ParameterKind k);
+
+}  // namespace attenuvis::weather
