@@ -80,3 +80,9 @@ TEST_CASE("parametric drops: sigma (contour rule) agrees with the bulk quadratur
     CHECK(s.error_per_m < 1e-6 * s.per_m);
   }
 }
+
+TEST_CASE("parametric drops: radii with units are the nearest doubles", "[weather][conditions][parametric]") {
+  const auto c = std::get<MieCondition>(parse_condition("drops:lognormal:r=5um:sg=1.5:N=100"));
+  CHECK(std::get<LogNormalDrops>(std::get<ParametricDrops>(c.drops).family).median_radius_m == 5e-6);
+  CHECK(to_text(c) == "drops:lognormal:r=5e-06m:sg=1.5:N=100");
+}

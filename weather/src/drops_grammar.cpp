@@ -74,11 +74,12 @@ double radius_param(const Fields& f, const Params& p, const std::string& key) {
     unit.insert(unit.begin(), number.back());
     number.pop_back();
   }
-  const double scale = unit == "nm" ? 1e-9 : unit == "um" ? 1e-6 : unit == "mm" ? 1e-3 : unit == "m" ? 1.0 : 0.0;
-  if (scale == 0) f.fail(where(f, key, *v) + ": " + quote_text(v->text) + " needs a unit nm, um, mm or m");
+  // Divided by the (exact) power of ten, so that 5um is the double nearest 5e-6 m.
+  const double per_m = unit == "nm" ? 1e9 : unit == "um" ? 1e6 : unit == "mm" ? 1e3 : unit == "m" ? 1.0 : 0.0;
+  if (per_m == 0) f.fail(where(f, key, *v) + ": " + quote_text(v->text) + " needs a unit nm, um, mm or m");
   double r = 0;
   try {
-    r = require_in_si(domain::drop_radius, io::parse_double(number, key) * scale);
+    r = require_in_si(domain::drop_radius, io::parse_double(number, key) / per_m);
   } catch (const std::invalid_argument& e) {
     f.fail(where(f, key, *v) + ": " + e.what());
   }
