@@ -17,5 +17,6 @@ void register_weather(CLI::App& app);      // cmd_weather.cpp: sigma, table, dis
 void register_visgraph(CLI::App& app);     // cmd_visgraph.cpp: vg
 void register_scene_command(CLI::App& app);  // cmd_scene.cpp: scene
 void register_reproduce(CLI::App& app);    // cmd_reproduce.cpp
+void register_optics(CLI::App& app);       // cmd_optics.cpp: optics
 
 }  // namespace attenuvis::cli

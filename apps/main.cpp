@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
   attenuvis::cli::register_visgraph(app);
   attenuvis::cli::register_scene_command(app);
   attenuvis::cli::register_reproduce(app);
+  attenuvis::cli::register_optics(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

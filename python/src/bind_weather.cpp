@@ -127,6 +127,10 @@ void bind_conditions(py::module_& m) {
   py::class_<w::DistributionFile>(m, "DistributionFile")
       .def(py::init([](std::string p) { return w::DistributionFile{std::move(p)}; }), py::arg("path"))
       .def_readwrite("path", &w::DistributionFile::path);
+  // Parametric drops (drops:FAMILY:...) travel as an opaque value; Python reads them as Fog.
+  py::class_<w::ParametricDrops>(m, "ParametricDrops").def("__repr__", [](const w::ParametricDrops& d) {
+    return w::to_text(w::MieCondition{d, w::SettingsWaterTable{}, w::AsGiven{}});
+  });
   py::class_<w::SettingsWaterTable>(m, "SettingsWaterTable").def(py::init<>());
   py::class_<w::ConstantIndex>(m, "ConstantIndex")
       .def(py::init([](std::complex<double> c) { return w::ConstantIndex{c}; }), py::arg("m"))

@@ -21,8 +21,8 @@ double q_ada(double x, double n = 1.33) {
   if (rho < 1e-3) return rho * rho / 2;  // series: Q = rho^2/2 + O(rho^4)
   return 2 - 4 / rho * std::sin(rho) + 4 / (rho * rho) * (1 - std::cos(rho));
 }
-Efficiency ada(double x) { return {q_ada(x), q_ada(x), 0.0, 0.8}; }
-Efficiency two(double) { return {2.0, 2.0, 0.0, 0.5}; }
+Efficiency ada(double x) { return {q_ada(x), q_ada(x), 0.0, 0.8, 0.0, {}, {}, {}}; }
+Efficiency two(double) { return {2.0, 2.0, 0.0, 0.5, 0.0, {}, {}, {}}; }
 
 // Independent reference: the composite trapezoid rule in u = ln r over the
 // range holding all but 1e-16 of the weight.  For a smooth integrand that

@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "attenuvis/weather/resonance.hpp"
+#include "bulk_components.hpp"
 #include "extinction_tail.hpp"
 #include "gauss_kronrod_rule.hpp"
 #include "attenuvis/io/number_text.hpp"
@@ -23,14 +24,22 @@ using io::significant;
 namespace {
 
 constexpr double kPi = boost::math::constants::pi<double>();
-// Components integrated together: ext, sca, abs, g*sca, asymptotic-bound, and
-// the weight pi r^2 n(r) alone (the geometric cross-section of the panel).
-constexpr int kExt = 0, kSca = 1, kAbs = 2, kGSca = 3, kAsym = 4, kWeight = 5, kComponents = 6;
-using Vec = std::array<double, kComponents>;
+using detail::kExt;
+using detail::kSca;
+using detail::kAbs;
+using detail::kGSca;
+using detail::kAsym;
+using detail::kWeight;
+using detail::kBack;
+using detail::kFixed;
+using detail::Layout;
+using detail::Vec;
 
 struct Panel {
   double a = 0, b = 0;  // in u = ln r
-  Vec kronrod{}, error{};
+  Vec kronrod, error;
+  Vec difference;       // signed K - G (without the aliasing term): errors of ratios
+  Vec q_max;            // largest |component / weight| sampled (for the tails)
   double qext_max = 0;
   double x_span = 0;  // size-parameter width of the panel
   bool floor = false; // no wider than resonance_x_span: its error counted as resonance error
@@ -46,15 +55,17 @@ class Integrator {
  public:
   Integrator(const SizeDistribution& d, double wavelength, const EfficiencyFunction& q, const QuadratureSettings& s,
              std::complex<double> m)
-      : d_(d), k_(2 * kPi / wavelength), q_(q), s_(s), rule_(rule_for(s.kronrod_points)),
+      : d_(d), k_(2 * kPi / wavelength), q_(q), s_(s), layout_(s), rule_(rule_for(s.kronrod_points)),
         resolved_x_span_(0.6 * s.kronrod_points), m_(m) {}
+
+  const Layout& layout() const { return layout_; }
 
   // Integrand in u = ln r:  r n(r) pi r^2 {Q_ext, Q_sca, Q_abs, g Q_sca, bound}.
   // Const and free of shared state, so panels can be evaluated concurrently.
   Vec integrand(double u, double& qext, Panel& p) const {
     double r = std::exp(u), x = k_ * r;
     double w = r * d_.density(r) * kPi * r * r;
-    Vec f{};
+    Vec f(layout_.size(), 0.0);
     p.max_x = std::max(p.max_x, x);
     if (s_.asymptotic_x > 0 && x > s_.asymptotic_x) {
       p.used_asymptotic = true;
@@ -71,6 +82,15 @@ class Integrator {
     f[kAbs] = w * e.qabs;
     f[kGSca] = w * e.g * e.qsca;
     f[kWeight] = w;
+    f[kBack] = w * e.qback / (4 * kPi);
+    if (e.moments.size() < static_cast<std::size_t>(layout_.moments) ||
+        e.phase.size() < static_cast<std::size_t>(layout_.angles) ||
+        e.expansion.size() < static_cast<std::size_t>(layout_.expansion))
+      throw std::invalid_argument("bulk optics: the efficiency function does not supply the Legendre moments or "
+                                  "phase function asked for");
+    for (int l = 0; l < layout_.moments; ++l) f[layout_.moment(l)] = w * e.qsca * e.moments[l];
+    for (int j = 0; j < layout_.angles; ++j) f[layout_.angle(j)] = w * e.qsca * e.phase[j];
+    for (int i = 0; i < layout_.expansion; ++i) f[layout_.expansion_at(i)] = w * e.qsca * e.expansion[i];
     return f;
   }
 
@@ -79,9 +99,12 @@ class Integrator {
     p.a = a;
     p.b = b;
     double mid = 0.5 * (a + b), half = 0.5 * (b - a);
-    Vec k{}, g{}, q_min, q_max;
-    q_min.fill(INFINITY);
-    q_max.fill(-INFINITY);
+    const int n = layout_.size();
+    Vec k(n, 0.0), g(n, 0.0), q_min(n, INFINITY), q_max(n, -INFINITY);
+    p.q_max.assign(n, 0.0);
+    p.kronrod.assign(n, 0.0);
+    p.error.assign(n, 0.0);
+    p.difference.assign(n, 0.0);
     for (std::size_t i = 0; i < rule_.abscissa.size(); ++i) {
       double xi = rule_.abscissa[i];
       int copies = (i == 0) ? 1 : 2;
@@ -90,19 +113,21 @@ class Integrator {
         Vec f = integrand(mid + (sgn ? -xi : xi) * half, qext, p);
         ++p.evaluations;
         p.qext_max = std::max(p.qext_max, std::abs(qext));
-        for (int c = 0; c < kComponents; ++c) {
+        for (int c = 0; c < n; ++c) {
           k[c] += rule_.kronrod_weight[i] * f[c];
           g[c] += rule_.gauss_weight[i] * f[c];
           if (f[kWeight] > 0) {
             double q = f[c] / f[kWeight];
             q_min[c] = std::min(q_min[c], q);
             q_max[c] = std::max(q_max[c], q);
+            p.q_max[c] = std::max(p.q_max[c], std::abs(q));
           }
         }
       }
     }
-    for (int c = 0; c < kComponents; ++c) {
+    for (int c = 0; c < n; ++c) {
       p.kronrod[c] = half * k[c];
+      p.difference[c] = half * (k[c] - g[c]);
       p.error[c] = half * std::abs(k[c] - g[c]);
     }
     p.x_span = k_ * (std::exp(b) - std::exp(a));
@@ -115,7 +140,7 @@ class Integrator {
     // phases of the ripple) and widened by half.  Panels that matter are
     // split until resolved; the rest keep this bound.
     if (p.x_span > resolved_x_span_)
-      for (int c : {kExt, kSca, kAbs, kGSca}) {
+      for (int c : layout_.checked()) {
         double range = std::isfinite(q_max[c] - q_min[c]) ? q_max[c] - q_min[c] : 0.0;
         p.error[c] += 1.5 * range * std::abs(p.kronrod[kWeight]);
       }
@@ -140,6 +165,7 @@ class Integrator {
   double k_;
   const EfficiencyFunction& q_;
   QuadratureSettings s_;
+  Layout layout_;
   Rule rule_;
   double resolved_x_span_;  // x-width a panel may span and still trust |K - G|
   std::complex<double> m_;  // for the large-x bound
@@ -196,38 +222,41 @@ std::vector<Panel> initial_panels(const Integrator& integ, const Support& suppor
 class Refinement {
  public:
   Refinement(const Integrator& integ, std::vector<Panel> panels, const QuadratureSettings& s)
-      : integ_(integ), s_(s), resonances_(s.estimate_resonances), panels_(std::move(panels)) {
+      : integ_(integ), s_(s), layout_(integ.layout()), checked_(layout_.checked()),
+        resonances_(s.estimate_resonances), panels_(std::move(panels)) {
+    const std::size_t n = static_cast<std::size_t>(layout_.size());
+    value_.assign(n, 0.0);
+    error_.assign(n, 0.0);
+    floor_error_.assign(n, 0.0);
+    scale0_.assign(n, 0.0);
     for (auto& p : panels_) p.floor = is_floor(p);
     for (const auto& p : panels_) evaluations_ += p.evaluations;
     totals();
-    for (int c = 0; c < kComponents; ++c) scale0_[c] = scale(c, value_);
+    for (int c : checked_) scale0_[c] = scale(c, value_);
   }
 
   // Recomputes the sums from the panels (the running sums drift).
   void totals() {
-    value_.fill(0);
-    error_.fill(0);
-    floor_error_.fill(0);
+    std::fill(value_.begin(), value_.end(), 0.0);
+    std::fill(error_.begin(), error_.end(), 0.0);
+    std::fill(floor_error_.begin(), floor_error_.end(), 0.0);
     for (const auto& p : panels_)
-      for (int c = 0; c < kComponents; ++c) {
+      for (std::size_t c = 0; c < value_.size(); ++c) {
         value_[c] += p.kronrod[c];
         (p.floor ? floor_error_ : error_)[c] += p.error[c];
       }
   }
 
-  // Each component's error is measured against the scale it is reported on:
-  // sigma_ext for ext/sca/abs, sigma_sca for g*sigma_sca (the asymmetry).
-  static double scale(int c, const Vec& v) {
-    double ext = std::abs(v[kExt]);
-    if (c == kGSca) return std::max(std::abs(v[kSca]), 1e-300);
-    return std::max(ext, 1e-300);
-  }
-  bool within(const Vec& e, double tol) const {
-    for (int c : {kExt, kSca, kAbs, kGSca})
-      if (e[c] > tol * scale(c, value_)) return false;
+  // Each component's error is measured against the scale it is reported on
+  // (Layout::scale).  Resonance errors of the optional (angular) components
+  // have their own target, angular_resonance_tolerance.
+  double scale(int c, const Vec& v) const { return layout_.scale(c, v); }
+  bool within(const Vec& e, double tol, double angular_tol) const {
+    for (int c : checked_)
+      if (e[c] > (layout_.angular(c) ? angular_tol : tol) * scale(c, value_)) return false;
     return true;
   }
-  bool quadrature_met() const { return within(error_, s_.rel_tolerance); }
+  bool quadrature_met() const { return within(error_, s_.rel_tolerance, s_.rel_tolerance); }
 
   // Global adaptive refinement (QUADPACK QAG-style), the worst panels first,
   // kBatch at a time so that their halves can be evaluated in parallel.
@@ -246,7 +275,8 @@ class Refinement {
       if (panels_[i].floor == floor_pass) heap.push(i);
     std::size_t rounds = 0;
     for (;;) {
-      bool done = floor_pass ? within(floor_error_, s_.resonance_tolerance) : within(error_, s_.rel_tolerance);
+      bool done = floor_pass ? within(floor_error_, s_.resonance_tolerance, s_.angular_resonance_tolerance)
+                             : quadrature_met();
       if (done || heap.empty() || evaluations_ > s_.max_evaluations) return;
       std::vector<std::size_t> chosen;
       std::vector<Panel> parents;
@@ -274,18 +304,17 @@ class Refinement {
   // Throws naming the worst integral when pass 1 did not meet rel_tolerance
   // (a sum that is not finite, which no comparison catches, included).
   void require_quadrature_met(const SizeDistribution& d) const {
-    for (int c : {kExt, kSca, kAbs, kGSca})
+    for (int c : checked_)
       if (!std::isfinite(value_[c]) || !std::isfinite(error_[c]))
         throw std::runtime_error("integral over " + d.describe() + " is not finite in double precision (sigma_ext " +
                                  significant(value_[kExt], 3) + "); the distribution's number density is out of "
                                  "range");
     if (quadrature_met()) return;
-    const char* names[] = {"sigma_ext", "sigma_sca", "sigma_abs", "asymmetry g"};
     int worst = kExt;
     double ratio = 0;
-    for (int c : {kExt, kSca, kAbs, kGSca})
+    for (int c : checked_)
       if (error_[c] / scale(c, value_) > ratio) { ratio = error_[c] / scale(c, value_); worst = c; }
-    throw std::runtime_error(std::string(names[worst]) + " integral over " + d.describe() + ": relative tolerance " +
+    throw std::runtime_error(component_name(worst) + " integral over " + d.describe() + ": relative tolerance " +
                              significant(s_.rel_tolerance, 3) + " not met after " + std::to_string(evaluations_) +
                              " efficiency evaluations (estimated quadrature error " + significant(ratio, 3) +
                              " relative); the integrand is too rough or too wide for the evaluation budget "
@@ -296,6 +325,7 @@ class Refinement {
   const Vec& value() const { return value_; }
   const Vec& error() const { return error_; }
   const Vec& floor_error() const { return floor_error_; }
+  const Layout& layout() const { return layout_; }
   std::size_t evaluations() const { return evaluations_; }
 
  private:
@@ -305,8 +335,15 @@ class Refinement {
   // Pass 1 order: the worst relative error first.
   double key(const Panel& p) const {
     double worst = 0;
-    for (int c : {kExt, kSca, kAbs, kGSca}) worst = std::max(worst, p.error[c] / scale0_[c]);
+    for (int c : checked_) worst = std::max(worst, p.error[c] / scale0_[c]);
     return worst;
+  }
+  std::string component_name(int c) const {
+    const char* names[] = {"sigma_ext", "sigma_sca", "sigma_abs", "asymmetry g"};
+    if (c < 4) return names[c];
+    if (c == kBack) return "backscatter beta_pi";
+    if (c < kFixed + layout_.moments) return "Legendre moment chi_" + std::to_string(c - kFixed);
+    return "phase function at " + significant(s_.angles_deg[c - kFixed - layout_.moments], 6) + " deg";
   }
   // In pass 2 the order must not depend on what the nodes sampled: splitting
   // where |K - G| is large splits away the nodes that hit a resonance while
@@ -326,12 +363,12 @@ class Refinement {
     for (Panel* child : {&lower, &upper}) {
       child->floor = is_floor(*child);
       evaluations_ += child->evaluations;
-      for (int c = 0; c < kComponents; ++c) {
+      for (std::size_t c = 0; c < value_.size(); ++c) {
         value_[c] += child->kronrod[c];
         (child->floor ? floor_error_ : error_)[c] += child->error[c];
       }
     }
-    for (int c = 0; c < kComponents; ++c) {
+    for (std::size_t c = 0; c < value_.size(); ++c) {
       value_[c] -= parent.kronrod[c];
       (parent.floor ? floor_error_ : error_)[c] -= parent.error[c];
     }
@@ -341,11 +378,85 @@ class Refinement {
 
   const Integrator& integ_;
   const QuadratureSettings& s_;
+  const Layout& layout_;
+  std::vector<int> checked_;
   bool resonances_;
   std::vector<Panel> panels_;
-  Vec value_{}, error_{}, floor_error_{}, scale0_{};
+  Vec value_, error_, floor_error_, scale0_;
   std::size_t evaluations_ = 0;
 };
+
+// Largest |component / weight| sampled on any panel: the tail bound of an
+// optional component is twice that times pi times the omitted r^2 moment
+// (as extinction_tail_bound, without the floor of 4 that Q_ext alone obeys).
+double sampled_max(const Refinement& r, int c) {
+  double m = 0;
+  for (const auto& p : r.panels()) m = std::max(m, p.q_max[c]);
+  return m;
+}
+
+// Component c as an IntegralEstimate with all its error terms.
+IntegralEstimate component_estimate(const Refinement& r, int c, double omitted_moment, bool resonances) {
+  IntegralEstimate e;
+  e.value = r.value()[c];
+  e.quadrature_error = r.error()[c];
+  e.tail_error = 2 * sampled_max(r, c) * kPi * omitted_moment;
+  if (resonances) e.resonance_error = r.floor_error()[c];
+  return e;
+}
+
+// beta_pi, the lidar ratio, chi_l and p(theta), each normalised quantity
+// (v = num/sigma_sca) with error (err_num + |v| err_sca) / sigma_sca.
+void fill_optional(BulkOptics& out, const Refinement& r, const Support& support, const QuadratureSettings& s) {
+  const Layout& layout = r.layout();
+  const double sca = out.scattering.value;
+  if (!out.scattering_computed || !(sca > 0)) return;
+  if (layout.back) {
+    out.backscatter_computed = true;
+    out.backscatter = component_estimate(r, kBack, support.omitted_moment, s.estimate_resonances);
+    const double beta = out.backscatter.value;
+    if (beta > 0) {
+      out.lidar_ratio = out.extinction.value / beta;
+      out.lidar_ratio_error =
+          out.lidar_ratio * (out.extinction.error() / out.extinction.value + out.backscatter.error() / beta);
+    }
+  }
+  // v = M_c / sigma_sca from the same panels: its error is that of
+  // M_c - v sigma_sca, whose Kronrod-Gauss differences cancel where the two
+  // sums err alike (a resonance hit by a node raises both), panel by panel;
+  // the aliasing terms of wide panels are added as they are.
+  auto normalised = [&](int c, double& value, double& error) {
+    value = r.value()[c] / sca;
+    double sum = 0;
+    for (const auto& p : r.panels()) {
+      const double aliasing_c = p.error[c] - std::abs(p.difference[c]);
+      const double aliasing_sca = p.error[kSca] - std::abs(p.difference[kSca]);
+      sum += std::abs(p.difference[c] - value * p.difference[kSca]) + aliasing_c + std::abs(value) * aliasing_sca;
+    }
+    const double tails = 2 * (sampled_max(r, c) + std::abs(value) * sampled_max(r, kSca)) * kPi * support.omitted_moment;
+    error = (sum + tails) / sca;
+  };
+  out.moments.assign(layout.moments, 0.0);
+  out.moments_error.assign(layout.moments, 0.0);
+  for (int l = 0; l < layout.moments; ++l) normalised(layout.moment(l), out.moments[l], out.moments_error[l]);
+  out.angles_deg = s.angles_deg;
+  out.phase.assign(layout.angles, 0.0);
+  out.phase_error.assign(layout.angles, 0.0);
+  for (int j = 0; j < layout.angles; ++j) normalised(layout.angle(j), out.phase[j], out.phase_error[j]);
+  if (layout.expansion > 0) {
+    std::vector<double>* values[] = {&out.expansion.alpha1, &out.expansion.alpha2, &out.expansion.alpha3,
+                                     &out.expansion.alpha4, &out.expansion.beta1,  &out.expansion.beta2};
+    std::vector<double>* errors[] = {&out.expansion_error.alpha1, &out.expansion_error.alpha2,
+                                     &out.expansion_error.alpha3, &out.expansion_error.alpha4,
+                                     &out.expansion_error.beta1,  &out.expansion_error.beta2};
+    for (int k = 0; k < 6; ++k) {
+      values[k]->assign(layout.moments, 0.0);
+      errors[k]->assign(layout.moments, 0.0);
+      for (int l = 0; l < layout.moments; ++l)
+        normalised(layout.expansion_at(k * layout.moments + l), (*values[k])[l], (*errors[k])[l]);
+    }
+  }
+}
 
 // The estimates, errors and method of the refined panels.
 BulkOptics bulk_optics_result(const Refinement& r, const Support& support, const QuadratureSettings& s,
@@ -388,6 +499,7 @@ BulkOptics bulk_optics_result(const Refinement& r, const Support& support, const
                                                 value[kSca]
                                           : 0;
   }
+  fill_optional(out, r, support, s);
   std::ostringstream method;
   method << "adaptive Gauss-Kronrod " << s.kronrod_points << " (Boost.Math) in ln r, rel. tol " << s.rel_tolerance
          << ", tails cut at " << tail_fraction << " of the r^2 moment, " << out.evaluations << " evaluations, x <= "
@@ -396,6 +508,8 @@ BulkOptics bulk_optics_result(const Refinement& r, const Support& support, const
   if (s.estimate_resonances)
     method << ", resonance panels <= " << s.resonance_x_span << " in x refined to " << s.resonance_tolerance
            << " relative (down to " << s.min_resonance_x_span << " in x)";
+  if (s.estimate_resonances && (r.layout().back || r.layout().size() > kFixed))
+    method << ", " << s.angular_resonance_tolerance << " for backscatter/angular quantities";
   out.method = method.str();
   return out;
 }

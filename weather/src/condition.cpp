@@ -9,6 +9,10 @@ bool depends_on_convention(const Condition& c) {
   return std::holds_alternative<RainPowerLaw>(c) || std::holds_alternative<Snow>(c);
 }
 
+bool needs_amount(const ParametricDrops& d) {
+  return !std::holds_alternative<ModifiedGammaDrops>(d.family) && !std::holds_alternative<ExponentialDrops>(d.family);
+}
+
 std::string to_string(FogPreset p) { return p == FogPreset::advection ? "advection" : "radiation"; }
 
 std::string to_string(WaterTable t) {

@@ -14,142 +14,16 @@
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/weather/domains.hpp"
 #include "attenuvis/weather/units.hpp"
+#include "condition_fields.hpp"
 
 namespace attenuvis::weather {
 namespace {
 
-[[noreturn]] void bad(const std::string& text, const std::string& why) {
-  throw std::invalid_argument("bad condition " + quote_text(text, 80) + ": " + why + "\n" + condition_grammar());
-}
+using detail::bad;
+using detail::Fields;
+using detail::split;
+using detail::SweptValue;
 
-std::vector<std::string> split(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (char c : s) {
-    if (c == sep) {
-      out.push_back(cur);
-      cur.clear();
-    } else {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
-  return out;
-}
-
-// One value of a sweep A..B[/STEP][UNIT]: the field it replaces, the number
-// (in the sweep's unit) and that unit.
-struct SweptValue {
-  std::size_t field = 0;
-  double value = 0;
-  std::string unit;
-};
-
-// The ':'-separated fields of one condition (fields[0] is the keyword) and
-// the readers of its numbers.  A swept field yields its number directly.
-class Fields {
- public:
-  Fields(std::string text, std::vector<std::string> fields, std::optional<SweptValue> swept)
-      : text_(std::move(text)), fields_(std::move(fields)), swept_(std::move(swept)) {}
-
-  const std::string& text() const { return text_; }
-  std::size_t size() const { return fields_.size(); }
-  const std::string& operator[](std::size_t i) const { return fields_[i]; }
-  [[noreturn]] void fail(const std::string& why) const { bad(text_, why); }
-  void require(std::size_t n) const {
-    if (fields_.size() < n) fail("missing field after '" + fields_.back() + "'");
-  }
-  void at_most(std::size_t n, const std::string& why) const {
-    if (fields_.size() > n) fail(why);
-  }
-  bool swept_field_read() const { return !swept_ || swept_read_; }
-
-  // Rate in mm/h within `range` (domains.hpp).
-  double rate(std::size_t i, const Domain& range) const {
-    try {
-      if (const auto v = swept(i)) {
-        if (!swept_->unit.empty()) fail("a rate is in mm/h and takes no unit ('" + swept_->unit + "')");
-        return require_in(range, *v);
-      }
-      return read_in(range, fields_[i]);
-    } catch (const std::invalid_argument& e) {
-      fail(e.what());
-    }
-  }
-  // A visibility in metres (units.hpp: parse_distance) within domain::visibility.
-  double distance(std::size_t i) const {
-    try {
-      if (const auto v = swept(i)) {
-        if (!(*v > 0)) throw std::invalid_argument("distance must be positive");
-        return require_in_si(domain::visibility, *v * distance_unit_m(swept_->unit));
-      }
-      const double m = parse_distance(fields_[i]);
-      if (!std::isfinite(m))  // 1e308km
-        throw std::invalid_argument("visibility " + quote_text(fields_[i]) + " is outside its valid range " +
-                                    range_text(domain::visibility));
-      return require_in_si(domain::visibility, m);
-    } catch (const std::invalid_argument& e) {
-      fail(e.what());
-    }
-  }
-  // sigma in 1/m, from VALUE[/m|/km|dB/km], within domain::sigma.
-  double sigma(std::size_t i) const {
-    if (const auto v = swept(i)) {
-      if (!swept_->unit.empty()) fail("a swept sigma is in 1/m and takes no unit");
-      return checked(domain::sigma, *v);
-    }
-    std::string v = fields_[i];
-    SigmaUnit unit = SigmaUnit::per_m;
-    for (auto [suffix, u] : {std::pair<const char*, SigmaUnit>{"dB/km", SigmaUnit::dB_per_km},
-                             {"/km", SigmaUnit::per_km},
-                             {"/m", SigmaUnit::per_m}}) {
-      const std::string s = suffix;
-      if (v.size() > s.size() && v.compare(v.size() - s.size(), s.size(), s) == 0) {
-        unit = u;
-        v = v.substr(0, v.size() - s.size());
-        break;
-      }
-    }
-    const double x = number(v, "sigma");
-    if (x < 0) fail("sigma must be >= 0");
-    return checked(domain::sigma, convert_to_per_m(x, unit));
-  }
-  // A number read and checked against `range`.
-  double in(const Domain& range, const std::string& text) const {
-    try {
-      return read_in(range, text);
-    } catch (const std::invalid_argument& e) {
-      fail(e.what());
-    }
-  }
-  double checked(const Domain& range, double value) const {
-    try {
-      return require_in(range, value);
-    } catch (const std::invalid_argument& e) {
-      fail(e.what());
-    }
-  }
-  double number(const std::string& text, const std::string& what) const {
-    try {
-      return io::parse_double(text, what);
-    } catch (const std::invalid_argument& e) {
-      fail(e.what());
-    }
-  }
-
- private:
-  double number(std::size_t i, const std::string& what) const { return number(fields_[i], what); }
-  std::optional<double> swept(std::size_t i) const {
-    if (!swept_ || swept_->field != i) return std::nullopt;
-    swept_read_ = true;
-    return swept_->value;
-  }
-
-  std::string text_;
-  std::vector<std::string> fields_;
-  std::optional<SweptValue> swept_;
-  mutable bool swept_read_ = false;
-};
 
 // ---- Mie options ------------------------------------------------------------
 
@@ -209,7 +83,9 @@ const MieOption* find_option(const std::string& field) {
   return nullptr;
 }
 
-MieCondition with_options(Drops drops, const Fields& f, std::size_t from) {
+}  // namespace
+
+MieCondition detail::with_options(Drops drops, const Fields& f, std::size_t from) {
   MieCondition c{std::move(drops), SettingsWaterTable{}, AsGiven{}};
   for (std::size_t i = from; i < f.size(); ++i) {
     const MieOption* o = find_option(f[i]);
@@ -218,6 +94,8 @@ MieCondition with_options(Drops drops, const Fields& f, std::size_t from) {
   }
   return c;
 }
+
+namespace {
 
 // ---- The kinds --------------------------------------------------------------
 
@@ -230,6 +108,7 @@ struct Kind {
 };
 
 bool always(const Fields&) { return true; }
+bool family_is(const Fields& f, const char* name) { return f.size() >= 2 && f[1] == name; }
 
 bool is_empirical_fog(const std::string& name) {
   return name == "kruse" || name == "kim" || name == "naboulsi-advection" || name == "naboulsi-radiation";
@@ -297,6 +176,27 @@ const Kind kKinds[] = {
        if (path.empty()) f.fail("fog:file= needs a path");
        return with_options(DistributionFile{path}, f, i);
      }},
+    {"drops", "drops:lognormal:r=RADIUS:sg=SG  [:OPTIONS]",
+     "Mie over a log-normal: median radius, geometric std. dev. SG in (1, 20]; needs N= or lwc=",
+     [](const Fields& f) { return family_is(f, "lognormal"); },
+     detail::parse_lognormal_drops},
+    {"drops", "drops:gamma:r=RADIUS:alpha=A  [:OPTIONS]",
+     "Mie over a gamma n ~ r^A exp(-A r/RADIUS): mode radius, shape A in (0, 100]; needs N= or lwc=",
+     [](const Fields& f) { return family_is(f, "gamma"); },
+     detail::parse_gamma_drops},
+    {"drops", "drops:mgamma:a=A:alpha=AL:b=B[:gamma=G] | drops:mgamma:rc=RADIUS:alpha=AL[:gamma=G]",
+     "Mie over Deirmendjian's n = A r^AL exp(-B r^G), r in um, n in cm^-3 um^-1 (G = 1 by default); "
+     "with rc= (mode radius, B = AL/(G rc^G)) it needs N= or lwc=",
+     [](const Fields& f) { return family_is(f, "mgamma"); },
+     detail::parse_mgamma_drops},
+    {"drops", "drops:exponential:n0=N0:lambda=L  [:OPTIONS]",
+     "Mie over N(D) = N0 exp(-L D) in diameter D: N0 in m^-3 mm^-1, L in mm^-1 (Marshall & Palmer form)",
+     [](const Fields& f) { return family_is(f, "exponential"); },
+     detail::parse_exponential_drops},
+    {"drops", "drops:powerlaw:nu=NU:rmin=RADIUS:rmax=RADIUS  [:OPTIONS]",
+     "Mie over a Junge power law n ~ r^-NU on [rmin, rmax]; needs N= or lwc=",
+     [](const Fields& f) { return family_is(f, "powerlaw"); },
+     detail::parse_powerlaw_drops},
     {"fog", "fog:kruse|kim|naboulsi-advection|naboulsi-radiation:DIST", "empirical fog from visibility DIST",
      [](const Fields& f) { return f.size() >= 2 && is_empirical_fog(f[1]); },
      [](const Fields& f) -> Condition {
@@ -320,7 +220,7 @@ std::string generate_grammar() {
   };
   out << "conditions:\n";
   for (const auto& k : kKinds) line(k.grammar, k.help);
-  out << "  OPTIONS after a Mie condition (fog:..., rain:RATE:mie), any order:\n";
+  out << "  OPTIONS after a Mie condition (fog:..., rain:RATE:mie, drops:...), any order:\n";
   for (const auto& o : kMieOptions) line(std::string("  ") + o.grammar, o.help);
   out << "  RATE in mm/h; DIST a number with unit " << distance_units() << " (bare number: m), e.g. 500m, 2km\n"
       << "  in tables a RATE, DIST or VALUE may sweep: A..B or A..B/STEP (rain:1..100, fog:kim:200..1000/200m);\n"
@@ -436,6 +336,7 @@ std::vector<LabelledCondition> expand_conditions(const std::string& text) {
 
 // ---- Back to text -------------------------------------------------------------
 
+
 std::string to_text(const Condition& condition) {
   using io::shortest;
   struct Visitor {
@@ -455,6 +356,7 @@ std::string to_text(const Condition& condition) {
       std::string out;
       if (const auto* r = std::get_if<MarshallPalmerRain>(&c.drops)) out = "rain:" + shortest(r->rate_mm_h) + ":mie";
       else if (const auto* p = std::get_if<FogPreset>(&c.drops)) out = "fog:" + to_string(*p);
+      else if (const auto* d = std::get_if<ParametricDrops>(&c.drops)) out = detail::drops_text(*d);
       else out = "fog:file=" + std::get<DistributionFile>(c.drops).path;
       if (const auto* t = std::get_if<WaterTable>(&c.index)) out += ":water=" + to_string(*t);
       if (const auto* m = std::get_if<ConstantIndex>(&c.index))

@@ -1,6 +1,11 @@
 // The bridge from attenuvis::mie to the bulk integrals (bulk_optics.hpp):
 // Lorenz-Mie efficiencies as an EfficiencyFunction, and bulk_optics() with them.
+#include <algorithm>
+#include <string>
+
 #include "attenuvis/mie.hpp"
+#include "attenuvis/mie/legendre_moments.hpp"
+#include "attenuvis/mie/scattering_matrix.hpp"
 #include "attenuvis/weather/bulk_optics.hpp"
 
 namespace attenuvis::weather {
@@ -10,16 +15,80 @@ EfficiencyFunction mie_efficiencies(std::complex<double> m) {
   if (std::abs(m - 1.0) >= 0.01) options.extended_above = 3e4;  // automatic precision: double-only up to there
   return [m, options](double x) {
     auto e = mie::sphere(x, m, options);
-    return Efficiency{e.qext, e.qsca, e.qabs, e.g};
+    return Efficiency{e.qext, e.qsca, e.qabs, e.g, e.qback, {}, {}, {}};
   };
+}
+
+EfficiencyFunction mie_efficiencies(std::complex<double> m, const QuadratureSettings& s) {
+  if (s.legendre_moments < 0 && s.angles_deg.empty()) return mie_efficiencies(m);
+  mie::Options options;
+  if (std::abs(m - 1.0) >= 0.01) options.extended_above = 3e4;
+  mie::Extras extras;
+  extras.coefficients = s.legendre_moments >= 0;
+  extras.angles_deg = s.angles_deg;
+  const int L = s.legendre_moments;
+  const bool polarised = s.polarised && L >= 0;
+  return [m, options, extras, L, polarised](double x) {
+    const auto sc = mie::scatter(x, m, extras, options);
+    Efficiency e{sc.q.qext, sc.q.qsca, sc.q.qabs, sc.q.g, sc.q.qback, {}, {}, {}};
+    if (L >= 0) {
+      e.moments = mie::phase_function_moments(sc, static_cast<std::size_t>(L));
+      e.moments.resize(static_cast<std::size_t>(L) + 1, 0.0);  // above 2N they are exact zeros
+    }
+    if (!extras.angles_deg.empty()) e.phase = mie::scattering_matrix(x, sc).phase;
+    if (polarised) {
+      const auto ex = mie::scattering_matrix_expansion(sc, static_cast<std::size_t>(L));
+      for (const auto* v : {&ex.alpha1, &ex.alpha2, &ex.alpha3, &ex.alpha4, &ex.beta1, &ex.beta2}) {
+        std::vector<double> part = *v;
+        part.resize(static_cast<std::size_t>(L) + 1, 0.0);
+        e.expansion.insert(e.expansion.end(), part.begin(), part.end());
+      }
+    }
+    return e;
+  };
+}
+
+BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
+                           const QuadratureSettings& s) {
+  const bool angular = s.legendre_moments >= 0 || !s.angles_deg.empty();
+  if (!angular) return integrate_bulk_optics(d, wavelength_m, mie_efficiencies(m), s, m);
+  // Pass A: everything but the angular quantities, with cheap evaluations.
+  QuadratureSettings cheap = s;
+  cheap.legendre_moments = -1;
+  cheap.angles_deg.clear();
+  cheap.polarised = false;
+  BulkOptics out = integrate_bulk_optics(d, wavelength_m, mie_efficiencies(m), cheap, m);
+  if (!out.scattering_computed) return out;  // large-x expansion used: no angular quantities either
+  // Pass B: the angular quantities; sigma's resonance target was met in pass A,
+  // so only theirs drives the refinement of the resonance panels here.
+  QuadratureSettings angular_settings = s;
+  angular_settings.backscatter = false;
+  angular_settings.resonance_tolerance = 1.0;
+  const BulkOptics b = integrate_bulk_optics(d, wavelength_m, mie_efficiencies(m, angular_settings),
+                                             angular_settings, m);
+  out.moments = b.moments;
+  out.moments_error = b.moments_error;
+  out.angles_deg = b.angles_deg;
+  out.phase = b.phase;
+  out.phase_error = b.phase_error;
+  out.expansion = b.expansion;
+  out.expansion_error = b.expansion_error;
+  out.evaluations += b.evaluations;
+  out.method += "; moments/phase function in a second pass (" + std::to_string(b.evaluations) +
+                " evaluations with angular terms)";
+  return out;
 }
 
 BulkOptics bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
                        const QuadratureSettings& s) {
-  EfficiencyFunction q = [m](double x) {
-    auto e = mie::sphere(x, m);
-    return Efficiency{e.qext, e.qsca, e.qabs, e.g};
-  };
+  EfficiencyFunction q;
+  if (s.legendre_moments < 0 && s.angles_deg.empty())
+    q = [m](double x) {
+      auto e = mie::sphere(x, m);
+      return Efficiency{e.qext, e.qsca, e.qabs, e.g, e.qback, {}, {}, {}};
+    };
+  else
+    return mie_bulk_optics(d, wavelength_m, m, s);
   return integrate_bulk_optics(d, wavelength_m, q, s, m);
 }
 

@@ -45,7 +45,10 @@ BulkOptics bulk_optics_of(const MieCondition& c, double wavelength_m, const Sett
 using MieKey = std::tuple<std::size_t, double, std::size_t, std::size_t, double, double, std::string, std::size_t,
                           double, double, double, std::string, double>;
 std::optional<MieKey> cache_key(const MieCondition& c, double wavelength_m, const Settings& s) {
-  if (std::holds_alternative<DistributionFile>(c.drops)) return std::nullopt;
+  // Files may change between calls; parametric drops are keyed by no preset
+  // (their sigma comes from the contour rule in milliseconds).
+  if (std::holds_alternative<DistributionFile>(c.drops) || std::holds_alternative<ParametricDrops>(c.drops))
+    return std::nullopt;
   const double rate = is_rain(c) ? std::get<MarshallPalmerRain>(c.drops).rate_mm_h : 0.0;
   const std::size_t preset = is_rain(c) ? 0 : static_cast<std::size_t>(std::get<FogPreset>(c.drops));
   double n = 0, k = 0;
@@ -123,12 +126,39 @@ std::string power_law_words(double published, const Settings& s) {
 
 }  // namespace
 
+// The distribution of parametric drops; those without an amount of their own
+// hold one particle per cm^3 (condition.hpp), rescaled by N= or lwc= below.
+static SizeDistribution parametric_distribution(const ParametricDrops& p) {
+  constexpr double kOnePerCm3 = 1e6;  // m^-3
+  return std::visit(
+      [&](const auto& f) -> SizeDistribution {
+        using T = std::decay_t<decltype(f)>;
+        if constexpr (std::is_same_v<T, LogNormalDrops>)
+          return SizeDistribution::log_normal(kOnePerCm3, f.median_radius_m, f.sigma_g);
+        else if constexpr (std::is_same_v<T, GammaDrops>)
+          return SizeDistribution::gamma(kOnePerCm3, f.alpha, f.mode_radius_m);
+        else if constexpr (std::is_same_v<T, ModifiedGammaDrops>)
+          return SizeDistribution::modified_gamma_um(f.a, f.alpha, f.b, f.gamma);
+        else if constexpr (std::is_same_v<T, ExponentialDrops>)
+          return SizeDistribution::exponential_diameter(f.n0_per_m3_per_mm, f.lambda_per_mm);
+        else {
+          // n = c r^-nu with int n dr = 1 cm^-3 over [r_min, r_max].
+          const double e = 1 - f.nu;
+          const double integral = std::abs(e) < 1e-12 ? std::log(f.r_max_m / f.r_min_m)
+                                                      : (std::pow(f.r_max_m, e) - std::pow(f.r_min_m, e)) / e;
+          return SizeDistribution::power_law(kOnePerCm3 / integral, f.nu, f.r_min_m, f.r_max_m);
+        }
+      },
+      p.family);
+}
+
 SizeDistribution condition_distribution(const MieCondition& c) {
   SizeDistribution d = std::visit(
       [](const auto& drops) -> SizeDistribution {
         using T = std::decay_t<decltype(drops)>;
         if constexpr (std::is_same_v<T, MarshallPalmerRain>) return SizeDistribution::marshall_palmer(drops.rate_mm_h);
         else if constexpr (std::is_same_v<T, FogPreset>) return preset_distribution(to_string(drops));
+        else if constexpr (std::is_same_v<T, ParametricDrops>) return parametric_distribution(drops);
         else return read_distribution_csv(drops.path);
       },
       c.drops);

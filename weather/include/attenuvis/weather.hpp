@@ -10,6 +10,7 @@
 #include "attenuvis/weather/bulk_optics.hpp"
 #include "attenuvis/weather/condition.hpp"
 #include "attenuvis/weather/condition_grammar.hpp"
+#include "attenuvis/weather/condition_optics.hpp"
 #include "attenuvis/weather/contour_extinction.hpp"
 #include "attenuvis/weather/distribution_file.hpp"
 #include "attenuvis/weather/domains.hpp"

@@ -4,6 +4,20 @@
 //   sigma_sca, sigma_abs likewise;  albedo = sigma_sca / sigma_ext;
 //   g = int g(x) Q_sca(x) pi r^2 n(r) dr / sigma_sca,
 //
+// and, when asked for in QuadratureSettings (nothing is computed that was not):
+//   backscatter  beta_pi = int (Q_back(x) / 4 pi) pi r^2 n(r) dr   in 1/(m sr),
+//                the volume backscatter coefficient (B&H 4.82 per sphere);
+//                lidar ratio S = sigma_ext / beta_pi in sr;
+//   moments      chi_l = int chi_l(x) Q_sca(x) pi r^2 n(r) dr / sigma_sca,
+//                l = 0..L: the scattering-weighted Legendre moments of the
+//                bulk phase function p(mu) = sum (2l+1) chi_l P_l(mu), chi_0 = 1,
+//                chi_1 = g (legendre_moments.hpp: DISORT's PMOM(l) = chi_l);
+//   phase        p(theta) = int p(theta; x) Q_sca(x) pi r^2 n(r) dr / sigma_sca
+//                on an angle grid, normalised int p dOmega = 4 pi (p = 1 for
+//                isotropic scattering; divide by 4 pi for 1/sr).
+// Each is one more component of the same panel sums, with the same error terms
+// (backscatter and phase relative to their own value, moments absolute, like g).
+//
 // computed with Gauss-Kronrod rules from Boost.Math (boost/math/quadrature/
 // gauss_kronrod.hpp) in u = ln r, refined adaptively (globally, worst panel
 // first, QUADPACK QAG-style) until the summed |Kronrod - Gauss| of every panel
@@ -38,14 +52,29 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "attenuvis/weather/size_distribution.hpp"
 
 namespace attenuvis::weather {
 
 // Efficiencies of one sphere at size parameter x (what mie::sphere returns).
+// qback, moments (chi_0..chi_L) and phase (p at the requested angles, int p
+// dOmega = 4 pi) only when the bulk integral asks for them.
 struct Efficiency {
   double qext = 0, qsca = 0, qabs = 0, g = 0;
+  double qback = 0;
+  std::vector<double> moments, phase;
+  // alpha1..alpha4, beta1, beta2 for l = 0..L, each L + 1 long, concatenated
+  // (legendre_moments.hpp: scattering_matrix_expansion)
+  std::vector<double> expansion;
+};
+
+// Expansion of the bulk scattering matrix in generalised spherical functions
+// (de Rooij & van der Stap 1984; Mishchenko, Travis & Lacis 2002, §4.11;
+// legendre_moments.hpp gives the convention): alpha1_l = (2l+1) chi_l.
+struct MatrixExpansion {
+  std::vector<double> alpha1, alpha2, alpha3, alpha4, beta1, beta2;
 };
 using EfficiencyFunction = std::function<Efficiency(double x)>;
 
@@ -60,6 +89,18 @@ struct QuadratureSettings {
   double resonance_x_span = 2.0;      // panels this narrow in x resolve the ripple: their |K - G| is resonance error
   double resonance_tolerance = 5e-5;  // split such panels until the resonance error is below this x sigma_ext...
   double min_resonance_x_span = 0.01; // ...but never below this width in x
+  // Optional bulk quantities (off by default: the efficiency function must
+  // supply them, and the angular ones cost O(N^2) per sphere, N ~ x terms):
+  bool backscatter = false;           // beta_pi and the lidar ratio
+  int legendre_moments = -1;          // L >= 0: chi_0..chi_L
+  std::vector<double> angles_deg;     // bulk phase function at these angles
+  bool polarised = false;             // with legendre_moments >= 0: alpha1..4, beta1, 2 of the bulk matrix
+  // Resonance target of those quantities (relative to beta_pi, to p(theta),
+  // absolute on chi_l): Q_back and the angular quantities of nearly lossless
+  // drops carry resonances ~10-100x stronger than Q_ext's, so meeting
+  // resonance_tolerance on them would take millions of evaluations; what is
+  // left is reported as their resonance error.
+  double angular_resonance_tolerance = 1e-3;
 };
 
 struct IntegralEstimate {
@@ -78,6 +119,14 @@ struct BulkOptics {
   double max_size_parameter = 0;
   bool scattering_computed = true;  // false when the asymptotic region (extinction only) was used
   std::string method;               // rule, tolerance, tail cut, in words
+
+  // Filled only when requested (QuadratureSettings) and scattering_computed.
+  bool backscatter_computed = false;
+  IntegralEstimate backscatter;           // beta_pi, 1/(m sr)
+  double lidar_ratio = 0, lidar_ratio_error = 0;  // sigma_ext / beta_pi, sr
+  std::vector<double> moments, moments_error;     // chi_0..chi_L (dimensionless, chi_0 = 1)
+  std::vector<double> angles_deg, phase, phase_error;  // p(theta), int p dOmega = 4 pi
+  MatrixExpansion expansion, expansion_error;          // scattering-weighted, as chi_l
 };
 
 // With any efficiency function (analytic test integrands, a cached Mie table...).
@@ -95,9 +144,25 @@ BulkOptics integrate_bulk_optics(const SizeDistribution& d, double wavelength_m,
 // 1e-13, far below any rel_tolerance accepted here; mie.hpp's double-precision
 // limits (Q_back, m = 1 + 1e-7) do not enter.  Otherwise mie's default.
 EfficiencyFunction mie_efficiencies(std::complex<double> m);
+// The same, plus Q_back (always: it is a by-product of the series) and, as
+// `s` asks, the Legendre moments chi_0..chi_L (mie::phase_function_moments)
+// and the phase function at s.angles_deg (mie::scattering_matrix).
+EfficiencyFunction mie_efficiencies(std::complex<double> m, const QuadratureSettings& s);
 
-// With Lorenz-Mie efficiencies (attenuvis::mie::sphere) of a homogeneous sphere
-// of relative refractive index m = n + i k.
+// With Lorenz-Mie efficiencies of a homogeneous sphere of index m (mie_efficiencies),
+// in two passes when moments or a phase function are asked for: the angular
+// terms cost O(x^2) per sphere against O(x) for the efficiencies, and the
+// resonance panels that Q_back and sigma need (hundreds of thousands for fog at
+// 550 nm) are not needed to bring the moments' resonance error below
+// angular_resonance_tolerance.  So pass A integrates everything else with cheap
+// evaluations, pass B the moments and phase function, refining resonance
+// panels for their targets alone; `evaluations` counts both.
+BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
+                           const QuadratureSettings& s = {});
+
+// With Lorenz-Mie efficiencies (attenuvis::mie::sphere, its default precision)
+// of a homogeneous sphere of relative refractive index m = n + i k; as
+// mie_bulk_optics when angular quantities are asked for.
 BulkOptics bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
                        const QuadratureSettings& s = {});
 

@@ -48,8 +48,8 @@ struct FogFromVisibility {
 };
 
 // ---- Mie over a size distribution -------------------------------------------
-// The drops: Marshall-Palmer rain, a P.1817-1 / seed fog preset, or a file
-// (distribution_file.hpp).
+// The drops: Marshall-Palmer rain, a P.1817-1 / seed fog preset, a file
+// (distribution_file.hpp), or a parametric distribution.
 struct MarshallPalmerRain {
   double rate_mm_h = 0;
 };
@@ -57,7 +57,31 @@ enum class FogPreset { advection, radiation };
 struct DistributionFile {
   std::string path;
 };
-using Drops = std::variant<MarshallPalmerRain, FogPreset, DistributionFile>;
+// A parametric distribution with the user's parameters (grammar: drops:FAMILY:...).
+// Those without an amount of their own (log-normal, gamma, power law) hold one
+// particle per cm^3 and are scaled by the condition's N= or lwc= (required).
+struct LogNormalDrops {   // n ~ exp(-(ln r - ln r_m)^2 / (2 ln^2 sg)) / r
+  double median_radius_m = 0, sigma_g = 0;
+};
+struct GammaDrops {       // n ~ r^alpha exp(-alpha r / r_mode)
+  double mode_radius_m = 0, alpha = 0;
+};
+struct ModifiedGammaDrops {  // n = a r^alpha exp(-b r^gamma), r in um, n in cm^-3 um^-1 (Deirmendjian 1969)
+  double a = 0, alpha = 0, b = 0, gamma = 1;
+};
+struct ExponentialDrops { // N(D) = N0 exp(-Lambda D), N0 in m^-3 mm^-1, Lambda in mm^-1, D the diameter
+  double n0_per_m3_per_mm = 0, lambda_per_mm = 0;
+};
+struct PowerLawDrops {    // n ~ r^-nu on [r_min, r_max] (Junge)
+  double nu = 0, r_min_m = 0, r_max_m = 0;
+};
+struct ParametricDrops {
+  std::variant<LogNormalDrops, GammaDrops, ModifiedGammaDrops, ExponentialDrops, PowerLawDrops> family;
+};
+// True for the families that need N= or lwc= to fix their amount.
+bool needs_amount(const ParametricDrops& d);
+
+using Drops = std::variant<MarshallPalmerRain, FogPreset, DistributionFile, ParametricDrops>;
 
 // The refractive index: Settings::water_table, a named water table, or a constant.
 struct SettingsWaterTable {};

@@ -1,0 +1,221 @@
+// attenuvis optics: every bulk single-scattering quantity of Mie conditions
+// with its error, units and method (argument parsing and printing only; the
+// work is weather::condition_optics).
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "attenuvis/weather.hpp"
+#include "commands.hpp"
+#include "weather_options.hpp"
+
+namespace attenuvis::cli {
+namespace {
+
+namespace w = attenuvis::weather;
+
+std::string num(double v, int precision = 10) {
+  std::ostringstream o;
+  o.precision(precision);
+  o << v;
+  return o.str();
+}
+
+double angle_number(const std::string& text, const std::string& spec) {
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || text.empty() || !std::isfinite(v))
+    throw std::invalid_argument("--angles: '" + text + "' in '" + spec + "' is not a number (degrees)");
+  return v;
+}
+
+// "A:B:S" (A to B in steps of S degrees, B included when on the grid) or a
+// comma-separated list of angles.
+std::vector<double> parse_angles(const std::string& spec) {
+  std::vector<std::string> parts;
+  std::string part;
+  const char sep = spec.find(':') != std::string::npos ? ':' : ',';
+  std::istringstream in(spec);
+  while (std::getline(in, part, sep)) parts.push_back(part);
+  std::vector<double> out;
+  if (sep == ',') {
+    for (const auto& p : parts) out.push_back(angle_number(p, spec));
+  } else {
+    if (parts.size() != 3) throw std::invalid_argument("--angles: '" + spec + "' is not START:STOP:STEP (degrees)");
+    const double a = angle_number(parts[0], spec), b = angle_number(parts[1], spec), s = angle_number(parts[2], spec);
+    if (!(s > 0) || b < a) throw std::invalid_argument("--angles: '" + spec + "' needs STEP > 0 and STOP >= START");
+    const double n = std::floor((b - a) / s + 1e-9);
+    if (n > 1e5) throw std::invalid_argument("--angles: '" + spec + "' gives more than 100000 angles");
+    for (long i = 0; i <= static_cast<long>(n); ++i) out.push_back(a + i * s);
+  }
+  for (double v : out)
+    if (!(v >= 0 && v <= 180)) throw std::invalid_argument("--angles: " + num(v, 6) + " is outside [0, 180] degrees");
+  return out;
+}
+
+nlohmann::json estimate_json(const w::IntegralEstimate& e, const char* units) {
+  return {{"value", e.value},
+          {"error", e.error()},
+          {"units", units},
+          {"error_parts",
+           {{"quadrature", e.quadrature_error},
+            {"tails", e.tail_error},
+            {"resonances", e.resonance_error},
+            {"large_x_expansion", e.asymptotic_error}}}};
+}
+
+nlohmann::json optics_json(const std::string& label, const w::ConditionOptics& o) {
+  const w::BulkOptics& b = o.bulk;
+  nlohmann::json j = {{"condition", label},
+                      {"wavelength_nm", o.wavelength_m * 1e9},
+                      {"distribution", o.distribution},
+                      {"refractive_index", o.index_source},
+                      {"method", b.method},
+                      {"evaluations", b.evaluations},
+                      {"sigma_ext", estimate_json(b.extinction, "1/m")}};
+  if (!b.scattering_computed) {
+    j["note"] = "only sigma_ext: the large-x expansion of Q_ext was used";
+    return j;
+  }
+  j["sigma_sca"] = estimate_json(b.scattering, "1/m");
+  j["sigma_abs"] = estimate_json(b.absorption, "1/m");
+  j["ssa"] = {{"value", b.albedo}, {"error", b.albedo_error}, {"units", "1"}};
+  j["g"] = {{"value", b.asymmetry}, {"error", b.asymmetry_error}, {"units", "1"}};
+  if (b.backscatter_computed) {
+    j["backscatter"] = estimate_json(b.backscatter, "1/(m sr)");
+    j["lidar_ratio"] = {{"value", b.lidar_ratio}, {"error", b.lidar_ratio_error}, {"units", "sr"}};
+  }
+  if (!b.moments.empty())
+    j["moments"] = {{"normalisation", "p(mu) = sum (2l+1) chi_l P_l(mu), chi_0 = 1, chi_1 = g; DISORT PMOM(l) = chi_l"},
+                    {"values", b.moments},
+                    {"errors", b.moments_error}};
+  if (!b.expansion.alpha1.empty()) {
+    const auto& v = b.expansion;
+    const auto& e = b.expansion_error;
+    j["expansion"] = {{"convention", "Mishchenko, Travis & Lacis 2002 sec. 4.11; alpha1_l = (2l+1) chi_l"},
+                      {"alpha1", {{"values", v.alpha1}, {"errors", e.alpha1}}},
+                      {"alpha2", {{"values", v.alpha2}, {"errors", e.alpha2}}},
+                      {"alpha3", {{"values", v.alpha3}, {"errors", e.alpha3}}},
+                      {"alpha4", {{"values", v.alpha4}, {"errors", e.alpha4}}},
+                      {"beta1", {{"values", v.beta1}, {"errors", e.beta1}}},
+                      {"beta2", {{"values", v.beta2}, {"errors", e.beta2}}}};
+  }
+  if (!b.phase.empty())
+    j["phase_function"] = {{"normalisation", "int p dOmega = 4 pi (isotropic p = 1)"},
+                           {"angles_deg", b.angles_deg},
+                           {"values", b.phase},
+                           {"errors", b.phase_error}};
+  return j;
+}
+
+void print_text(const std::string& label, const w::ConditionOptics& o) {
+  const w::BulkOptics& b = o.bulk;
+  auto row = [](const char* name, double v, double e, const char* units) {
+    std::cout << "  " << name << " = " << num(v) << " +- " << num(e, 3) << " " << units << "\n";
+  };
+  std::cout << label << " at " << num(o.wavelength_m * 1e9, 6) << " nm\n";
+  row("sigma_ext  ", b.extinction.value, b.extinction.error(), "1/m");
+  if (b.scattering_computed) {
+    row("sigma_sca  ", b.scattering.value, b.scattering.error(), "1/m");
+    row("sigma_abs  ", b.absorption.value, b.absorption.error(), "1/m");
+    row("ssa        ", b.albedo, b.albedo_error, "");
+    row("g          ", b.asymmetry, b.asymmetry_error, "");
+    if (b.backscatter_computed) {
+      row("backscatter", b.backscatter.value, b.backscatter.error(), "1/(m sr)");
+      row("lidar ratio", b.lidar_ratio, b.lidar_ratio_error, "sr");
+    }
+    if (!b.moments.empty()) {
+      std::cout << "  Legendre moments chi_l (p = sum (2l+1) chi_l P_l, chi_0 = 1; DISORT PMOM):\n";
+      for (std::size_t l = 0; l < b.moments.size(); ++l)
+        std::cout << "    " << l << "  " << num(b.moments[l], 12) << " +- " << num(b.moments_error[l], 3) << "\n";
+    }
+    if (!b.expansion.alpha1.empty()) {
+      const auto& v = b.expansion;
+      std::cout << "  scattering-matrix expansion (MTL 2002 sec. 4.11): l alpha1 alpha2 alpha3 alpha4 beta1 beta2\n";
+      for (std::size_t l = 0; l < v.alpha1.size(); ++l)
+        std::cout << "    " << l << "  " << num(v.alpha1[l], 8) << " " << num(v.alpha2[l], 8) << " "
+                  << num(v.alpha3[l], 8) << " " << num(v.alpha4[l], 8) << " " << num(v.beta1[l], 8) << " "
+                  << num(v.beta2[l], 8) << "\n";
+    }
+    if (!b.phase.empty()) {
+      std::cout << "  phase function p(theta) (int p dOmega = 4 pi):\n";
+      for (std::size_t i = 0; i < b.phase.size(); ++i)
+        std::cout << "    " << num(b.angles_deg[i], 6) << " deg  " << num(b.phase[i]) << " +- "
+                  << num(b.phase_error[i], 3) << "\n";
+    }
+  } else {
+    std::cout << "  (only sigma_ext: the large-x expansion of Q_ext was used)\n";
+  }
+  std::cout << "  distribution: " << o.distribution << "\n  refractive index: " << o.index_source
+            << "\n  method: " << b.method << "\n";
+}
+
+struct OpticsOptions {
+  WeatherOptions weather;
+  int moments = -1;
+  std::string angles;
+  bool polarised = false;
+  bool json = false;
+};
+
+void run_optics(const std::vector<std::string>& conditions, const OpticsOptions& o) {
+  const w::Settings s = weather_settings(o.weather);
+  const double wavelength = wavelength_m(o.weather);
+  w::OpticsRequest request;
+  request.legendre_moments = o.moments;
+  if (o.polarised && o.moments < 0) throw std::invalid_argument("--polarised needs --moments L");
+  request.polarised = o.polarised;
+  if (!o.angles.empty()) request.angles_deg = parse_angles(o.angles);
+  std::vector<std::pair<std::string, w::MieCondition>> parsed;  // all parse before any work
+  for (std::size_t i = 0; i < conditions.size(); ++i) {
+    const w::Condition c = w::parse_condition(conditions[i]);
+    const auto* mie = std::get_if<w::MieCondition>(&c);
+    if (!mie)
+      throw std::invalid_argument("condition " + std::to_string(i + 1) + " ('" + conditions[i] +
+                                  "') is not a size distribution of drops: optics needs a Mie condition "
+                                  "(fog:advection, fog:radiation, drops:FILE, ...)");
+    parsed.emplace_back(conditions[i], *mie);
+  }
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& [label, c] : parsed) {
+    const w::ConditionOptics r = w::condition_optics(c, wavelength, s, request);
+    if (o.json) out.push_back(optics_json(label, r));
+    else print_text(label, r);
+  }
+  if (o.json) std::cout << out.dump(2) << "\n";
+}
+
+}  // namespace
+
+void register_optics(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "optics", std::string("bulk single-scattering optics of drop size distributions: sigma_ext, sigma_sca, "
+                            "sigma_abs, single-scattering albedo, g, backscatter coefficient, lidar ratio, "
+                            "Legendre moments and phase function, each with its error\n") +
+                    w::condition_grammar());
+  auto conditions = std::make_shared<std::vector<std::string>>();
+  auto opts = std::make_shared<OpticsOptions>();
+  cmd->add_option("conditions", *conditions, "Mie conditions, e.g. fog:advection fog:radiation")->required();
+  add_weather_options(cmd, opts->weather, {});
+  cmd->add_option("--moments", opts->moments,
+                  "Legendre moments chi_0..chi_L of the phase function (costs O(x^2) per drop); [0, 100000]")
+      ->check(CLI::Range(0, 100000));
+  cmd->add_option("--angles", opts->angles, "phase function at START:STOP:STEP or a list A,B,... (degrees)");
+  cmd->add_flag("--polarised", opts->polarised,
+                "with --moments: alpha1..alpha4, beta1, beta2 of the bulk scattering matrix");
+  cmd->add_flag("--json", opts->json, "print JSON");
+  cmd->callback([opts, conditions] { run_optics(*conditions, *opts); });
+}
+
+}  // namespace attenuvis::cli

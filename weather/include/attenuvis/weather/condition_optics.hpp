@@ -1,0 +1,36 @@
+// Every bulk single-scattering quantity of a Mie condition at one wavelength:
+// sigma_ext, sigma_sca, sigma_abs, albedo, g, and as requested the
+// backscatter coefficient and lidar ratio, the Legendre moments chi_l and the
+// phase function on an angle grid, each with its error (bulk_optics.hpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "attenuvis/weather/bulk_optics.hpp"
+#include "attenuvis/weather/condition.hpp"
+#include "attenuvis/weather/settings.hpp"
+
+namespace attenuvis::weather {
+
+struct OpticsRequest {
+  bool backscatter = true;
+  int legendre_moments = -1;       // L >= 0: chi_0..chi_L
+  std::vector<double> angles_deg;  // phase function at these angles, each in [0, 180]
+  bool polarised = false;          // with legendre_moments >= 0: the whole matrix's expansion
+};
+
+struct ConditionOptics {
+  BulkOptics bulk;
+  double wavelength_m = 0;
+  std::string index_source;   // refractive index used, and where it came from
+  std::string distribution;   // the size distribution, in the units it was given
+};
+
+// Real-axis quadrature (the contour rule gives sigma_ext only).  Throws
+// std::invalid_argument for an angle outside [0, 180] or L < -1, and what
+// integrate_bulk_optics throws.
+ConditionOptics condition_optics(const MieCondition& c, double wavelength_m, const Settings& s,
+                                 const OpticsRequest& request);
+
+}  // namespace attenuvis::weather

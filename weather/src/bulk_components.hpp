@@ -1,0 +1,52 @@
+// The components of the bulk-optics panel sums (bulk_optics.cpp): which
+// integrals one set of efficiency evaluations feeds, where the optional ones
+// sit, and the scale each error is measured against.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "attenuvis/weather/bulk_optics.hpp"
+
+namespace attenuvis::weather::detail {
+
+// Components integrated together: ext, sca, abs, g*sca, asymptotic-bound,
+// the weight pi r^2 n(r) alone (the geometric cross-section of the panel),
+// Q_back/(4 pi), then as requested chi_l Q_sca (l = 0..L) and p(theta_j) Q_sca.
+constexpr int kExt = 0, kSca = 1, kAbs = 2, kGSca = 3, kAsym = 4, kWeight = 5, kBack = 6, kFixed = 7;
+using Vec = std::vector<double>;
+
+// Where the optional components sit, and which components the tolerances
+// govern, each with the scale its error is measured against.
+struct Layout {
+  bool back = false;
+  int moments = 0;  // L + 1, or 0
+  int angles = 0;
+  int expansion = 0;  // 6 (L + 1): alpha1..4, beta1, beta2
+  explicit Layout(const QuadratureSettings& s)
+      : back(s.backscatter), moments(s.legendre_moments >= 0 ? s.legendre_moments + 1 : 0),
+        angles(static_cast<int>(s.angles_deg.size())), expansion(s.polarised ? 6 * moments : 0) {}
+  int moment(int l) const { return kFixed + l; }
+  int angle(int j) const { return kFixed + moments + j; }
+  int expansion_at(int i) const { return kFixed + moments + angles + i; }
+  int size() const { return kFixed + moments + angles + expansion; }
+  bool angular(int c) const { return c >= kBack; }
+  // The components whose errors must meet the tolerances.
+  std::vector<int> checked() const {
+    std::vector<int> c{kExt, kSca, kAbs, kGSca};
+    if (back) c.push_back(kBack);
+    for (int i = kFixed; i < size(); ++i) c.push_back(i);
+    return c;
+  }
+  // sigma_ext for ext/sca/abs, sigma_sca for g and chi_l (absolute on the
+  // normalised value), the component itself for beta_pi and p(theta).
+  double scale(int c, const Vec& v) const {
+    if (c == kGSca || (c >= kFixed && c < kFixed + moments) || c >= kFixed + moments + angles)
+      return std::max(std::abs(v[kSca]), 1e-300);
+    if (c == kBack || c >= kFixed + moments) return std::max(std::abs(v[c]), 1e-300);
+    return std::max(std::abs(v[kExt]), 1e-300);
+  }
+};
+
+}  // namespace attenuvis::weather::detail

@@ -1,0 +1,44 @@
+// The full bulk optics of a Mie condition (condition_optics.hpp).
+#include "attenuvis/weather/condition_optics.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "attenuvis/io/number_text.hpp"
+#include "attenuvis/weather/sigma.hpp"
+
+namespace attenuvis::weather {
+
+ConditionOptics condition_optics(const MieCondition& c, double wavelength_m, const Settings& s,
+                                 const OpticsRequest& request) {
+  if (request.legendre_moments < -1) throw std::invalid_argument("Legendre moments: L must be >= 0");
+  for (std::size_t i = 0; i < request.angles_deg.size(); ++i) {
+    const double a = request.angles_deg[i];
+    if (!(a >= 0 && a <= 180))
+      throw std::invalid_argument("scattering angle " + std::to_string(i + 1) + " (" + io::significant(a, 6) +
+                                  " deg) is outside [0, 180]");
+  }
+  ConditionOptics out;
+  out.wavelength_m = wavelength_m;
+  const std::complex<double> m = condition_refractive_index(c, wavelength_m, s, &out.index_source);
+  const SizeDistribution d = condition_distribution(c);
+  out.distribution = d.describe();
+  QuadratureSettings q;
+  q.rel_tolerance = s.rel_tolerance;
+  q.backscatter = request.backscatter;
+  q.legendre_moments = request.legendre_moments;
+  q.angles_deg = request.angles_deg;
+  q.polarised = request.polarised;
+  if (std::holds_alternative<MarshallPalmerRain>(c.drops)) {
+    // As sigma(): beyond rain_asymptotic_x only Q_ext's large-x expansion is
+    // known, so rain at short wavelengths gives sigma_ext alone
+    // (BulkOptics::scattering_computed false).
+    q.asymptotic_x = s.rain_asymptotic_x;
+    q.resonance_tolerance = 1e-3;
+    q.max_evaluations = 1000000;
+  }
+  out.bulk = mie_bulk_optics(d, wavelength_m, m, q);
+  return out;
+}
+
+}  // namespace attenuvis::weather
