@@ -137,3 +137,34 @@ TEST_CASE("sigma's error parts add up to its error, on the contour and on the re
     CHECK(s.note.find("1/m") == std::string::npos);  // the note carries no numbers in a unit
   }
 }
+
+TEST_CASE("table backscatter and lidar ratio: the bulk optics' values, per steradian, in the table's length unit",
+          "[weather][table]") {
+  // Radiation fog at 1.55 um: a few thousand Mie evaluations.
+  std::vector<LabelledCondition> conditions = expand_conditions("fog:radiation");
+  conditions.push_back(expand_conditions("rain:8").front());
+  const double wavelength = 1550e-9;
+  Settings s;
+  const SigmaTable t = sigma_table(conditions, {wavelength}, s, 1,
+                                   {Quantity::sigma_ext, Quantity::backscatter, Quantity::lidar_ratio});
+  const auto& fog = std::get<MieCondition>(conditions[0].condition);
+  const BulkOptics b = condition_optics(fog, wavelength, s, OpticsRequest{}).bulk;
+  REQUIRE(b.backscatter_computed);
+  const QuantityValue beta = table_value(t.at(0, 0), Quantity::backscatter);
+  const QuantityValue ratio = table_value(t.at(0, 0), Quantity::lidar_ratio);
+  CHECK(beta.value == b.backscatter.value);
+  CHECK(beta.error == b.backscatter.error());
+  CHECK(ratio.value == b.lidar_ratio);
+  // S = sigma_ext / beta_pi, here with sigma_ext from the contour rule: the two agree within the errors.
+  const QuantityValue ext = table_value(t.at(0, 0), Quantity::sigma_ext);
+  CHECK(std::abs(ext.value / beta.value - ratio.value) <= ratio.error + ext.error / beta.value);
+  // A power law has no drops: both missing.
+  CHECK(std::isnan(table_value(t.at(0, 1), Quantity::backscatter).value));
+  CHECK(std::isnan(table_value(t.at(0, 1), Quantity::lidar_ratio).value));
+  // Units: per steradian, per m or per km; a dB/km table keeps the backscatter per km.
+  CHECK(unit_text(info(Quantity::backscatter).kind, SigmaUnit::per_m) == "1/(m sr)");
+  CHECK(unit_text(info(Quantity::backscatter).kind, SigmaUnit::dB_per_km) == "1/(km sr)");
+  CHECK(in_table_unit(info(Quantity::backscatter).kind, 2e-4, SigmaUnit::per_km) == Approx(0.2).epsilon(1e-15));
+  CHECK(unit_text(info(Quantity::lidar_ratio).kind, SigmaUnit::per_km) == "sr");
+  CHECK(column_suffix(info(Quantity::lidar_ratio).kind, SigmaUnit::per_km) == "_sr");
+}

@@ -1,6 +1,8 @@
 // Parallel tables of optical quantities; the choice of output format.
 #include "attenuvis/weather/sigma_table.hpp"
 
+#include "attenuvis/weather/condition_optics.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -55,7 +57,7 @@ std::vector<double> parse_wavelength_list(const std::string& text) {
 double wavelength_nm(double wavelength_m) { return std::stod(io::significant(wavelength_m * 1e9, 12)); }
 
 std::string missing_value_rule() {
-  return "sigma_sca, sigma_abs, ssa and g exist only for Mie conditions (a size distribution): they are missing "
+  return "sigma_sca, sigma_abs, ssa, g, backscatter and lidar_ratio exist only for Mie conditions (a size distribution): they are missing "
          "for power laws, visibility models, clear air and a given sigma, and where the integral used the "
          "large-sphere expansion of Q_ext (rain drops beyond x = 2000), which gives no Q_sca; "
          "the Koschmieder visibility is missing where sigma_ext = 0 (unbounded)";
@@ -73,6 +75,12 @@ QuantityValue table_value(const TableCell& cell, Quantity q) {
     case Quantity::sigma_abs: return {b.absorption.value, b.absorption.error()};
     case Quantity::ssa: return {b.albedo, b.albedo_error};
     case Quantity::g: return {b.asymmetry, b.asymmetry_error};
+    case Quantity::backscatter:
+      if (!b.backscatter_computed) break;
+      return {b.backscatter.value, b.backscatter.error()};
+    case Quantity::lidar_ratio:
+      if (!b.backscatter_computed) break;
+      return {b.lidar_ratio, b.lidar_ratio_error};
   }
   return {missing, missing};
 }
@@ -98,6 +106,9 @@ SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const s
   t.cells.resize(wavelengths.size() * conditions.size());
   const bool needs_optics = std::any_of(quantities.begin(), quantities.end(),
                                         [](Quantity q) { return info(q).needs_size_distribution; });
+  const bool needs_backscatter = std::any_of(quantities.begin(), quantities.end(), [](Quantity q) {
+    return q == Quantity::backscatter || q == Quantity::lidar_ratio;
+  });
   std::mutex error_mutex;
   std::string first_error;
   auto work = [&] {
@@ -106,7 +117,9 @@ SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const s
       try {
         t.cells[i].sigma = sigma(conditions[c].condition, wavelengths[w], settings);
         if (const auto* mie = std::get_if<MieCondition>(&conditions[c].condition); mie && needs_optics)
-          t.cells[i].optics = condition_bulk_optics(*mie, wavelengths[w], settings);
+          t.cells[i].optics = needs_backscatter
+                                  ? condition_optics(*mie, wavelengths[w], settings, OpticsRequest{}).bulk
+                                  : condition_bulk_optics(*mie, wavelengths[w], settings);
       } catch (const std::exception& e) {
         std::lock_guard<std::mutex> lock(error_mutex);
         std::ostringstream msg;

@@ -28,6 +28,13 @@ const std::vector<QuantityInfo>& table_quantities() {
       {Quantity::ssa, "ssa", QuantityKind::dimensionless, "single-scattering albedo sigma_sca/sigma_ext", "", "", true},
       {Quantity::g, "g", QuantityKind::dimensionless, "asymmetry parameter <cos theta>, scattering-weighted", "", "",
        true},
+      {Quantity::backscatter, "backscatter", QuantityKind::coefficient_per_sr,
+       "volume backscatter coefficient beta_pi = integral of (Q_back/4 pi) pi r^2 n(r) dr", "",
+       "no CF standard_name: CF's volume_attenuated_backwards_scattering_function_in_air includes attenuation on "
+       "the way; this is the unattenuated coefficient of the drops",
+       true},
+      {Quantity::lidar_ratio, "lidar_ratio", QuantityKind::steradian,
+       "lidar (extinction-to-backscatter) ratio sigma_ext/beta_pi", "", "", true},
   };
   return table;
 }
@@ -58,12 +65,25 @@ std::vector<Quantity> parse_quantity_list(const std::string& text) {
   return out;
 }
 
+namespace {
+// The length unit of a per-steradian coefficient in a table of `unit`.
+bool per_km(SigmaUnit unit) { return unit != SigmaUnit::per_m; }
+}  // namespace
+
 std::string unit_text(QuantityKind kind, SigmaUnit unit) {
-  return kind == QuantityKind::coefficient ? to_string(unit) : "1";
+  switch (kind) {
+    case QuantityKind::coefficient: return to_string(unit);
+    case QuantityKind::dimensionless: return "1";
+    case QuantityKind::coefficient_per_sr: return per_km(unit) ? "1/(km sr)" : "1/(m sr)";
+    case QuantityKind::steradian: return "sr";
+  }
+  return "";
 }
 
 std::optional<std::string> udunits_text(QuantityKind kind, SigmaUnit unit) {
   if (kind == QuantityKind::dimensionless) return "1";
+  if (kind == QuantityKind::steradian) return "sr";
+  if (kind == QuantityKind::coefficient_per_sr) return per_km(unit) ? "km-1 sr-1" : "m-1 sr-1";
   switch (unit) {
     case SigmaUnit::per_m: return "m-1";
     case SigmaUnit::per_km: return "km-1";
@@ -82,12 +102,24 @@ std::string unit_suffix(SigmaUnit unit) {
 }
 
 std::string column_suffix(QuantityKind kind, SigmaUnit unit) {
-  return kind == QuantityKind::coefficient ? "_" + unit_suffix(unit) : "";
+  switch (kind) {
+    case QuantityKind::coefficient: return "_" + unit_suffix(unit);
+    case QuantityKind::coefficient_per_sr: return per_km(unit) ? "_per_km_sr" : "_per_m_sr";
+    case QuantityKind::steradian: return "_sr";
+    case QuantityKind::dimensionless: return "";
+  }
+  return "";
 }
 
 double in_table_unit(QuantityKind kind, double value, SigmaUnit unit) {
-  if (kind == QuantityKind::dimensionless || !std::isfinite(value)) return value;
-  return convert_from_per_m(value, unit);
+  if (!std::isfinite(value)) return value;
+  switch (kind) {
+    case QuantityKind::coefficient: return convert_from_per_m(value, unit);
+    case QuantityKind::coefficient_per_sr: return per_km(unit) ? value * 1e3 : value;
+    case QuantityKind::dimensionless:
+    case QuantityKind::steradian: return value;
+  }
+  return value;
 }
 
 std::optional<ConditionParameter> condition_parameter(const Condition& condition) {

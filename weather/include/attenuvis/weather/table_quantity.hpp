@@ -20,11 +20,16 @@
 
 namespace attenuvis::weather {
 
-enum class Quantity { sigma_ext, sigma_sca, sigma_abs, ssa, g };
+enum class Quantity { sigma_ext, sigma_sca, sigma_abs, ssa, g, backscatter, lidar_ratio };
 
 enum class QuantityKind {
   coefficient,    // an attenuation coefficient: 1/m, 1/km or dB/km as the table's unit says
   dimensionless,  // a ratio (single-scattering albedo, asymmetry parameter): unit 1
+  // A coefficient per steradian (the volume backscatter coefficient): 1/(m sr)
+  // or 1/(km sr) as the table's length unit says; a dB/km table writes it per
+  // km (decibels describe attenuation, not a backscatter coefficient).
+  coefficient_per_sr,
+  steradian,      // the lidar (extinction-to-backscatter) ratio: sr
 };
 
 struct QuantityInfo {
