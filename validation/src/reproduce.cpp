@@ -302,9 +302,11 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
        [&](Section& s) { detail::section_layouts(ctx, s, seed); }},
       {"city", "The city: S_S, P1, P2, P3 and the seed's conclusion", 2,
        [&](Section& s) { detail::section_city(ctx, s, seed, city_perf); }},
-      {"mie", "Mie validation: published tables and a 50-digit reference", 4,
+      {"optics", "Bulk optics of the fogs: scattering, absorption, g, backscatter, lidar ratio, phase function", 4,
+       [&](Section& s) { detail::section_optics(ctx, s); }},
+      {"mie", "Mie validation: published tables and a 50-digit reference", 5,
        [&](Section& s) { detail::section_mie(ctx, s); }},
-      {"performance", "Visibility-graph performance", 5,
+      {"performance", "Visibility-graph performance", 6,
        [&](Section& s) { detail::section_performance(ctx, s, city_perf); }},
   };
   std::vector<std::pair<int, Section>> computed;

@@ -1,6 +1,6 @@
 // Private to the reproduction job: the context every section receives and the
 // section entry points (one file each: section_mie.cpp, section_weather.cpp,
-// section_layouts.cpp, section_city.cpp, section_performance.cpp).
+// section_optics.cpp, section_layouts.cpp, section_city.cpp, section_performance.cpp).
 #pragma once
 
 #include <chrono>
@@ -118,6 +118,7 @@ struct CityPerformance {
 
 void section_mie(Context& ctx, Section& s);
 void section_weather(Context& ctx, Section& s, SeedConditions& seed);
+void section_optics(Context& ctx, Section& s);  // section_optics.cpp
 void section_layouts(Context& ctx, Section& s, const SeedConditions& seed);
 void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerformance& perf);
 void section_performance(Context& ctx, Section& s, const CityPerformance& city);
