@@ -22,6 +22,7 @@
 #include <attenuvis/visgraph/visibility.hpp>
 
 #include "contrast_kernel.hpp"
+#include "pair_culling.hpp"
 #include "pair_packet.hpp"
 #include "progress.hpp"
 #include "scene_access.hpp"
@@ -114,7 +115,8 @@ void validate(const VisibilityOptions& o) {
 struct ThreadState {
   std::vector<std::int64_t> acc;
   std::vector<double> max_distance;
-  std::vector<std::uint32_t> candidates;
+  std::vector<std::uint32_t> candidates, cast_candidates;
+  std::vector<detail::PairCulling::Block> blocks;
   std::vector<std::pair<std::uint32_t, double>> matches;
   std::vector<std::int64_t> c_fixed, row;  // row: per-lane totals of the current row
   std::uint64_t cast = 0, visible = 0, coincident = 0;
@@ -141,79 +143,94 @@ Edge edge(const Pass& pass, std::size_t row, std::uint32_t partner, double dista
   return Edge{std::min(a, b), std::max(a, b), distance};
 }
 
-// Casts row i against `count` partners and accumulates: partners j0 .. j0 +
-// count - 1 when `cand` is null, else cand[0 .. count).
-void process_row(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t j0, std::size_t count,
-                 ThreadState& ts, std::vector<Edge>* edges) {
+// A row is accumulated in three steps: begin_row, add_packet for each packet
+// of at most 16 partners, end_row (which adds the row's lane totals to its
+// node).  add_packet takes partners j0 .. j0 + n - 1 when `cand` is null,
+// else cand[0 .. n).  With cast_rays false the partners are known to be in
+// sight (culling): the packet goes through the same policy (coincident,
+// close, max distance) without Embree.
+void begin_row(ThreadState& ts) { std::fill(ts.row.begin(), ts.row.end(), 0); }
+
+void add_packet(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t j0, int n, ThreadState& ts,
+                std::vector<Edge>* edges, bool cast_rays) {
   const Points& S = *pass.sources;
   const Points& P = *pass.partners;
-  const double ox = S.x[i], oy = S.y[i], oz = S.z[i];
   const int K = pass.K;
   const std::size_t N = pass.N;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   PairPacket packet;
   alignas(64) double gx[kLanes], gy[kLanes], gz[kLanes];
   alignas(64) std::int64_t d_fixed[kLanes];
   std::uint32_t partner[kLanes];
-  std::int64_t* row = ts.row.data();
-  std::fill(ts.row.begin(), ts.row.end(), 0);
   std::int64_t* c = ts.c_fixed.data();
   std::int64_t* credit = pass.symmetric && !cand ? ts.acc.data() : nullptr;
   const bool scatter = pass.symmetric && cand;
-  for (std::size_t start = 0; start < count; start += kLanes) {
-    const int n = static_cast<int>(std::min<std::size_t>(kLanes, count - start));
-    const double *px, *py, *pz;
-    if (cand) {
-      for (int l = 0; l < n; ++l) {
-        const std::uint32_t j = cand[start + l];
-        partner[l] = j;
-        gx[l] = P.x[j];
-        gy[l] = P.y[j];
-        gz[l] = P.z[j];
-      }
-      px = gx, py = gy, pz = gz;
-    } else {
-      for (int l = 0; l < n; ++l) partner[l] = static_cast<std::uint32_t>(j0 + start + l);
-      px = P.x.data() + j0 + start, py = P.y.data() + j0 + start, pz = P.z.data() + j0 + start;
+  const double *px, *py, *pz;
+  if (cand) {
+    for (int l = 0; l < n; ++l) {
+      const std::uint32_t j = cand[l];
+      partner[l] = j;
+      gx[l] = P.x[j];
+      gy[l] = P.y[j];
+      gz[l] = P.z[j];
     }
-    detail::build_packet(ox, oy, oz, px, py, pz, n, pass.max_distance, packet);
-    ts.coincident += static_cast<std::uint64_t>(packet.coincident);
-    if (packet.cast) {
-      ts.cast += static_cast<std::uint64_t>(packet.cast);
-      rtcOccluded16(packet.valid, pass.rtc, &context, &packet.ray);
-      detail::resolve_packet(packet);
-    }
-    // A packet with nothing visible adds nothing: skip its scoring (most
-    // packets of an occluded scene such as the city).
-    if (packet.visible_count == 0) continue;
-    detail::contrast_lanes(packet.distance, packet.visible, pass.neg_sigma.data(), K, c, d_fixed);
-    detail::accumulate_packet(packet, c, d_fixed, K, n, row, credit, N, j0 + start);
-    if (scatter || pass.keep_max || edges) {
-      for (int l = 0; l < n; ++l) {
-        if (packet.visible[l] == 0) continue;
-        const std::uint32_t j = partner[l];
-        const double d = packet.distance[l];
-        if (scatter) {
-          ts.acc[j] += 1;
-          ts.acc[N + j] += d_fixed[l];
-          for (int k = 0; k < K; ++k) ts.acc[static_cast<std::size_t>(2 + k) * N + j] += c[k * kLanes + l];
-        }
-        if (pass.keep_max) {
-          ts.max_distance[i] = std::max(ts.max_distance[i], d);
-          if (pass.symmetric) ts.max_distance[j] = std::max(ts.max_distance[j], d);
-        }
-        if (edges) edges->push_back(edge(pass, i, j, d));
-      }
-    }
+    px = gx, py = gy, pz = gz;
+  } else {
+    for (int l = 0; l < n; ++l) partner[l] = static_cast<std::uint32_t>(j0 + l);
+    px = P.x.data() + j0, py = P.y.data() + j0, pz = P.z.data() + j0;
   }
-  for (int s = 0; s < 2 + K; ++s) {
+  detail::build_packet(S.x[i], S.y[i], S.z[i], px, py, pz, n, pass.max_distance, packet);
+  ts.coincident += static_cast<std::uint64_t>(packet.coincident);
+  if (packet.cast) {
+    if (cast_rays) {
+      ts.cast += static_cast<std::uint64_t>(packet.cast);
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      rtcOccluded16(packet.valid, pass.rtc, &context, &packet.ray);
+    }
+    detail::resolve_packet(packet);  // not cast: tfar = 1 - t_near >= 0, every lane in sight
+  }
+  // A packet with nothing visible adds nothing: skip its scoring (most
+  // packets of an occluded scene such as the city).
+  if (packet.visible_count == 0) return;
+  detail::contrast_lanes(packet.distance, packet.visible, pass.neg_sigma.data(), K, c, d_fixed);
+  detail::accumulate_packet(packet, c, d_fixed, K, n, ts.row.data(), credit, N, j0);
+  if (!scatter && !pass.keep_max && !edges) return;
+  for (int l = 0; l < n; ++l) {
+    if (packet.visible[l] == 0) continue;
+    const std::uint32_t j = partner[l];
+    const double d = packet.distance[l];
+    if (scatter) {
+      ts.acc[j] += 1;
+      ts.acc[N + j] += d_fixed[l];
+      for (int k = 0; k < K; ++k) ts.acc[static_cast<std::size_t>(2 + k) * N + j] += c[k * kLanes + l];
+    }
+    if (pass.keep_max) {
+      ts.max_distance[i] = std::max(ts.max_distance[i], d);
+      if (pass.symmetric) ts.max_distance[j] = std::max(ts.max_distance[j], d);
+    }
+    if (edges) edges->push_back(edge(pass, i, j, d));
+  }
+}
+
+void end_row(const Pass& pass, std::size_t i, ThreadState& ts) {
+  for (int s = 0; s < 2 + pass.K; ++s) {
     std::int64_t total = 0;
-    for (int l = 0; l < kLanes; ++l) total += row[s * kLanes + l];
-    ts.acc[static_cast<std::size_t>(s) * N + i] += total;
+    for (int l = 0; l < kLanes; ++l) total += ts.row[static_cast<std::size_t>(s * kLanes + l)];
+    ts.acc[static_cast<std::size_t>(s) * pass.N + i] += total;
     if (s == 0) ts.visible += static_cast<std::uint64_t>(total);
   }
+}
+
+// Row i against `count` partners in packets of 16 (see add_packet).
+void process_row(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t j0, std::size_t count,
+                 ThreadState& ts, std::vector<Edge>* edges) {
+  begin_row(ts);
+  for (std::size_t start = 0; start < count; start += kLanes) {
+    const int n = static_cast<int>(std::min<std::size_t>(kLanes, count - start));
+    add_packet(pass, i, cand ? cand + start : nullptr, j0 + start, n, ts, edges, true);
+  }
+  end_row(pass, i, ts);
 }
 
 // How a pass finds each row's partners (see the file comment).
@@ -351,6 +368,77 @@ void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const Visi
   progress.finish();
 }
 
+// The rows of one leaf cluster that lie in [row_begin, row_end), each
+// against its partners after it (x order) in the clusters not culled as
+// blocked: partners culled as visible go through the policy without rays,
+// the rest are cast.  Edges of a row are put in partner order, as in the
+// row-by-row pass.
+void run_leaf_rows(const Pass& pass, const detail::PairCulling& culling, std::size_t leaf, std::size_t row_begin,
+                   std::size_t row_end, ThreadState& ts, std::vector<std::vector<Edge>>* row_edges,
+                   const std::vector<std::uint32_t>& rank_of, Progress& progress) {
+  std::size_t count = 0;
+  const std::uint32_t* rows = culling.leaf_rows(leaf, count);
+  const std::uint32_t* first = std::lower_bound(rows, rows + count, static_cast<std::uint32_t>(row_begin));
+  const std::uint32_t* last = std::lower_bound(rows, rows + count, static_cast<std::uint32_t>(row_end));
+  if (first == last) return;
+  culling.partner_blocks(leaf, ts.blocks);
+  const std::size_t N = pass.N;
+  for (const std::uint32_t* r = first; r != last; ++r) {
+    const std::uint32_t i = *r;
+    std::vector<Edge>* edges = row_edges ? &(*row_edges)[i - row_begin] : nullptr;
+    if (edges) edges->clear();
+    begin_row(ts);
+    for (const detail::PairCulling::Block& block : ts.blocks) {
+      std::size_t n = 0;
+      const std::uint32_t* partners = culling.leaf_rows(block.leaf, n);
+      if (n == 0 || partners[n - 1] <= i) continue;
+      const std::uint32_t* from = partners[0] > i ? partners : std::upper_bound(partners, partners + n, i);
+      add_packet(pass, i, from, 0, static_cast<int>(partners + n - from), ts, edges,
+                 block.verdict == detail::Verdict::cast);
+    }
+    end_row(pass, i, ts);
+    if (edges) {
+      const std::uint32_t self = pass.caller[i];
+      std::sort(edges->begin(), edges->end(), [&](const Edge& a, const Edge& b) {
+        return rank_of[a.i == self ? a.j : a.i] < rank_of[b.i == self ? b.j : b.i];
+      });
+    }
+    progress.add(N - 1 - i);
+  }
+}
+
+// All-to-all with culling: rows grouped by leaf cluster (each leaf's
+// partner list is expanded once), in blocks of rows when edges are written
+// so that the edge list goes out in row order without being held whole.
+void run_rows_culled(const Pass& pass, const detail::PairCulling& culling, const VisibilityOptions& options,
+                     tbb::enumerable_thread_specific<ThreadState>& states, Progress& progress) {
+  const std::size_t N = pass.N;
+  const std::size_t block_rows =
+      options.edge_sink ? std::max<std::size_t>(1, (std::size_t{1} << 22) / std::max<std::size_t>(N, 1)) : N;
+  std::vector<std::vector<Edge>> row_edges(options.edge_sink ? block_rows : 0);
+  std::vector<std::uint32_t> rank_of(options.edge_sink ? N : 0);
+  for (std::size_t r = 0; r < rank_of.size(); ++r) rank_of[pass.caller[r]] = static_cast<std::uint32_t>(r);
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    for (std::size_t block = 0; block < N; block += block_rows) {
+      const std::size_t block_end = std::min(N, block + block_rows);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, culling.leaf_count(), 1),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          ThreadState& ts = states.local();
+                          for (std::size_t leaf = range.begin(); leaf != range.end(); ++leaf)
+                            run_leaf_rows(pass, culling, leaf, block, block_end, ts,
+                                          options.edge_sink ? &row_edges : nullptr, rank_of, progress);
+                        });
+      if (options.edge_sink) {
+        std::vector<Edge> out;
+        for (std::size_t i = block; i < block_end; ++i)
+          out.insert(out.end(), row_edges[i - block].begin(), row_edges[i - block].end());
+        options.edge_sink(out);
+      }
+    }
+  });
+}
+
 // Exact reduction of the per-thread integer accumulators into `result`, in
 // the caller's node order (order[i] = caller index of row i; empty: same).
 void collect_results(const tbb::enumerable_thread_specific<ThreadState>& states, const Plan& plan, const Pass& pass,
@@ -483,7 +571,24 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
     return ts;
   });
   std::vector<std::uint32_t> pruned(N, 0);
-  run_rows(pass, plan, tree.get(), options, states, pruned, result.pairs_total);
+  if (symmetric && !plan.slab) {
+    // All-to-all without a candidate radius: rows against leaf clusters, with
+    // or without culling (the same packets either way: pair_culling.hpp).
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    std::unique_ptr<detail::PairCulling> culling;
+    arena.execute([&] {
+      culling = std::make_unique<detail::PairCulling>(pass.rtc, scene.triangle_count(), sources.x, sources.y,
+                                                      sources.z, options.culling);
+    });
+    result.pairs_culled_visible = culling->pairs_visible();
+    result.pairs_culled_blocked = culling->pairs_blocked();
+    result.culling_seconds = culling->seconds();
+    Progress progress(options.progress, result.pairs_total, "vg");
+    run_rows_culled(pass, *culling, options, states, progress);
+    progress.finish();
+  } else {
+    run_rows(pass, plan, tree.get(), options, states, pruned, result.pairs_total);
+  }
   collect_results(states, plan, pass, order, std::move(pruned), result);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;

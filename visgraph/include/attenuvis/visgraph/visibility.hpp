@@ -15,10 +15,24 @@
 // relative term the rounding of a direction of length d.  Pairs with d <
 // 1e-6 m are coincident: never cast, neither visible nor counted (reported
 // as `coincident_pairs`).  all_to_all casts every pair from its end earlier
-// in x order (ties by y, z, index), in the same packets whatever outputs are
-// asked for, so that a segment that just touches an edge (Embree's answer
-// then depends on the ray's direction) is decided the same way in every run.  Pairs with d <= 2 gap(d) but not coincident are
-// visible without a ray (no room for geometry between them).
+// in x order (ties by y, z, index), in canonical packets (the row against the
+// partners after it in one cluster of <= 16 nearby nodes) whatever outputs
+// are asked for and whether or not it culls, so that a segment that just
+// touches an edge (Embree's answer then depends on the ray's direction and
+// on the packet it travels in) is decided the same way in every run.  Pairs
+// with d <= 2 gap(d) but not coincident are visible without a ray (no room
+// for geometry between them).
+//
+// Exact culling (all_to_all without a candidate radius; on by default).
+// Clusters of nodes are compared as wholes (src/pair_culling.hpp): a pair of
+// clusters whose convex hull, grown by the margin m = 1e-3 m + 1e-5 L (L the
+// largest |local coordinate| of a node or vertex), meets no triangle is all
+// in sight; one whose sight lines all pass through one planar convex
+// occluder, at least m inside it and m from either end, is all blocked.  m
+// exceeds the end gap and the float rounding of Embree's rays, so those
+// pairs are decided as their rays would be; the rest are cast in the same
+// packets as without culling.  Results (degree, S_S bits, distances, edge
+// list) are identical with culling on or off.
 //
 // Determinism.  Contributions are accumulated as 64-bit integers in fixed
 // point (C in units of 2^-40, distance in units of 2^-20 m): integer addition
@@ -65,6 +79,10 @@ struct VisibilityOptions {
   // source order.  Asking for edges never changes the scores.
   std::function<void(const std::vector<Edge>&)> edge_sink;
   bool progress = false;                 // progress line on stderr after ~3 s
+  // Exact culling (all_to_all without pruning or max distance): blocks of
+  // pairs decided without rays, results identical to casting every pair.
+  // false: every pair cast (the reference the culling is tested against).
+  bool culling = true;
 };
 
 struct VisibilityResult {
@@ -81,6 +99,9 @@ struct VisibilityResult {
   std::uint64_t pairs_cast = 0;             // pairs given to Embree
   std::uint64_t pairs_visible = 0;
   std::uint64_t coincident_pairs = 0;
+  std::uint64_t pairs_culled_visible = 0;   // culling: pairs decided in sight without rays
+  std::uint64_t pairs_culled_blocked = 0;   // culling: pairs decided blocked without rays
+  double culling_seconds = 0;               // culling: clustering and classification
   double seconds = 0;                       // wall time of the pass
 
   // S_A for condition k at node i (NaN when degree is 0 or withheld).
