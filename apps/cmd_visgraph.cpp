@@ -327,7 +327,8 @@ void run_vg(const VgArguments& a) {
     std::cerr << "visibility: " << result.nodes << " nodes, " << result.pairs_total << " pairs ("
               << result.pairs_cast << " cast, " << result.pairs_culled_visible << " culled in sight, "
               << result.pairs_culled_blocked << " culled blocked, " << result.pairs_visible << " visible) in " << result.seconds
-              << " s = " << (result.seconds > 0 ? result.pairs_total / result.seconds / 1e6 : 0.0)
+              << " s (clustering and classifying " << result.culling_seconds << " s)"
+              << " = " << (result.seconds > 0 ? result.pairs_total / result.seconds / 1e6 : 0.0)
               << " M pairs/s\n";
 }
 }  // namespace

@@ -10,7 +10,9 @@
 //  4. S_S error against run time for eps in {0, 1e-12, 1e-9, 1e-6, 1e-3}.
 //
 // Usage: visgraph_throughput [--quick] [--threads 1,2] [--repeats N]
-//                            [--city-rings N] [--no-city] [--no-single]
+//                            [--city-rings N] [--no-city] [--no-single] [--brute] [--no-pruning]
+// --brute: also time the engine with culling off (every pair cast);
+// --no-pruning: skip the error-against-time study.
 // --quick: 1 m layouts only, one repeat, a one-ring city, no single-ray loop
 // on the city (about a minute on two cores).
 #include <attenuvis/validation/visgraph_benchmark.hpp>
@@ -107,6 +109,7 @@ struct Args {
   bool city = true;
   bool single = true;
   bool brute = false;  // also time the engine with culling off
+  bool pruning = true;  // the error-against-time study on the city
 };
 
 std::vector<int> parse_int_list(const std::string& text) {
@@ -138,9 +141,10 @@ Args parse(int argc, char** argv) {
     else if (s == "--no-city") a.city = false;
     else if (s == "--no-single") a.single = false;
     else if (s == "--brute") a.brute = true;
+    else if (s == "--no-pruning") a.pruning = false;
     else if (s == "--help" || s == "-h") {
       std::cout << "usage: visgraph_throughput [--quick] [--threads 1,2] [--repeats N] [--city-rings N] [--no-city] "
-                   " [--no-single] [--brute]\n";
+                   " [--no-single] [--brute] [--no-pruning]\n";
       std::exit(0);
     } else throw std::invalid_argument("unknown argument '" + s + "'");
   }
@@ -259,6 +263,8 @@ int run(const Args& a) {
       std::printf("city all-to-all exact, degree + 4 sigmas, %d thread(s): %.2f s (target <= 10 s on 2 threads)\n", th,
                   t.engine.best_s);
   }
+
+  if (!a.pruning) return 0;
 
   // 4. Error against time: S_S for dry snow 4 mm/h (the seed's sigma 0.0374
   // 1/m: the largest, so the only one whose pruning radius is inside the

@@ -108,6 +108,117 @@ CullGeometry::CullGeometry(RTCScene scene, std::size_t triangle_count) {
   bvh_.reserve(2 * triangle_count / 2 + 1);
   build(0, static_cast<std::uint32_t>(triangle_count), centroid);
   build_occluders(index);
+  build_solids(index);
+}
+
+// Closed convex solids: connected sets of at most kMaxSolidTriangles
+// triangles (through shared vertex indices) in which every edge belongs to
+// exactly two triangles and every vertex lies behind every face plane (to
+// within 1e-6 of the solid's size; the excess is kept as slack).  Buildings
+// and obstacles made as closed boxes are such solids.
+void CullGeometry::build_solids(const unsigned* index) {
+  constexpr std::size_t kMaxSolidTriangles = 64;
+  const std::size_t T = tris_.size();
+  solid_of_.assign(T, -1);
+  // Union-find over vertex indices.
+  unsigned max_vertex = 0;
+  for (std::size_t k = 0; k < 3 * T; ++k) max_vertex = std::max(max_vertex, index[k]);
+  std::vector<unsigned> parent(static_cast<std::size_t>(max_vertex) + 1);
+  std::iota(parent.begin(), parent.end(), 0u);
+  const auto find = [&](unsigned v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (std::size_t t = 0; t < T; ++t) {
+    const unsigned a = find(index[3 * t]), b = find(index[3 * t + 1]), c = find(index[3 * t + 2]);
+    parent[b] = a;
+    parent[find(c)] = a;
+  }
+  std::unordered_map<unsigned, std::vector<std::uint32_t>> groups;
+  for (std::size_t t = 0; t < T; ++t) groups[find(index[3 * t])].push_back(static_cast<std::uint32_t>(t));
+  for (auto& [root, tris] : groups) {
+    (void)root;
+    if (tris.size() < 4 || tris.size() > kMaxSolidTriangles) continue;
+    std::unordered_map<std::uint64_t, int> edge_uses;
+    for (std::uint32_t t : tris)
+      for (int k = 0; k < 3; ++k) {
+        const unsigned a = index[3 * t + k], b = index[3 * t + (k + 1) % 3];
+        ++edge_uses[(std::uint64_t{std::min(a, b)} << 32) | std::max(a, b)];
+      }
+    bool closed = true;
+    for (const auto& [edge, uses] : edge_uses) closed &= uses == 2;
+    if (!closed) continue;
+    Solid solid;
+    double centre[3] = {0, 0, 0}, size = 0;
+    for (std::uint32_t t : tris)
+      for (int v = 0; v < 3; ++v)
+        for (int c = 0; c < 3; ++c) centre[c] += tris_[t].v[v][c] / (3.0 * static_cast<double>(tris.size()));
+    for (std::uint32_t t : tris)
+      for (int v = 0; v < 3; ++v) size = std::max(size, norm(sub(tris_[t].v[v], centre)));
+    bool convex = size > 0;
+    for (std::uint32_t t : tris) {
+      const V3 e1 = sub(tris_[t].v[1], tris_[t].v[0]), e2 = sub(tris_[t].v[2], tris_[t].v[0]);
+      V3 n = cross(e1.data(), e2.data());
+      const double l = norm(n);
+      if (l == 0) continue;  // a degenerate triangle bounds nothing
+      n = {n[0] / l, n[1] / l, n[2] / l};
+      double c = dot(n.data(), tris_[t].v[0]);
+      if (dot(n.data(), centre) - c > 0) n = {-n[0], -n[1], -n[2]}, c = -c;
+      if (!(dot(n.data(), centre) - c < -1e-6 * size)) convex = false;  // centre on a face: flat, not a solid
+      for (std::uint32_t u : tris)
+        for (int v = 0; v < 3; ++v) {
+          const double beyond = dot(n.data(), tris_[u].v[v]) - c;
+          if (beyond > 1e-6 * size) convex = false;
+          solid.slack = std::max(solid.slack, beyond);
+        }
+      solid.faces.push_back({n[0], n[1], n[2], c});
+    }
+    if (!convex) continue;
+    std::copy(centre, centre + 3, solid.centre);
+    const auto id = static_cast<std::int32_t>(solids_.size());
+    solids_.push_back(std::move(solid));
+    for (std::uint32_t t : tris) solid_of_[t] = id;
+  }
+}
+
+bool CullGeometry::solid_blocks(std::uint32_t triangle, const Box3& a, const Box3& b, double margin) const {
+  if (solid_of_[triangle] < 0) return false;
+  const Solid& solid = solids_[static_cast<std::size_t>(solid_of_[triangle])];
+  const double m = margin + solid.slack;
+  double ca[8][3], cb[8][3];
+  corners(a, 0, ca);
+  corners(b, 0, cb);
+  // Both boxes outside the solid: beyond one face plane each.
+  const auto outside = [&](const double (*corner)[3]) {
+    for (const auto& f : solid.faces) {
+      bool all = true;
+      for (int k = 0; k < 8 && all; ++k) all = f[0] * corner[k][0] + f[1] * corner[k][1] + f[2] * corner[k][2] - f[3] >= m;
+      if (all) return true;
+    }
+    return false;
+  };
+  if (!outside(ca) || !outside(cb)) return false;
+  double n[3];
+  for (int c = 0; c < 3; ++c) n[c] = 0.5 * (b.lo[c] + b.hi[c]) - 0.5 * (a.lo[c] + a.hi[c]);
+  const double length = std::sqrt(dot(n, n));
+  if (!(length > 0)) return false;
+  for (double& v : n) v /= length;
+  const double c0 = dot(n, solid.centre);
+  double sa[8], sb[8];
+  for (int k = 0; k < 8; ++k) {
+    sa[k] = dot(n, ca[k]) - c0;
+    sb[k] = dot(n, cb[k]) - c0;
+    if (sa[k] > -m || sb[k] < m) return false;
+  }
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) {
+      const double t = sa[i] / (sa[i] - sb[j]);
+      double p[3];
+      for (int c = 0; c < 3; ++c) p[c] = ca[i][c] + t * (cb[j][c] - ca[i][c]);
+      for (const auto& f : solid.faces)
+        if (f[0] * p[0] + f[1] * p[1] + f[2] * p[2] - f[3] > -m) return false;
+    }
+  return true;
 }
 
 // Median split on the longest side of the centroids' box; leaves of <= 4.

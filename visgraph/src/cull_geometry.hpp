@@ -11,6 +11,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -32,6 +33,15 @@ class CullGeometry {
   // True when the occluder of `triangle` separates a from b with `margin`
   // (pair_culling.hpp).
   bool occluder_blocks(std::uint32_t triangle, const Box3& a, const Box3& b, double margin) const;
+  // True when the closed convex solid `triangle` belongs to (if any) blocks
+  // every segment from a to b: both boxes outside it by `margin`, and the
+  // crossings of the 64 corner-to-corner segments with the plane through the
+  // solid's centre normal to the centre-to-centre direction inside it by
+  // `margin` (every segment then passes through its interior, so enters it
+  // through its watertight surface).
+  bool solid_blocks(std::uint32_t triangle, const Box3& a, const Box3& b, double margin) const;
+  // The solid of a triangle, or -1: callers skip a solid already tried.
+  std::int32_t solid_of(std::uint32_t triangle) const { return solid_of_[triangle]; }
 
  private:
   struct Triangle {
@@ -48,14 +58,22 @@ class CullGeometry {
     double u[4][3], o[4];     // inward in-plane edge normals: u.x - o >= 0 inside
     double depth = 0;         // a quad's second triangle: largest distance from the plane
   };
+  struct Solid {
+    std::vector<std::array<double, 4>> faces;  // outward unit normal n and c: inside n.x - c <= 0
+    double centre[3];
+    double slack = 0;  // largest distance of a vertex beyond a face plane (non-planar quads)
+  };
   std::uint32_t build(std::uint32_t first, std::uint32_t count, std::vector<double>& centroid);
   void build_occluders(const unsigned* index);
+  void build_solids(const unsigned* index);
 
   std::vector<Triangle> tris_;
   std::vector<std::uint32_t> order_;
   std::vector<BvhNode> bvh_;
   std::vector<Occluder> occluders_;
   std::vector<std::uint32_t> occluder_of_;
+  std::vector<Solid> solids_;
+  std::vector<std::int32_t> solid_of_;
   double max_abs_ = 0;
 };
 

@@ -2,6 +2,7 @@
 #include "pair_culling.hpp"
 
 #include "cull_geometry.hpp"
+#include "progress.hpp"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/task_group.h>
@@ -41,8 +42,9 @@ struct PairCulling::Local {
 PairCulling::~PairCulling() { delete geometry_; }
 
 PairCulling::PairCulling(RTCScene scene, std::size_t triangle_count, const std::vector<double>& x,
-                         const std::vector<double>& y, const std::vector<double>& z, bool classify)
-    : scene_(scene), x_(x), y_(y), z_(z) {
+                         const std::vector<double>& y, const std::vector<double>& z, bool classify,
+                         Progress* progress)
+    : scene_(scene), x_(x), y_(y), z_(z), progress_(progress) {
   const auto start = std::chrono::steady_clock::now();
   const auto n = static_cast<std::uint32_t>(x.size());
   rows_.resize(n);
@@ -135,6 +137,7 @@ void PairCulling::traverse(std::uint32_t a, std::uint32_t b, tbb::enumerable_thr
   }
   if (v == Verdict::blocked) {
     local.blocked += static_cast<std::uint64_t>(pairs);
+    if (progress_) progress_->add(static_cast<std::uint64_t>(pairs));  // done: no row will see them
     return;
   }
   if ((A.is_leaf() && B.is_leaf()) || (a != b && pairs <= kCastPairs)) return record(Verdict::cast);
@@ -160,7 +163,10 @@ void PairCulling::traverse(std::uint32_t a, std::uint32_t b, tbb::enumerable_thr
 // two boxes' centres picks the tests: if it meets nothing, the hull may be
 // empty; if it meets surfaces, they are the candidate occluders.
 Verdict PairCulling::classify(std::uint32_t a, std::uint32_t b) const {
-  const Box3 A = box_of(nodes_[a]), B = box_of(nodes_[b]);
+  return classify_boxes(box_of(nodes_[a]), box_of(nodes_[b]));
+}
+
+Verdict PairCulling::classify_boxes(const Box3& A, const Box3& B) const {
   double ca[3], d[3];
   for (int c = 0; c < 3; ++c) {
     ca[c] = 0.5 * (A.lo[c] + A.hi[c]);
@@ -185,8 +191,15 @@ Verdict PairCulling::classify(std::uint32_t a, std::uint32_t b) const {
   rtcIntersect1(scene_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
     return geometry_->triangles.hull_is_empty(A, B, margin_) ? Verdict::visible : Verdict::cast;
+  std::int32_t tried_solid = -1;
   for (int attempt = 0; attempt < kOccluderTries; ++attempt) {
-    if (geometry_->triangles.occluder_blocks(rh.hit.primID, A, B, margin_)) return Verdict::blocked;
+    const CullGeometry& g = geometry_->triangles;
+    const std::int32_t solid = g.solid_of(rh.hit.primID);
+    if (solid >= 0 && solid != tried_solid) {
+      if (g.solid_blocks(rh.hit.primID, A, B, margin_)) return Verdict::blocked;
+      tried_solid = solid;
+    }
+    if (g.occluder_blocks(rh.hit.primID, A, B, margin_)) return Verdict::blocked;
     if (attempt + 1 == kOccluderTries) break;
     rh.ray.tnear = rh.ray.tfar + static_cast<float>(margin_ / length);
     rh.ray.tfar = 1.0f;

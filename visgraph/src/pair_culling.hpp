@@ -53,7 +53,13 @@
 #include <cstdint>
 #include <vector>
 
+namespace attenuvis::visgraph {
+class Progress;
+}
+
 namespace attenuvis::visgraph::detail {
+
+struct Box3;
 
 enum class Verdict : std::uint8_t { visible, blocked, cast };
 
@@ -65,8 +71,9 @@ class PairCulling {
   // x, y, z: the nodes (local frame), indexed by row.  Builds the cluster
   // tree and, with `classify`, classifies every pair of clusters (in
   // parallel in the current TBB arena); without, every pair is left to rays.
+  // Pairs decided blocked are added to `progress` (if any) as they are found.
   PairCulling(RTCScene scene, std::size_t triangle_count, const std::vector<double>& x,
-              const std::vector<double>& y, const std::vector<double>& z, bool classify);
+              const std::vector<double>& y, const std::vector<double>& z, bool classify, Progress* progress);
 
   struct Block {
     std::uint32_t leaf;  // partner leaf
@@ -103,8 +110,10 @@ class PairCulling {
   struct Local;
   void traverse(std::uint32_t a, std::uint32_t b, tbb::enumerable_thread_specific<Local>& locals);
   Verdict classify(std::uint32_t a, std::uint32_t b) const;
+  Verdict classify_boxes(const Box3& a, const Box3& b) const;
 
   RTCScene scene_;
+  Progress* progress_ = nullptr;
   const std::vector<double>&x_, &y_, &z_;
   double margin_ = 0;
   std::vector<std::uint32_t> rows_;

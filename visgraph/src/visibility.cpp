@@ -340,7 +340,7 @@ void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const Visi
   const std::size_t block_rows =
       options.edge_sink ? std::max<std::size_t>(1, (std::size_t{1} << 22) / std::max<std::size_t>(M, 1)) : N;
   std::vector<std::vector<Edge>> row_edges(options.edge_sink ? block_rows : 0);
-  Progress progress(options.progress, pairs_total, "vg");
+  Progress progress(options.progress, options.on_progress, pairs_total, "vg");
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     for (std::size_t block = 0; block < N; block += block_rows) {
@@ -348,14 +348,12 @@ void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const Visi
       tbb::parallel_for(tbb::blocked_range<std::size_t>(block, block_end, 1),
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           ThreadState& ts = states.local();
-                          std::uint64_t done = 0;
                           for (std::size_t i = range.begin(); i != range.end(); ++i) {
                             std::vector<Edge>* edges = options.edge_sink ? &row_edges[i - block] : nullptr;
                             if (edges) edges->clear();
-                            done += pass.symmetric ? N - 1 - i : M;
                             run_row(pass, plan, tree, i, ts, edges, pruned);
+                            progress.add(pass.symmetric ? N - 1 - i : M);
                           }
-                          progress.add(done);
                         });
       if (options.edge_sink) {
         std::vector<Edge> out;
@@ -388,13 +386,15 @@ void run_leaf_rows(const Pass& pass, const detail::PairCulling& culling, std::si
     std::vector<Edge>* edges = row_edges ? &(*row_edges)[i - row_begin] : nullptr;
     if (edges) edges->clear();
     begin_row(ts);
+    std::uint64_t done = 0;
     for (const detail::PairCulling::Block& block : ts.blocks) {
       std::size_t n = 0;
       const std::uint32_t* partners = culling.leaf_rows(block.leaf, n);
       if (n == 0 || partners[n - 1] <= i) continue;
       const std::uint32_t* from = partners[0] > i ? partners : std::upper_bound(partners, partners + n, i);
-      add_packet(pass, i, from, 0, static_cast<int>(partners + n - from), ts, edges,
-                 block.verdict == detail::Verdict::cast);
+      const int count = static_cast<int>(partners + n - from);
+      add_packet(pass, i, from, 0, count, ts, edges, block.verdict == detail::Verdict::cast);
+      done += static_cast<std::uint64_t>(count);
     }
     end_row(pass, i, ts);
     if (edges) {
@@ -403,7 +403,7 @@ void run_leaf_rows(const Pass& pass, const detail::PairCulling& culling, std::si
         return rank_of[a.i == self ? a.j : a.i] < rank_of[b.i == self ? b.j : b.i];
       });
     }
-    progress.add(N - 1 - i);
+    progress.add(done);  // blocked pairs were counted when their clusters were classified
   }
 }
 
@@ -574,16 +574,16 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
   if (symmetric && !plan.slab) {
     // All-to-all without a candidate radius: rows against leaf clusters, with
     // or without culling (the same packets either way: pair_culling.hpp).
+    Progress progress(options.progress, options.on_progress, result.pairs_total, "vg");
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     std::unique_ptr<detail::PairCulling> culling;
     arena.execute([&] {
       culling = std::make_unique<detail::PairCulling>(pass.rtc, scene.triangle_count(), sources.x, sources.y,
-                                                      sources.z, options.culling);
+                                                      sources.z, options.culling, &progress);
     });
     result.pairs_culled_visible = culling->pairs_visible();
     result.pairs_culled_blocked = culling->pairs_blocked();
     result.culling_seconds = culling->seconds();
-    Progress progress(options.progress, result.pairs_total, "vg");
     run_rows_culled(pass, *culling, options, states, progress);
     progress.finish();
   } else {

@@ -66,6 +66,14 @@ struct Edge {
   double distance;     // m
 };
 
+// A pass's progress, once a second from its first second: pairs done
+// (cast, or decided without a ray by culling or the line-of-sight policy),
+// the rate so far and the time left at that rate (-1: unknown).
+struct ProgressReport {
+  std::uint64_t pairs_done = 0, pairs_total = 0;
+  double seconds = 0, pairs_per_s = 0, seconds_left = -1;
+};
+
 struct VisibilityOptions {
   std::vector<double> sigmas;            // extinction coefficients, 1/m, each finite and >= 0
   bool distance_stats = false;           // mean and max visible distance
@@ -78,7 +86,10 @@ struct VisibilityOptions {
   // end (the order the pass visits them); to_targets: (source, target) in
   // source order.  Asking for edges never changes the scores.
   std::function<void(const std::vector<Edge>&)> edge_sink;
-  bool progress = false;                 // progress line on stderr after ~3 s
+  bool progress = false;                 // progress line on stderr, once a second
+  // If set, called once a second during the pass (from a watcher thread)
+  // with the progress; the Python API and the CLI show it from here.
+  std::function<void(const ProgressReport&)> on_progress;
   // Exact culling (all_to_all without pruning or max distance): blocks of
   // pairs decided without rays, results identical to casting every pair.
   // false: every pair cast (the reference the culling is tested against).
