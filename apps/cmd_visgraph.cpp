@@ -323,6 +323,7 @@ void run_vg(const VgArguments& a) {
     stage_text(a.summary, json);
   }
   staged.commit_all();
+  if (!a.quiet && !result.pruning_note.empty()) std::cerr << "pruning: " << result.pruning_note << "\n";
   if (!a.quiet)
     std::cerr << "visibility: " << result.nodes << " nodes, " << result.pairs_total << " pairs ("
               << result.pairs_cast << " cast, " << result.pairs_culled_visible << " culled in sight, "

@@ -46,7 +46,8 @@ TEST_CASE("pruning: runs with and without edge output give identical results", "
   for (double eps : {1e-1, 1e-3}) {
     vg::VisibilityOptions o;
     o.sigmas = {0.15, 0.4};
-    o.tolerance = eps;  // R = ln(1/eps)/0.15: 15.4 m and 46 m, inside the 60 m floor
+    o.tolerance = eps;
+    o.always_prune = true;  // R = ln(1/eps)/0.15: 15.4 m and 46 m, inside the 60 m floor
     o.threads = 2;
     const vg::VisibilityResult slab = vg::all_to_all(scene, nodes, o);
     std::set<std::pair<std::uint32_t, std::uint32_t>> edges;

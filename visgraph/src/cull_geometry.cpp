@@ -360,7 +360,13 @@ bool CullGeometry::hull_is_empty(const Box3& a, const Box3& b, double margin) co
   std::uint32_t stack[128];
   int top = 0;
   stack[top++] = 0;
+  // A hull among many triangles that are near it but not in it is costly to
+  // prove empty and rarely is: give up (undecided, the conservative answer)
+  // after a fixed amount of work, so a test never costs more than a few
+  // packets of rays.
+  int budget = 512;
   while (top > 0) {
+    if (--budget < 0) return false;
     const BvhNode& node = bvh_[stack[--top]];
     if (!boxes_overlap(node.lo, node.hi, s.lo, s.hi)) continue;
     bool outside = false;
@@ -388,6 +394,7 @@ bool CullGeometry::hull_is_empty(const Box3& a, const Box3& b, double margin) co
         thi[c] = std::max({t.v[0][c], t.v[1][c], t.v[2][c]});
       }
       if (!boxes_overlap(tlo, thi, s.lo, s.hi)) continue;
+      budget -= 8;
       bool separated = false;
       for (int q = 0; q < s.axes && !separated; ++q) separated = s.separates(s.axis[q], t.v, 3);
       const V3 e[3] = {sub(t.v[1], t.v[0]), sub(t.v[2], t.v[1]), sub(t.v[0], t.v[2])};

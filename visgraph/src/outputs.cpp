@@ -259,6 +259,7 @@ std::string summary_json(const ScoreTable& table, const RunInfo& info) {
   j["pruning"] = {{"tolerance", r.tolerance},
                   {"radius_m", std::isfinite(r.pruning_radius) ? json(r.pruning_radius) : json(nullptr)},
                   {"degree_exact", r.degree_exact},
+                  {"note", r.pruning_note},
                   {"max_sum_error_bound", worst_bound},
                   {"fixed_point_rounding_bound_per_partner", std::ldexp(1.0, -41)}};
   j["threads"] = info.threads;

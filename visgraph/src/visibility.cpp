@@ -233,6 +233,10 @@ void process_row(const Pass& pass, std::size_t i, const std::uint32_t* cand, std
   end_row(pass, i, ts);
 }
 
+// Pruning is chosen over the exact pass only when at most this fraction of
+// the pairs lie within its radius (see run_pass).
+constexpr double kPruneWorthFraction = 0.1;
+
 // How a pass finds each row's partners (see the file comment).
 struct Plan {
   double prune_radius = std::numeric_limits<double>::infinity();  // R = ln(1/eps)/sigma_min
@@ -467,6 +471,12 @@ void collect_results(const tbb::enumerable_thread_specific<ThreadState>& states,
       result.sum[static_cast<std::size_t>(k)][caller_index(i)] = static_cast<double>(t[i]) / kContrastScale;
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  // A pruned pass that dropped no partner anywhere cast every pair: its
+  // degree and distances are exact.
+  if (!result.degree_exact && std::all_of(pruned.begin(), pruned.end(), [](std::uint32_t p) { return p == 0; })) {
+    result.degree_exact = true;
+    result.pruning_note = "nothing pruned: every pair lies within the pruning radius; every column is exact";
+  }
   if (result.degree_exact) {
     result.degree.resize(N);
     for (std::size_t i = 0; i < N; ++i) result.degree[caller_index(i)] = static_cast<std::uint32_t>(total[i]);
@@ -529,10 +539,46 @@ void check_pass_input(const Points& sources, const Points& partners, bool symmet
   check_fixed_point_range(sources, partners, symmetric, options.max_distance);
 }
 
+// Pairs whose x coordinates lie within `radius` of each other (an upper
+// bound on the pairs a pruned pass casts), O((N + M) log(N + M)).
+double pairs_within_x(const Points& sources, const Points& partners, bool symmetric, double radius) {
+  std::vector<double> s = sources.x, t = symmetric ? std::vector<double>() : partners.x;
+  std::sort(s.begin(), s.end());
+  std::sort(t.begin(), t.end());
+  const std::vector<double>& p = symmetric ? s : t;
+  double count = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const auto hi = std::upper_bound(p.begin(), p.end(), s[i] + radius);
+    const auto lo = symmetric ? p.begin() + static_cast<std::ptrdiff_t>(i + 1)
+                              : std::lower_bound(p.begin(), p.end(), s[i] - radius);
+    if (hi > lo) count += static_cast<double>(hi - lo);
+  }
+  return count;
+}
+
 VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const Points& partners, bool symmetric,
-                          const VisibilityOptions& options) {
-  check_pass_input(given_sources, partners, symmetric, options);
+                          const VisibilityOptions& requested) {
+  check_pass_input(given_sources, partners, symmetric, requested);
   const auto start_time = std::chrono::steady_clock::now();
+  // Pruning pays only when the radius leaves out most pairs: a pruned pass
+  // casts every pair within it, the exact pass culls.  When more than
+  // kPruneWorthFraction of the pairs lie within the radius along x, run
+  // exact instead: nothing is pruned and every column is exact.
+  VisibilityOptions options = requested;
+  std::string pruning_note;
+  const Plan asked = plan_pass(options, symmetric);
+  if (asked.pruning && !options.always_prune) {
+    const double total = symmetric ? 0.5 * given_sources.size() * (given_sources.size() - 1.0)
+                                   : static_cast<double>(given_sources.size()) * partners.size();
+    const double within = pairs_within_x(given_sources, partners, symmetric, asked.prune_radius);
+    if (within > kPruneWorthFraction * total) {
+      options.tolerance = 0;
+      pruning_note = "nothing pruned: " + std::to_string(static_cast<int>(100 * within / total + 0.5)) +
+                     "% of the pairs lie within the pruning radius " + std::to_string(asked.prune_radius) +
+                     " m, more than the " + std::to_string(static_cast<int>(100 * kPruneWorthFraction)) +
+                     "% for which pruning is faster than the exact pass; every column is exact";
+    }
+  }
   const Plan plan = plan_pass(options, symmetric);
   const std::size_t N = given_sources.size(), M = symmetric ? N : partners.size();
   const int K = static_cast<int>(options.sigmas.size());
@@ -540,6 +586,7 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
   result.nodes = N;
   result.tolerance = options.tolerance;
   result.pruning_radius = plan.prune_radius;
+  result.pruning_note = pruning_note;
   result.degree_exact = !plan.pruning;
   result.pairs_total = symmetric ? static_cast<std::uint64_t>(N) * (N - 1) / 2 : static_cast<std::uint64_t>(N) * M;
 
@@ -590,6 +637,14 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
     run_rows(pass, plan, tree.get(), options, states, pruned, result.pairs_total);
   }
   collect_results(states, plan, pass, order, std::move(pruned), result);
+  if (plan.pruning && result.degree.empty()) {
+    std::uint64_t dropped = 0, nodes_with_drops = 0;
+    for (std::uint32_t p : result.pruned) dropped += p, nodes_with_drops += p > 0;
+    result.pruning_note = "pruned " + std::to_string(dropped) + " partner slots (pairs farther than " +
+                          std::to_string(plan.prune_radius) + " m, each contributing < " +
+                          std::to_string(options.tolerance) + " to every S_S) at " + std::to_string(nodes_with_drops) +
+                          " nodes; degree, averages and distances need every pair and are left out";
+  }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;
 }

@@ -46,7 +46,11 @@
 // radius search).  Each skipped partner would have contributed at most
 // exp(-sigma_k R) <= eps to S_S[k], so |S_S error| <= pruned x eps, reported
 // per node (`pruned`).  Degree and distance statistics need every pair, so
-// they are reported only when no pair within max_distance is pruned.
+// they are reported only when no pair within max_distance is pruned.  A
+// pruned pass casts every pair within R while the exact pass culls, so
+// pruning is applied only when at most 10% of the pairs lie within R along
+// x; otherwise the pass runs exact and says so in `pruning_note`, which also
+// says what a pruned pass dropped.
 #pragma once
 
 #include <attenuvis/visgraph/scene.hpp>
@@ -57,6 +61,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace attenuvis::visgraph {
@@ -94,6 +99,9 @@ struct VisibilityOptions {
   // pairs decided without rays, results identical to casting every pair.
   // false: every pair cast (the reference the culling is tested against).
   bool culling = true;
+  // Prune whenever tolerance > 0 allows it, even where the exact pass would
+  // be faster (tests and error studies of the pruning itself).
+  bool always_prune = false;
 };
 
 struct VisibilityResult {
@@ -113,6 +121,7 @@ struct VisibilityResult {
   std::uint64_t pairs_culled_visible = 0;   // culling: pairs decided in sight without rays
   std::uint64_t pairs_culled_blocked = 0;   // culling: pairs decided blocked without rays
   double culling_seconds = 0;               // culling: clustering and classification
+  std::string pruning_note;                 // what pruning dropped and why (empty: not asked)
   double seconds = 0;                       // wall time of the pass
 
   // S_A for condition k at node i (NaN when degree is 0 or withheld).
