@@ -11,8 +11,11 @@
 // exact, so independent of thread count and schedule.
 //
 // Partners of a row:
-//  - exact runs: all j > i (all-to-all, rows = nodes sorted by x: see
-//    plan_pass) or every target, as contiguous ranges (no index lists);
+//  - all-to-all without a radius: all j > i (rows = nodes sorted by x: see
+//    plan_pass), one packet per leaf cluster of the culling tree, packets of
+//    cluster pairs culled as blocked skipped, of pairs culled as in sight
+//    scored without rays (pair_culling.hpp); rows are run leaf by leaf;
+//  - to_targets without a radius: every target, as contiguous ranges;
 //  - all-to-all with a finite radius (pruning or --max-distance): the
 //    partners of row r within the radius lie in the slab x_r <= x <= x_r + R
 //    after it, filtered by exact distance (no tree search, no per-row sort);
@@ -22,6 +25,7 @@
 #include <attenuvis/visgraph/visibility.hpp>
 
 #include "contrast_kernel.hpp"
+#include "node_points.hpp"
 #include "pair_culling.hpp"
 #include "pair_packet.hpp"
 #include "progress.hpp"
@@ -50,55 +54,12 @@ using detail::kContrastScale;
 using detail::kDistanceScale;
 using detail::kLanes;
 using detail::PairPacket;
+using detail::Points;
+using detail::pairs_within_x;
+using detail::sorted_by_x;
+using detail::to_local;
 
-struct Points {
-  std::vector<double> x, y, z;  // local (recentred) frame, double
-  std::size_t size() const { return x.size(); }
-  std::size_t kdtree_get_point_count() const { return x.size(); }
-  double kdtree_get_pt(std::size_t i, std::size_t dim) const { return dim == 0 ? x[i] : dim == 1 ? y[i] : z[i]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Points>, Points, 3, std::uint32_t>;
-
-Points to_local(const Scene& scene, const std::vector<Eigen::Vector3d>& world, const char* what) {
-  Points p;
-  p.x.reserve(world.size());
-  p.y.reserve(world.size());
-  p.z.reserve(world.size());
-  for (std::size_t i = 0; i < world.size(); ++i) {
-    if (!world[i].allFinite())
-      throw std::invalid_argument(std::string(what) + " " + std::to_string(i + 1) + " has a non-finite coordinate");
-    for (int c = 0; c < 3; ++c) check_coordinate(world[i][c], std::string(what) + " " + std::to_string(i + 1));
-    const Eigen::Vector3d l = scene.to_local(world[i]);
-    p.x.push_back(l.x());
-    p.y.push_back(l.y());
-    p.z.push_back(l.z());
-  }
-  return p;
-}
-
-// The points in increasing x (ties by y, z, index: deterministic);
-// order[s] = original index of sorted point s.
-Points sorted_by_x(const Points& p, std::vector<std::uint32_t>& order) {
-  order.resize(p.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    if (p.x[a] != p.x[b]) return p.x[a] < p.x[b];
-    if (p.y[a] != p.y[b]) return p.y[a] < p.y[b];
-    if (p.z[a] != p.z[b]) return p.z[a] < p.z[b];
-    return a < b;
-  });
-  Points s;
-  for (std::uint32_t i : order) {
-    s.x.push_back(p.x[i]);
-    s.y.push_back(p.y[i]);
-    s.z.push_back(p.z[i]);
-  }
-  return s;
-}
 
 void validate(const VisibilityOptions& o) {
   for (double s : o.sigmas)
@@ -539,23 +500,6 @@ void check_pass_input(const Points& sources, const Points& partners, bool symmet
   check_fixed_point_range(sources, partners, symmetric, options.max_distance);
 }
 
-// Pairs whose x coordinates lie within `radius` of each other (an upper
-// bound on the pairs a pruned pass casts), O((N + M) log(N + M)).
-double pairs_within_x(const Points& sources, const Points& partners, bool symmetric, double radius) {
-  std::vector<double> s = sources.x, t = symmetric ? std::vector<double>() : partners.x;
-  std::sort(s.begin(), s.end());
-  std::sort(t.begin(), t.end());
-  const std::vector<double>& p = symmetric ? s : t;
-  double count = 0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const auto hi = std::upper_bound(p.begin(), p.end(), s[i] + radius);
-    const auto lo = symmetric ? p.begin() + static_cast<std::ptrdiff_t>(i + 1)
-                              : std::lower_bound(p.begin(), p.end(), s[i] - radius);
-    if (hi > lo) count += static_cast<double>(hi - lo);
-  }
-  return count;
-}
-
 VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const Points& partners, bool symmetric,
                           const VisibilityOptions& requested) {
   check_pass_input(given_sources, partners, symmetric, requested);
@@ -666,59 +610,6 @@ VisibilityResult to_targets(const Scene& scene, const std::vector<Eigen::Vector3
   const Points s = to_local(scene, sources, "node");
   const Points t = to_local(scene, targets, "target");
   return run_pass(scene, s, t, false, options);
-}
-
-std::uint64_t raw_visible_pairs(const Scene& scene, const std::vector<Eigen::Vector3d>& eyes, int threads,
-                                RawMethod method) {
-  // The same directed rays as all_to_all: nodes in x order, each pair cast
-  // from the earlier one (see plan_pass).
-  std::vector<std::uint32_t> order;
-  const Points P = sorted_by_x(to_local(scene, eyes, "node"), order);
-  const RTCScene rtc = detail::SceneAccess::embree(scene);
-  const std::size_t N = P.size();
-  std::atomic<std::uint64_t> visible{0};
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N, 1), [&](const tbb::blocked_range<std::size_t>& range) {
-      std::uint64_t seen = 0;
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
-      if (method == RawMethod::packets16) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-      PairPacket packet;
-      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-        // The engine's rays (same policy, same setup code), in contiguous
-        // x-order packets of 16 (the fastest raw loop); single rays cast each
-        // lane with rtcOccluded1.
-        for (std::size_t start = i + 1; start < N; start += kLanes) {
-          const int n = static_cast<int>(std::min<std::size_t>(kLanes, N - start));
-          detail::build_packet(P.x[i], P.y[i], P.z[i], P.x.data() + start, P.y.data() + start, P.z.data() + start, n,
-                               std::numeric_limits<double>::infinity(), packet);
-          if (method == RawMethod::packets16) {
-            if (packet.cast) rtcOccluded16(packet.valid, rtc, &context, &packet.ray);
-          } else {
-            for (int l = 0; l < kLanes; ++l) {
-              if (!packet.valid[l]) continue;
-              RTCRay ray{};
-              ray.org_x = packet.ray.org_x[l];
-              ray.org_y = packet.ray.org_y[l];
-              ray.org_z = packet.ray.org_z[l];
-              ray.dir_x = packet.ray.dir_x[l];
-              ray.dir_y = packet.ray.dir_y[l];
-              ray.dir_z = packet.ray.dir_z[l];
-              ray.tnear = packet.ray.tnear[l];
-              ray.tfar = packet.ray.tfar[l];
-              ray.mask = 0xFFFFFFFFu;
-              rtcOccluded1(rtc, &context, &ray);
-              packet.ray.tfar[l] = ray.tfar;
-            }
-          }
-          for (int l = 0; l < kLanes; ++l) seen += packet.valid[l] ? packet.ray.tfar[l] >= 0 : packet.visible[l] != 0;
-        }
-      }
-      visible += seen;
-    });
-  });
-  return visible.load();
 }
 
 }  // namespace attenuvis::visgraph
