@@ -1,11 +1,14 @@
 // Exact culling gives the results of casting every pair, bit for bit:
 // degree, the fixed-point S_S sums, distance statistics, visible and
 // coincident pair counts and the edge list (same pairs, same order), on the
-// five classic layouts, a small synthetic city and random scenes with
-// grazing geometry (nodes on the lattice of the obstacles' corners).
+// five classic layouts, a small synthetic city, random scenes with grazing
+// geometry (nodes on the lattice of the obstacles' corners) and a real
+// CityJSON district.
 #include "test_visibility_scenes.hpp"
 
+#include <attenuvis/visgraph/cityjson.hpp>
 #include <attenuvis/visgraph/generators.hpp>
+#include <attenuvis/visgraph/mesh.hpp>
 #include <attenuvis/visgraph/nodes.hpp>
 #include <attenuvis/visgraph/scene.hpp>
 #include <attenuvis/visgraph/visibility.hpp>
@@ -13,6 +16,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstring>
+#include <filesystem>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -118,8 +122,32 @@ TEST_CASE("culling: random scenes with grazing sight lines, identical to casting
     std::vector<Vector3d> nodes;
     for (int i = 0; i < 500; ++i) nodes.emplace_back(cell(rng), cell(rng), 1.0 + (i % 3));
     for (int i = 0; i < 10; ++i) nodes.push_back(nodes[static_cast<std::size_t>(i)]);  // coincident pairs
+    if (trial == 3) {  // UTM-sized coordinates: the scene is recentred, the margins follow its extent
+      const Vector3d offset(512345.25, 4123456.5, 312.0);
+      for (Vector3d& v : m.vertices) v += offset;
+      for (Vector3d& p : nodes) p += offset;
+    }
     const vg::Scene scene(m);
     INFO("trial " << trial);
-    check_identical(scene, nodes, trial == 0);
+    const vg::VisibilityResult c = check_identical(scene, nodes, trial == 0);
+    CHECK(c.pairs_culled_visible + c.pairs_culled_blocked > 0);
   }
+}
+
+TEST_CASE("culling: the Delfshaven CityJSON (real data, shared/), identical to casting every pair", "[visgraph][culling]") {
+  // ../shared/data/cityjson/README.md: 853 LoD2 buildings (walls triangulated
+  // from polygons, no terrain: a ground plane is added as `vg` does).
+  const std::string path =
+      std::string(ATTENUVIS_TEST_DATA_DIR) + "/../../../shared/data/cityjson/rotterdam-delfshaven-3-20.city.json";
+  if (!std::filesystem::exists(path)) {
+    WARN("skipped: " << path << " is absent");
+    return;
+  }
+  vg::Mesh m = vg::load_cityjson(path, {});
+  vg::add_ground_plane(m);
+  const vg::Scene scene(m);
+  const auto nodes = grid_nodes(scene, 16.0, {});
+  INFO(nodes.size() << " nodes");
+  const vg::VisibilityResult c = check_identical(scene, nodes, true);
+  CHECK(c.pairs_culled_blocked > 0);
 }
