@@ -174,6 +174,29 @@ void CullGeometry::build_solids(const unsigned* index) {
       solid.faces.push_back({n[0], n[1], n[2], c});
     }
     if (!convex) continue;
+    // The two triangles of a quad face give (nearly) one plane: keep one.
+    // A plane dropped this way lies within `deviation` of the kept one at
+    // every vertex, which the slack covers.
+    std::vector<std::array<double, 4>> kept;
+    for (const auto& f : solid.faces) {
+      bool duplicate = false;
+      for (const auto& k : kept) {
+        if (f[0] * k[0] + f[1] * k[1] + f[2] * k[2] < 1 - 1e-9) continue;
+        double deviation = 0;
+        for (std::uint32_t u : tris)
+          for (int v = 0; v < 3; ++v) {
+            const double* p = tris_[u].v[v];
+            deviation = std::max(deviation, std::abs((f[0] * p[0] + f[1] * p[1] + f[2] * p[2] - f[3]) -
+                                                     (k[0] * p[0] + k[1] * p[1] + k[2] * p[2] - k[3])));
+          }
+        if (deviation > 1e-6 * size) continue;
+        solid.slack = std::max(solid.slack, deviation);
+        duplicate = true;
+        break;
+      }
+      if (!duplicate) kept.push_back(f);
+    }
+    solid.faces = std::move(kept);
     std::copy(centre, centre + 3, solid.centre);
     const auto id = static_cast<std::int32_t>(solids_.size());
     solids_.push_back(std::move(solid));
