@@ -10,15 +10,11 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <numeric>
 
 namespace attenuvis::visgraph::detail {
-
-struct PairCulling::Geometry {
-  CullGeometry triangles;
-  Geometry(RTCScene scene, std::size_t count) : triangles(scene, count) {}
-};
 
 namespace {
 Box3 box_of(const PairCulling::Node& n) {
@@ -39,12 +35,12 @@ struct PairCulling::Local {
   std::uint64_t blocked = 0, visible = 0, tests = 0;
 };
 
-PairCulling::~PairCulling() { delete geometry_; }
+PairCulling::~PairCulling() = default;
 
 PairCulling::PairCulling(RTCScene scene, std::size_t triangle_count, const std::vector<double>& x,
                          const std::vector<double>& y, const std::vector<double>& z, bool classify,
                          Progress* progress)
-    : scene_(scene), x_(x), y_(y), z_(z), progress_(progress) {
+    : scene_(scene), progress_(progress), x_(x), y_(y), z_(z) {
   const auto start = std::chrono::steady_clock::now();
   const auto n = static_cast<std::uint32_t>(x.size());
   rows_.resize(n);
@@ -57,8 +53,8 @@ PairCulling::PairCulling(RTCScene scene, std::size_t triangle_count, const std::
     seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return;
   }
-  geometry_ = new Geometry(scene, triangle_count);
-  double largest = geometry_->triangles.max_abs_coordinate();
+  geometry_ = std::make_unique<CullGeometry>(scene, triangle_count);
+  double largest = geometry_->max_abs_coordinate();
   for (std::size_t i = 0; i < x.size(); ++i)
     largest = std::max({largest, std::abs(x[i]), std::abs(y[i]), std::abs(z[i])});
   margin_ = 1e-3 + 1e-5 * largest;
@@ -128,7 +124,7 @@ void PairCulling::traverse(std::uint32_t a, std::uint32_t b, tbb::enumerable_thr
   if (pairs == 0) return;
   const auto record = [&](Verdict v) { local.records.push_back({a, b, static_cast<std::uint32_t>(v)}); };
   ++local.tests;
-  const Verdict v = a == b ? (geometry_->triangles.hull_is_empty(box_of(A), box_of(A), margin_) ? Verdict::visible
+  const Verdict v = a == b ? (geometry_->hull_is_empty(box_of(A), box_of(A), margin_) ? Verdict::visible
                                                                                                 : Verdict::cast)
                            : classify(a, b);
   if (v == Verdict::visible) {
@@ -174,7 +170,7 @@ Verdict PairCulling::classify_boxes(const Box3& A, const Box3& B) const {
   }
   const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   if (!(length > 4 * margin_))
-    return geometry_->triangles.hull_is_empty(A, B, margin_) ? Verdict::visible : Verdict::cast;
+    return geometry_->hull_is_empty(A, B, margin_) ? Verdict::visible : Verdict::cast;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh{};
@@ -190,10 +186,10 @@ Verdict PairCulling::classify_boxes(const Box3& A, const Box3& B) const {
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
-    return geometry_->triangles.hull_is_empty(A, B, margin_) ? Verdict::visible : Verdict::cast;
+    return geometry_->hull_is_empty(A, B, margin_) ? Verdict::visible : Verdict::cast;
   std::int32_t tried_solid = -1;
   for (int attempt = 0; attempt < kOccluderTries; ++attempt) {
-    const CullGeometry& g = geometry_->triangles;
+    const CullGeometry& g = *geometry_;
     const std::int32_t solid = g.solid_of(rh.hit.primID);
     if (solid >= 0 && solid != tried_solid) {
       if (g.solid_blocks(rh.hit.primID, A, B, margin_)) return Verdict::blocked;

@@ -51,6 +51,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace attenuvis::visgraph {
@@ -60,6 +61,7 @@ class Progress;
 namespace attenuvis::visgraph::detail {
 
 struct Box3;
+class CullGeometry;
 
 enum class Verdict : std::uint8_t { visible, blocked, cast };
 
@@ -122,8 +124,7 @@ class PairCulling {
   std::vector<std::vector<Record>> records_;  // per node: visible and cast records (symmetric)
   std::uint64_t pairs_blocked_ = 0, pairs_visible_ = 0, tests_ = 0;
   double seconds_ = 0;
-  struct Geometry;
-  Geometry* geometry_ = nullptr;
+  std::unique_ptr<CullGeometry> geometry_;  // null when not classifying
 
  public:
   ~PairCulling();

@@ -345,7 +345,6 @@ void run_leaf_rows(const Pass& pass, const detail::PairCulling& culling, std::si
   const std::uint32_t* last = std::lower_bound(rows, rows + count, static_cast<std::uint32_t>(row_end));
   if (first == last) return;
   culling.partner_blocks(leaf, ts.blocks);
-  const std::size_t N = pass.N;
   for (const std::uint32_t* r = first; r != last; ++r) {
     const std::uint32_t i = *r;
     std::vector<Edge>* edges = row_edges ? &(*row_edges)[i - row_begin] : nullptr;
