@@ -42,6 +42,7 @@ struct VgArguments {
   std::string out, ply, heatmap, summary, edges, color_by, geojson;
   bool quiet = false;
   bool allow_large = false;
+  bool no_culling = false;
   std::string up_axis = "z", lod, ground_plane = "auto";
 };
 
@@ -244,6 +245,7 @@ void run_vg(const VgArguments& a) {
   options.max_distance = a.max_distance;
   options.threads = a.threads;
   options.progress = !a.quiet;
+  options.culling = !a.no_culling;
 
   const vg::WorkEstimate work = vg::estimate_work(eyes, targets.empty() ? nullptr : &targets, options);
   check_work(a, work);
@@ -321,10 +323,13 @@ void run_vg(const VgArguments& a) {
     stage_text(a.summary, json);
   }
   staged.commit_all();
+  if (!a.quiet && !result.pruning_note.empty()) std::cerr << "pruning: " << result.pruning_note << "\n";
   if (!a.quiet)
     std::cerr << "visibility: " << result.nodes << " nodes, " << result.pairs_total << " pairs ("
-              << result.pairs_cast << " cast, " << result.pairs_visible << " visible) in " << result.seconds
-              << " s = " << (result.seconds > 0 ? result.pairs_total / result.seconds / 1e6 : 0.0)
+              << result.pairs_cast << " cast, " << result.pairs_culled_visible << " culled in sight, "
+              << result.pairs_culled_blocked << " culled blocked, " << result.pairs_visible << " visible) in " << result.seconds
+              << " s (clustering and classifying " << result.culling_seconds << " s)"
+              << " = " << (result.seconds > 0 ? result.pairs_total / result.seconds / 1e6 : 0.0)
               << " M pairs/s\n";
 }
 }  // namespace
@@ -377,6 +382,8 @@ void register_visgraph(CLI::App& app) {
   vgc->add_option("--summary", args->summary, "JSON summary");
   vgc->add_option("--edges", args->edges, "CSV edge list i,j,distance (O(edges) output)");
   vgc->add_flag("--quiet", args->quiet, "no report or progress on stderr");
+  vgc->add_flag("--no-culling", args->no_culling,
+                "cast every pair (same results; the reference the exact culling is tested against)");
   vgc->add_flag("--allow-large", args->allow_large,
                 "run even above the default caps: 1e7 grid cells, 2e9 pairs, half the machine's memory "
                 "(never above all of it)");

@@ -46,7 +46,8 @@ TEST_CASE("pruning: runs with and without edge output give identical results", "
   for (double eps : {1e-1, 1e-3}) {
     vg::VisibilityOptions o;
     o.sigmas = {0.15, 0.4};
-    o.tolerance = eps;  // R = ln(1/eps)/0.15: 15.4 m and 46 m, inside the 60 m floor
+    o.tolerance = eps;
+    o.always_prune = true;  // R = ln(1/eps)/0.15: 15.4 m and 46 m, inside the 60 m floor
     o.threads = 2;
     const vg::VisibilityResult slab = vg::all_to_all(scene, nodes, o);
     std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
@@ -100,4 +101,38 @@ TEST_CASE("max distance: runs with and without edge output give the same exact d
   std::size_t over = 0;
   for (double d : slab.max_distance) over += !std::isnan(d) && d > 12.5;
   CHECK(over == 0);
+}
+
+TEST_CASE("pruning: a radius that covers the scene prunes nothing and keeps every column", "[visgraph][visibility][pruning]") {
+  std::mt19937_64 rng(5150);
+  std::vector<Vector3d> nodes;
+  const Mesh m = scene_with_nodes(rng, nodes);
+  const vg::Scene scene(m);
+  vg::VisibilityOptions exact;
+  exact.sigmas = {1.5e-4, 0.0374};  // clear air: R = ln(1e9)/1.5e-4 = 138 km
+  exact.distance_stats = true;
+  const vg::VisibilityResult reference = vg::all_to_all(scene, nodes, exact);
+  for (bool always : {false, true}) {
+    vg::VisibilityOptions o = exact;
+    o.tolerance = 1e-9;
+    o.always_prune = always;
+    const vg::VisibilityResult r = vg::all_to_all(scene, nodes, o);
+    INFO("always_prune " << always);
+    // Declined (the exact pass runs) or run with nothing to drop: either way
+    // every column is exact and identical to the exact pass.
+    CHECK(r.degree_exact);
+    CHECK(r.degree == reference.degree);
+    CHECK(r.sum == reference.sum);
+    REQUIRE(r.mean_distance.size() == reference.mean_distance.size());
+    CHECK(std::memcmp(r.mean_distance.data(), reference.mean_distance.data(),
+                      r.mean_distance.size() * sizeof(double)) == 0);
+    CHECK(r.pruning_note.find("nothing pruned") != std::string::npos);
+  }
+  // A radius inside the scene still prunes, and says what it dropped.
+  vg::VisibilityOptions o = exact;
+  o.sigmas = {2.0};
+  o.tolerance = 1e-1;  // R = 1.15 m on a 60 m floor: ~4% of the pairs within R along x
+  const vg::VisibilityResult pruned = vg::all_to_all(scene, nodes, o);
+  CHECK_FALSE(pruned.degree_exact);
+  CHECK(pruned.pruning_note.find("pruned ") == 0);
 }

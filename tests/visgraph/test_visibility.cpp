@@ -197,10 +197,13 @@ TEST_CASE("range pruning stays within its certified bound", "[visgraph][visibili
   Mesh m = random_scene(rng, nodes, 6, 400);
   const vg::Scene scene(m);
   const std::vector<double> sigmas = {0.2, 0.5};
-  const vg::VisibilityResult exact = vg::all_to_all(scene, nodes, with_sigmas(sigmas));
+  vg::VisibilityOptions every_pair = with_sigmas(sigmas);
+  every_pair.culling = false;  // pairs_cast below compares rays with rays
+  const vg::VisibilityResult exact = vg::all_to_all(scene, nodes, every_pair);
   for (double eps : {1e-1, 1e-2, 1e-3}) {
     vg::VisibilityOptions o = with_sigmas(sigmas);
     o.tolerance = eps;
+    o.always_prune = true;  // the pruning machinery itself, even where exact is faster
     const vg::VisibilityResult pruned = vg::all_to_all(scene, nodes, o);
     INFO("eps " << eps);
     CHECK(pruned.pruning_radius == Approx(std::log(1 / eps) / 0.2));
@@ -221,6 +224,7 @@ TEST_CASE("range pruning stays within its certified bound", "[visgraph][visibili
   // sigma = 0 ("no extinction") disables pruning: nothing can be skipped.
   vg::VisibilityOptions o = with_sigmas({0.0, 0.5});
   o.tolerance = 1e-3;
+  o.always_prune = true;
   const vg::VisibilityResult none = vg::all_to_all(scene, nodes, o);
   CHECK(none.degree_exact);
   CHECK(std::isinf(none.pruning_radius));
@@ -265,7 +269,9 @@ TEST_CASE("coincident nodes never reach Embree and are not lines of sight", "[vi
   add_floor(m, 0, 10, 0, 10, 0, "floor");
   const vg::Scene scene(m);
   const std::vector<Vector3d> nodes = {{1, 1, 1.7}, {1, 1, 1.7}, {5, 5, 1.7}, {5, 5, 1.7 + 1e-5}};
-  const vg::VisibilityResult r = vg::all_to_all(scene, nodes, with_sigmas({0.0}));
+  vg::VisibilityOptions every_pair = with_sigmas({0.0});
+  every_pair.culling = false;  // an open floor: culling would decide every pair without rays
+  const vg::VisibilityResult r = vg::all_to_all(scene, nodes, every_pair);
   CHECK(r.coincident_pairs == 1);
   CHECK(r.degree == std::vector<std::uint32_t>{2, 2, 3, 3});
   CHECK(r.pairs_cast == 4);  // 0-2, 0-3, 1-2, 1-3; 2-3 is 1e-5 m apart: visible without a ray

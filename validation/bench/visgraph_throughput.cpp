@@ -10,7 +10,9 @@
 //  4. S_S error against run time for eps in {0, 1e-12, 1e-9, 1e-6, 1e-3}.
 //
 // Usage: visgraph_throughput [--quick] [--threads 1,2] [--repeats N]
-//                            [--city-rings N] [--no-city] [--no-single]
+//                            [--city-rings N] [--no-city] [--no-single] [--brute] [--no-pruning]
+// --brute: also time the engine with culling off (every pair cast);
+// --no-pruning: skip the error-against-time study.
 // --quick: 1 m layouts only, one repeat, a one-ring city, no single-ray loop
 // on the city (about a minute on two cores).
 #include <attenuvis/validation/visgraph_benchmark.hpp>
@@ -106,6 +108,8 @@ struct Args {
   int city_rings = 4;  // CityOptions default: ~50,000 nodes
   bool city = true;
   bool single = true;
+  bool brute = false;  // also time the engine with culling off
+  bool pruning = true;  // the error-against-time study on the city
 };
 
 std::vector<int> parse_int_list(const std::string& text) {
@@ -136,9 +140,11 @@ Args parse(int argc, char** argv) {
     else if (s == "--city-rings") a.city_rings = parse_int_list(value()).at(0), rings_given = true;
     else if (s == "--no-city") a.city = false;
     else if (s == "--no-single") a.single = false;
+    else if (s == "--brute") a.brute = true;
+    else if (s == "--no-pruning") a.pruning = false;
     else if (s == "--help" || s == "-h") {
       std::cout << "usage: visgraph_throughput [--quick] [--threads 1,2] [--repeats N] [--city-rings N] [--no-city] "
-                   "[--no-single]\n";
+                   " [--no-single] [--brute] [--no-pruning]\n";
       std::exit(0);
     } else throw std::invalid_argument("unknown argument '" + s + "'");
   }
@@ -157,10 +163,11 @@ std::vector<Eigen::Vector3d> grid_nodes(const vg::Scene& scene, double spacing, 
 }
 
 void print_throughput_header() {
-  std::printf("%-17s %7s %6s %11s %3s %9s %9s %9s %8s %8s %s\n", "scene", "spacing", "nodes", "pairs", "thr",
-              "engine", "raw16", "raw1", "eng/16", "eng/1", "visible agree");
-  std::printf("%-17s %7s %6s %11s %3s %9s %9s %9s %8s %8s\n", "", "[m]", "", "", "", "[Mp/s]", "[Mp/s]", "[Mp/s]", "",
-              "");
+  std::printf("%-17s %7s %6s %11s %3s %9s %9s %9s %8s %8s %7s %7s %7s %7s %8s %s\n", "scene", "spacing", "nodes",
+              "pairs", "thr", "engine", "raw16", "raw1", "eng/16", "eng/1", "in-sight", "blocked", "rays", "cull s",
+              "brute/16", "visible agree");
+  std::printf("%-17s %7s %6s %11s %3s %9s %9s %9s %8s %8s %7s %7s %7s %7s %8s\n", "", "[m]", "", "", "", "[Mp/s]",
+              "[Mp/s]", "[Mp/s]", "", "", "[%]", "[%]", "[%]", "[s]", "");
 }
 
 void print_throughput(const std::string& name, double spacing, int threads, const val::Throughput& t) {
@@ -169,9 +176,13 @@ void print_throughput(const std::string& name, double spacing, int threads, cons
     std::snprintf(raw1, sizeof raw1, "%9.1f", t.single_mpairs_s());
     std::snprintf(ratio1, sizeof ratio1, "%8.2f", t.ratio_to_single());
   }
-  std::printf("%-17s %7.2f %6zu %11llu %3d %9.1f %9.1f %9s %8.2f %8s %s\n", name.c_str(), spacing, t.nodes,
-              static_cast<unsigned long long>(t.pairs), threads, t.engine_mpairs_s(), t.packets16_mpairs_s(), raw1,
-              t.ratio_to_packets16(), ratio1,
+  char brute[32] = "-";
+  if (t.brute.best_s > 0) std::snprintf(brute, sizeof brute, "%8.2f", t.ratio_brute_to_packets16());
+  const double percent = 100.0 / static_cast<double>(std::max<std::uint64_t>(t.pairs, 1));
+  std::printf("%-17s %7.2f %6zu %11llu %3d %9.1f %9.1f %9s %8.2f %8s %7.1f %7.1f %7.1f %7.2f %8s %s\n", name.c_str(),
+              spacing, t.nodes, static_cast<unsigned long long>(t.pairs), threads, t.engine_mpairs_s(),
+              t.packets16_mpairs_s(), raw1, t.ratio_to_packets16(), ratio1, t.culled_visible * percent,
+              t.culled_blocked * percent, t.cast * percent, t.culling_s, brute,
               t.visible_agree() ? "yes" : ("NO: engine " + std::to_string(t.visible_engine) + ", raw16 " +
                                            std::to_string(t.visible_packets16) + ", raw1 " +
                                            std::to_string(t.visible_single))
@@ -220,6 +231,7 @@ int run(const Args& a) {
         o.threads = th;
         o.repeats = a.repeats;
         o.single_rays = a.single;
+        o.brute_force = a.brute;
         print_throughput(std::to_string(k) + " " + vg::classic_layout_name(k), h, th,
                          val::measure_throughput(scene, eyes, o));
       }
@@ -244,12 +256,15 @@ int run(const Args& a) {
     o.threads = th;
     o.repeats = 1;  // the city is long enough to time once
     o.single_rays = a.single && !a.quick;
+    o.brute_force = a.brute;
     const val::Throughput t = val::measure_throughput(city, eyes, o);
     print_throughput("city", 1.0, th, t);
     if (th == th_max)
       std::printf("city all-to-all exact, degree + 4 sigmas, %d thread(s): %.2f s (target <= 10 s on 2 threads)\n", th,
                   t.engine.best_s);
   }
+
+  if (!a.pruning) return 0;
 
   // 4. Error against time: S_S for dry snow 4 mm/h (the seed's sigma 0.0374
   // 1/m: the largest, so the only one whose pruning radius is inside the

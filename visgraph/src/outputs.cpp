@@ -228,6 +228,8 @@ std::string summary_json(const ScoreTable& table, const RunInfo& info) {
                 {"cast", r.pairs_cast},
                 {"visible", r.pairs_visible},
                 {"coincident_skipped", r.coincident_pairs},
+                {"culled_in_sight", r.pairs_culled_visible},
+                {"culled_blocked", r.pairs_culled_blocked},
                 {"visible_fraction_of_considered",
                  r.pairs_total ? static_cast<double>(r.pairs_visible) / r.pairs_total : 0.0}};
   json conditions = json::array();
@@ -258,10 +260,11 @@ std::string summary_json(const ScoreTable& table, const RunInfo& info) {
   j["pruning"] = {{"tolerance", r.tolerance},
                   {"radius_m", std::isfinite(r.pruning_radius) ? json(r.pruning_radius) : json(nullptr)},
                   {"degree_exact", r.degree_exact},
+                  {"note", r.pruning_note},
                   {"max_sum_error_bound", worst_bound},
                   {"fixed_point_rounding_bound_per_partner", std::ldexp(1.0, -41)}};
   j["threads"] = info.threads;
-  j["time_s"] = {{"visibility", r.seconds}, {"total", info.total_seconds}};
+  j["time_s"] = {{"visibility", r.seconds}, {"culling", r.culling_seconds}, {"total", info.total_seconds}};
   j["pairs_per_s"] = r.seconds > 0 ? static_cast<double>(r.pairs_total) / r.seconds : 0.0;
   j["cast_pairs_per_s"] = r.seconds > 0 ? static_cast<double>(r.pairs_cast) / r.seconds : 0.0;
   return j.dump(2) + "\n";

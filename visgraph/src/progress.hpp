@@ -1,11 +1,20 @@
-// A progress line on stderr for long passes: silent for the first 3 s, then
-// "<label>: NN% of P pairs, R M pairs/s, T s, about L s left" -- rewritten in
-// place once a second on a terminal, one line every 5 s otherwise (logs).
+// Progress of a long pass: pairs done (cast, or decided by culling), rate
+// and time left, sampled once a second from the first second by a watcher
+// thread.  It goes to the caller's callback (VisibilityOptions::on_progress)
+// and, when asked, to stderr: "<label>: NN% of P pairs, R M pairs/s, T s,
+// about L s left", rewritten in place on a terminal, one line a second
+// otherwise (logs).  A caller watching from another thread (the Python
+// binding) may also pass a counter to mirror the pairs into and a cancel flag:
+// once that reads true, the next add() throws Cancelled, which ends the pass
+// on every path (rays, culling) within one row or cluster pair.
 #pragma once
+
+#include <attenuvis/visgraph/visibility.hpp>
 
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -14,16 +23,26 @@ namespace attenuvis::visgraph {
 
 class Progress {
  public:
-  Progress(bool enabled, std::uint64_t total, std::string label);
+  Progress(bool print, std::function<void(const ProgressReport&)> callback, std::uint64_t total, std::string label,
+           std::atomic<std::uint64_t>* mirror = nullptr, const std::atomic<bool>* cancel = nullptr);
   ~Progress();
-  void add(std::uint64_t done) { done_.fetch_add(done, std::memory_order_relaxed); }
+  void add(std::uint64_t done) {
+    done_.fetch_add(done, std::memory_order_relaxed);
+    if (mirror_) mirror_->fetch_add(done, std::memory_order_relaxed);
+    if (cancel_ && cancel_->load(std::memory_order_relaxed)) throw Cancelled();
+  }
   void finish();
 
  private:
   void run();
+  ProgressReport report(double seconds) const;
+  bool print_;
+  std::function<void(const ProgressReport&)> callback_;
   std::uint64_t total_;
   std::string label_;
   std::atomic<std::uint64_t> done_{0};
+  std::atomic<std::uint64_t>* mirror_;
+  const std::atomic<bool>* cancel_;
   bool stop_ = false;
   bool printed_ = false;
   std::mutex mutex_;

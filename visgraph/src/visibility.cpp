@@ -11,8 +11,11 @@
 // exact, so independent of thread count and schedule.
 //
 // Partners of a row:
-//  - exact runs: all j > i (all-to-all, rows = nodes sorted by x: see
-//    plan_pass) or every target, as contiguous ranges (no index lists);
+//  - all-to-all without a radius: all j > i (rows = nodes sorted by x: see
+//    plan_pass), one packet per leaf cluster of the culling tree, packets of
+//    cluster pairs culled as blocked skipped, of pairs culled as in sight
+//    scored without rays (pair_culling.hpp); rows are run leaf by leaf;
+//  - to_targets without a radius: every target, as contiguous ranges;
 //  - all-to-all with a finite radius (pruning or --max-distance): the
 //    partners of row r within the radius lie in the slab x_r <= x <= x_r + R
 //    after it, filtered by exact distance (no tree search, no per-row sort);
@@ -22,6 +25,8 @@
 #include <attenuvis/visgraph/visibility.hpp>
 
 #include "contrast_kernel.hpp"
+#include "node_points.hpp"
+#include "pair_culling.hpp"
 #include "pair_packet.hpp"
 #include "progress.hpp"
 #include "scene_access.hpp"
@@ -49,55 +54,12 @@ using detail::kContrastScale;
 using detail::kDistanceScale;
 using detail::kLanes;
 using detail::PairPacket;
+using detail::Points;
+using detail::pairs_within_x;
+using detail::sorted_by_x;
+using detail::to_local;
 
-struct Points {
-  std::vector<double> x, y, z;  // local (recentred) frame, double
-  std::size_t size() const { return x.size(); }
-  std::size_t kdtree_get_point_count() const { return x.size(); }
-  double kdtree_get_pt(std::size_t i, std::size_t dim) const { return dim == 0 ? x[i] : dim == 1 ? y[i] : z[i]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
-};
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Points>, Points, 3, std::uint32_t>;
-
-Points to_local(const Scene& scene, const std::vector<Eigen::Vector3d>& world, const char* what) {
-  Points p;
-  p.x.reserve(world.size());
-  p.y.reserve(world.size());
-  p.z.reserve(world.size());
-  for (std::size_t i = 0; i < world.size(); ++i) {
-    if (!world[i].allFinite())
-      throw std::invalid_argument(std::string(what) + " " + std::to_string(i + 1) + " has a non-finite coordinate");
-    for (int c = 0; c < 3; ++c) check_coordinate(world[i][c], std::string(what) + " " + std::to_string(i + 1));
-    const Eigen::Vector3d l = scene.to_local(world[i]);
-    p.x.push_back(l.x());
-    p.y.push_back(l.y());
-    p.z.push_back(l.z());
-  }
-  return p;
-}
-
-// The points in increasing x (ties by y, z, index: deterministic);
-// order[s] = original index of sorted point s.
-Points sorted_by_x(const Points& p, std::vector<std::uint32_t>& order) {
-  order.resize(p.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    if (p.x[a] != p.x[b]) return p.x[a] < p.x[b];
-    if (p.y[a] != p.y[b]) return p.y[a] < p.y[b];
-    if (p.z[a] != p.z[b]) return p.z[a] < p.z[b];
-    return a < b;
-  });
-  Points s;
-  for (std::uint32_t i : order) {
-    s.x.push_back(p.x[i]);
-    s.y.push_back(p.y[i]);
-    s.z.push_back(p.z[i]);
-  }
-  return s;
-}
 
 void validate(const VisibilityOptions& o) {
   for (double s : o.sigmas)
@@ -114,7 +76,8 @@ void validate(const VisibilityOptions& o) {
 struct ThreadState {
   std::vector<std::int64_t> acc;
   std::vector<double> max_distance;
-  std::vector<std::uint32_t> candidates;
+  std::vector<std::uint32_t> candidates, cast_candidates;
+  std::vector<detail::PairCulling::Block> blocks;
   std::vector<std::pair<std::uint32_t, double>> matches;
   std::vector<std::int64_t> c_fixed, row;  // row: per-lane totals of the current row
   std::uint64_t cast = 0, visible = 0, coincident = 0;
@@ -141,80 +104,99 @@ Edge edge(const Pass& pass, std::size_t row, std::uint32_t partner, double dista
   return Edge{std::min(a, b), std::max(a, b), distance};
 }
 
-// Casts row i against `count` partners and accumulates: partners j0 .. j0 +
-// count - 1 when `cand` is null, else cand[0 .. count).
-void process_row(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t j0, std::size_t count,
-                 ThreadState& ts, std::vector<Edge>* edges) {
+// A row is accumulated in three steps: begin_row, add_packet for each packet
+// of at most 16 partners, end_row (which adds the row's lane totals to its
+// node).  add_packet takes partners j0 .. j0 + n - 1 when `cand` is null,
+// else cand[0 .. n).  With cast_rays false the partners are known to be in
+// sight (culling): the packet goes through the same policy (coincident,
+// close, max distance) without Embree.
+void begin_row(ThreadState& ts) { std::fill(ts.row.begin(), ts.row.end(), 0); }
+
+void add_packet(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t j0, int n, ThreadState& ts,
+                std::vector<Edge>* edges, bool cast_rays) {
   const Points& S = *pass.sources;
   const Points& P = *pass.partners;
-  const double ox = S.x[i], oy = S.y[i], oz = S.z[i];
   const int K = pass.K;
   const std::size_t N = pass.N;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   PairPacket packet;
   alignas(64) double gx[kLanes], gy[kLanes], gz[kLanes];
   alignas(64) std::int64_t d_fixed[kLanes];
   std::uint32_t partner[kLanes];
-  std::int64_t* row = ts.row.data();
-  std::fill(ts.row.begin(), ts.row.end(), 0);
   std::int64_t* c = ts.c_fixed.data();
   std::int64_t* credit = pass.symmetric && !cand ? ts.acc.data() : nullptr;
   const bool scatter = pass.symmetric && cand;
-  for (std::size_t start = 0; start < count; start += kLanes) {
-    const int n = static_cast<int>(std::min<std::size_t>(kLanes, count - start));
-    const double *px, *py, *pz;
-    if (cand) {
-      for (int l = 0; l < n; ++l) {
-        const std::uint32_t j = cand[start + l];
-        partner[l] = j;
-        gx[l] = P.x[j];
-        gy[l] = P.y[j];
-        gz[l] = P.z[j];
-      }
-      px = gx, py = gy, pz = gz;
-    } else {
-      for (int l = 0; l < n; ++l) partner[l] = static_cast<std::uint32_t>(j0 + start + l);
-      px = P.x.data() + j0 + start, py = P.y.data() + j0 + start, pz = P.z.data() + j0 + start;
+  const double *px, *py, *pz;
+  if (cand) {
+    for (int l = 0; l < n; ++l) {
+      const std::uint32_t j = cand[l];
+      partner[l] = j;
+      gx[l] = P.x[j];
+      gy[l] = P.y[j];
+      gz[l] = P.z[j];
     }
-    detail::build_packet(ox, oy, oz, px, py, pz, n, pass.max_distance, packet);
-    ts.coincident += static_cast<std::uint64_t>(packet.coincident);
-    if (packet.cast) {
-      ts.cast += static_cast<std::uint64_t>(packet.cast);
-      rtcOccluded16(packet.valid, pass.rtc, &context, &packet.ray);
-      detail::resolve_packet(packet);
-    }
-    // A packet with nothing visible adds nothing: skip its scoring (most
-    // packets of an occluded scene such as the city).
-    if (packet.visible_count == 0) continue;
-    detail::contrast_lanes(packet.distance, packet.visible, pass.neg_sigma.data(), K, c, d_fixed);
-    detail::accumulate_packet(packet, c, d_fixed, K, n, row, credit, N, j0 + start);
-    if (scatter || pass.keep_max || edges) {
-      for (int l = 0; l < n; ++l) {
-        if (packet.visible[l] == 0) continue;
-        const std::uint32_t j = partner[l];
-        const double d = packet.distance[l];
-        if (scatter) {
-          ts.acc[j] += 1;
-          ts.acc[N + j] += d_fixed[l];
-          for (int k = 0; k < K; ++k) ts.acc[static_cast<std::size_t>(2 + k) * N + j] += c[k * kLanes + l];
-        }
-        if (pass.keep_max) {
-          ts.max_distance[i] = std::max(ts.max_distance[i], d);
-          if (pass.symmetric) ts.max_distance[j] = std::max(ts.max_distance[j], d);
-        }
-        if (edges) edges->push_back(edge(pass, i, j, d));
-      }
-    }
+    px = gx, py = gy, pz = gz;
+  } else {
+    for (int l = 0; l < n; ++l) partner[l] = static_cast<std::uint32_t>(j0 + l);
+    px = P.x.data() + j0, py = P.y.data() + j0, pz = P.z.data() + j0;
   }
-  for (int s = 0; s < 2 + K; ++s) {
+  detail::build_packet(S.x[i], S.y[i], S.z[i], px, py, pz, n, pass.max_distance, packet);
+  ts.coincident += static_cast<std::uint64_t>(packet.coincident);
+  if (packet.cast) {
+    if (cast_rays) {
+      ts.cast += static_cast<std::uint64_t>(packet.cast);
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      rtcOccluded16(packet.valid, pass.rtc, &context, &packet.ray);
+    }
+    detail::resolve_packet(packet);  // not cast: tfar = 1 - t_near >= 0, every lane in sight
+  }
+  // A packet with nothing visible adds nothing: skip its scoring (most
+  // packets of an occluded scene such as the city).
+  if (packet.visible_count == 0) return;
+  detail::contrast_lanes(packet.distance, packet.visible, pass.neg_sigma.data(), K, c, d_fixed);
+  detail::accumulate_packet(packet, c, d_fixed, K, n, ts.row.data(), credit, N, j0);
+  if (!scatter && !pass.keep_max && !edges) return;
+  for (int l = 0; l < n; ++l) {
+    if (packet.visible[l] == 0) continue;
+    const std::uint32_t j = partner[l];
+    const double d = packet.distance[l];
+    if (scatter) {
+      ts.acc[j] += 1;
+      ts.acc[N + j] += d_fixed[l];
+      for (int k = 0; k < K; ++k) ts.acc[static_cast<std::size_t>(2 + k) * N + j] += c[k * kLanes + l];
+    }
+    if (pass.keep_max) {
+      ts.max_distance[i] = std::max(ts.max_distance[i], d);
+      if (pass.symmetric) ts.max_distance[j] = std::max(ts.max_distance[j], d);
+    }
+    if (edges) edges->push_back(edge(pass, i, j, d));
+  }
+}
+
+void end_row(const Pass& pass, std::size_t i, ThreadState& ts) {
+  for (int s = 0; s < 2 + pass.K; ++s) {
     std::int64_t total = 0;
-    for (int l = 0; l < kLanes; ++l) total += row[s * kLanes + l];
-    ts.acc[static_cast<std::size_t>(s) * N + i] += total;
+    for (int l = 0; l < kLanes; ++l) total += ts.row[static_cast<std::size_t>(s * kLanes + l)];
+    ts.acc[static_cast<std::size_t>(s) * pass.N + i] += total;
     if (s == 0) ts.visible += static_cast<std::uint64_t>(total);
   }
 }
+
+// Row i against `count` partners in packets of 16 (see add_packet).
+void process_row(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t j0, std::size_t count,
+                 ThreadState& ts, std::vector<Edge>* edges) {
+  begin_row(ts);
+  for (std::size_t start = 0; start < count; start += kLanes) {
+    const int n = static_cast<int>(std::min<std::size_t>(kLanes, count - start));
+    add_packet(pass, i, cand ? cand + start : nullptr, j0 + start, n, ts, edges, true);
+  }
+  end_row(pass, i, ts);
+}
+
+// Pruning is chosen over the exact pass only when at most this fraction of
+// the pairs lie within its radius (see run_pass).
+constexpr double kPruneWorthFraction = 0.1;
 
 // How a pass finds each row's partners (see the file comment).
 struct Plan {
@@ -323,7 +305,7 @@ void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const Visi
   const std::size_t block_rows =
       options.edge_sink ? std::max<std::size_t>(1, (std::size_t{1} << 22) / std::max<std::size_t>(M, 1)) : N;
   std::vector<std::vector<Edge>> row_edges(options.edge_sink ? block_rows : 0);
-  Progress progress(options.progress, pairs_total, "vg");
+  Progress progress(options.progress, options.on_progress, pairs_total, "vg", options.pairs_done, options.cancel);
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     for (std::size_t block = 0; block < N; block += block_rows) {
@@ -331,18 +313,13 @@ void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const Visi
       tbb::parallel_for(tbb::blocked_range<std::size_t>(block, block_end, 1),
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           ThreadState& ts = states.local();
-                          std::uint64_t done = 0;
                           for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                            if (options.cancel && options.cancel->load(std::memory_order_relaxed)) break;
                             std::vector<Edge>* edges = options.edge_sink ? &row_edges[i - block] : nullptr;
                             if (edges) edges->clear();
-                            done += pass.symmetric ? N - 1 - i : M;
                             run_row(pass, plan, tree, i, ts, edges, pruned);
+                            progress.add(pass.symmetric ? N - 1 - i : M);
                           }
-                          progress.add(done);
-                          if (options.pairs_done) options.pairs_done->fetch_add(done, std::memory_order_relaxed);
                         });
-      if (options.cancel && options.cancel->load(std::memory_order_relaxed)) throw Cancelled();
       if (options.edge_sink) {
         std::vector<Edge> out;
         for (std::size_t i = block; i < block_end; ++i)
@@ -352,6 +329,78 @@ void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const Visi
     }
   });
   progress.finish();
+}
+
+// The rows of one leaf cluster that lie in [row_begin, row_end), each
+// against its partners after it (x order) in the clusters not culled as
+// blocked: partners culled as visible go through the policy without rays,
+// the rest are cast.  Edges of a row are put in partner order, as in the
+// row-by-row pass.
+void run_leaf_rows(const Pass& pass, const detail::PairCulling& culling, std::size_t leaf, std::size_t row_begin,
+                   std::size_t row_end, ThreadState& ts, std::vector<std::vector<Edge>>* row_edges,
+                   const std::vector<std::uint32_t>& rank_of, Progress& progress) {
+  std::size_t count = 0;
+  const std::uint32_t* rows = culling.leaf_rows(leaf, count);
+  const std::uint32_t* first = std::lower_bound(rows, rows + count, static_cast<std::uint32_t>(row_begin));
+  const std::uint32_t* last = std::lower_bound(rows, rows + count, static_cast<std::uint32_t>(row_end));
+  if (first == last) return;
+  culling.partner_blocks(leaf, ts.blocks);
+  for (const std::uint32_t* r = first; r != last; ++r) {
+    const std::uint32_t i = *r;
+    std::vector<Edge>* edges = row_edges ? &(*row_edges)[i - row_begin] : nullptr;
+    if (edges) edges->clear();
+    begin_row(ts);
+    std::uint64_t done = 0;
+    for (const detail::PairCulling::Block& block : ts.blocks) {
+      std::size_t n = 0;
+      const std::uint32_t* partners = culling.leaf_rows(block.leaf, n);
+      if (n == 0 || partners[n - 1] <= i) continue;
+      const std::uint32_t* from = partners[0] > i ? partners : std::upper_bound(partners, partners + n, i);
+      const int count = static_cast<int>(partners + n - from);
+      add_packet(pass, i, from, 0, count, ts, edges, block.verdict == detail::Verdict::cast);
+      done += static_cast<std::uint64_t>(count);
+    }
+    end_row(pass, i, ts);
+    if (edges) {
+      const std::uint32_t self = pass.caller[i];
+      std::sort(edges->begin(), edges->end(), [&](const Edge& a, const Edge& b) {
+        return rank_of[a.i == self ? a.j : a.i] < rank_of[b.i == self ? b.j : b.i];
+      });
+    }
+    progress.add(done);  // blocked pairs were counted when their clusters were classified
+  }
+}
+
+// All-to-all with culling: rows grouped by leaf cluster (each leaf's
+// partner list is expanded once), in blocks of rows when edges are written
+// so that the edge list goes out in row order without being held whole.
+void run_rows_culled(const Pass& pass, const detail::PairCulling& culling, const VisibilityOptions& options,
+                     tbb::enumerable_thread_specific<ThreadState>& states, Progress& progress) {
+  const std::size_t N = pass.N;
+  const std::size_t block_rows =
+      options.edge_sink ? std::max<std::size_t>(1, (std::size_t{1} << 22) / std::max<std::size_t>(N, 1)) : N;
+  std::vector<std::vector<Edge>> row_edges(options.edge_sink ? block_rows : 0);
+  std::vector<std::uint32_t> rank_of(options.edge_sink ? N : 0);
+  for (std::size_t r = 0; r < rank_of.size(); ++r) rank_of[pass.caller[r]] = static_cast<std::uint32_t>(r);
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    for (std::size_t block = 0; block < N; block += block_rows) {
+      const std::size_t block_end = std::min(N, block + block_rows);
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, culling.leaf_count(), 1),
+                        [&](const tbb::blocked_range<std::size_t>& range) {
+                          ThreadState& ts = states.local();
+                          for (std::size_t leaf = range.begin(); leaf != range.end(); ++leaf)
+                            run_leaf_rows(pass, culling, leaf, block, block_end, ts,
+                                          options.edge_sink ? &row_edges : nullptr, rank_of, progress);
+                        });
+      if (options.edge_sink) {
+        std::vector<Edge> out;
+        for (std::size_t i = block; i < block_end; ++i)
+          out.insert(out.end(), row_edges[i - block].begin(), row_edges[i - block].end());
+        options.edge_sink(out);
+      }
+    }
+  });
 }
 
 // Exact reduction of the per-thread integer accumulators into `result`, in
@@ -382,6 +431,12 @@ void collect_results(const tbb::enumerable_thread_specific<ThreadState>& states,
       result.sum[static_cast<std::size_t>(k)][caller_index(i)] = static_cast<double>(t[i]) / kContrastScale;
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  // A pruned pass that dropped no partner anywhere cast every pair: its
+  // degree and distances are exact.
+  if (!result.degree_exact && std::all_of(pruned.begin(), pruned.end(), [](std::uint32_t p) { return p == 0; })) {
+    result.degree_exact = true;
+    result.pruning_note = "nothing pruned: every pair lies within the pruning radius; every column is exact";
+  }
   if (result.degree_exact) {
     result.degree.resize(N);
     for (std::size_t i = 0; i < N; ++i) result.degree[caller_index(i)] = static_cast<std::uint32_t>(total[i]);
@@ -445,9 +500,28 @@ void check_pass_input(const Points& sources, const Points& partners, bool symmet
 }
 
 VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const Points& partners, bool symmetric,
-                          const VisibilityOptions& options) {
-  check_pass_input(given_sources, partners, symmetric, options);
+                          const VisibilityOptions& requested) {
+  check_pass_input(given_sources, partners, symmetric, requested);
   const auto start_time = std::chrono::steady_clock::now();
+  // Pruning pays only when the radius leaves out most pairs: a pruned pass
+  // casts every pair within it, the exact pass culls.  When more than
+  // kPruneWorthFraction of the pairs lie within the radius along x, run
+  // exact instead: nothing is pruned and every column is exact.
+  VisibilityOptions options = requested;
+  std::string pruning_note;
+  const Plan asked = plan_pass(options, symmetric);
+  if (asked.pruning && !options.always_prune) {
+    const double total = symmetric ? 0.5 * given_sources.size() * (given_sources.size() - 1.0)
+                                   : static_cast<double>(given_sources.size()) * partners.size();
+    const double within = pairs_within_x(given_sources, partners, symmetric, asked.prune_radius);
+    if (within > kPruneWorthFraction * total) {
+      options.tolerance = 0;
+      pruning_note = "nothing pruned: " + std::to_string(static_cast<int>(100 * within / total + 0.5)) +
+                     "% of the pairs lie within the pruning radius " + std::to_string(asked.prune_radius) +
+                     " m, more than the " + std::to_string(static_cast<int>(100 * kPruneWorthFraction)) +
+                     "% for which pruning is faster than the exact pass; every column is exact";
+    }
+  }
   const Plan plan = plan_pass(options, symmetric);
   const std::size_t N = given_sources.size(), M = symmetric ? N : partners.size();
   const int K = static_cast<int>(options.sigmas.size());
@@ -455,6 +529,7 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
   result.nodes = N;
   result.tolerance = options.tolerance;
   result.pruning_radius = plan.prune_radius;
+  result.pruning_note = pruning_note;
   result.degree_exact = !plan.pruning;
   result.pairs_total = symmetric ? static_cast<std::uint64_t>(N) * (N - 1) / 2 : static_cast<std::uint64_t>(N) * M;
 
@@ -486,8 +561,34 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
     return ts;
   });
   std::vector<std::uint32_t> pruned(N, 0);
-  run_rows(pass, plan, tree.get(), options, states, pruned, result.pairs_total);
+  if (symmetric && !plan.slab) {
+    // All-to-all without a candidate radius: rows against leaf clusters, with
+    // or without culling (the same packets either way: pair_culling.hpp).
+    Progress progress(options.progress, options.on_progress, result.pairs_total, "vg", options.pairs_done,
+                      options.cancel);
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    std::unique_ptr<detail::PairCulling> culling;
+    arena.execute([&] {
+      culling = std::make_unique<detail::PairCulling>(pass.rtc, scene.triangle_count(), sources.x, sources.y,
+                                                      sources.z, options.culling, &progress);
+    });
+    result.pairs_culled_visible = culling->pairs_visible();
+    result.pairs_culled_blocked = culling->pairs_blocked();
+    result.culling_seconds = culling->seconds();
+    run_rows_culled(pass, *culling, options, states, progress);
+    progress.finish();
+  } else {
+    run_rows(pass, plan, tree.get(), options, states, pruned, result.pairs_total);
+  }
   collect_results(states, plan, pass, order, std::move(pruned), result);
+  if (plan.pruning && result.degree.empty()) {
+    std::uint64_t dropped = 0, nodes_with_drops = 0;
+    for (std::uint32_t p : result.pruned) dropped += p, nodes_with_drops += p > 0;
+    result.pruning_note = "pruned " + std::to_string(dropped) + " partner slots (pairs farther than " +
+                          std::to_string(plan.prune_radius) + " m, each contributing < " +
+                          std::to_string(options.tolerance) + " to every S_S) at " + std::to_string(nodes_with_drops) +
+                          " nodes; degree, averages and distances need every pair and are left out";
+  }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;
 }
@@ -509,58 +610,6 @@ VisibilityResult to_targets(const Scene& scene, const std::vector<Eigen::Vector3
   const Points s = to_local(scene, sources, "node");
   const Points t = to_local(scene, targets, "target");
   return run_pass(scene, s, t, false, options);
-}
-
-std::uint64_t raw_visible_pairs(const Scene& scene, const std::vector<Eigen::Vector3d>& eyes, int threads,
-                                RawMethod method) {
-  // The same directed rays as all_to_all: nodes in x order, each pair cast
-  // from the earlier one (see plan_pass).
-  std::vector<std::uint32_t> order;
-  const Points P = sorted_by_x(to_local(scene, eyes, "node"), order);
-  const RTCScene rtc = detail::SceneAccess::embree(scene);
-  const std::size_t N = P.size();
-  std::atomic<std::uint64_t> visible{0};
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, N, 1), [&](const tbb::blocked_range<std::size_t>& range) {
-      std::uint64_t seen = 0;
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
-      if (method == RawMethod::packets16) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-      PairPacket packet;
-      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-        // The same packets as the engine (same policy, same setup code);
-        // single rays cast each lane with rtcOccluded1.
-        for (std::size_t start = i + 1; start < N; start += kLanes) {
-          const int n = static_cast<int>(std::min<std::size_t>(kLanes, N - start));
-          detail::build_packet(P.x[i], P.y[i], P.z[i], P.x.data() + start, P.y.data() + start, P.z.data() + start, n,
-                               std::numeric_limits<double>::infinity(), packet);
-          if (method == RawMethod::packets16) {
-            if (packet.cast) rtcOccluded16(packet.valid, rtc, &context, &packet.ray);
-          } else {
-            for (int l = 0; l < kLanes; ++l) {
-              if (!packet.valid[l]) continue;
-              RTCRay ray{};
-              ray.org_x = packet.ray.org_x[l];
-              ray.org_y = packet.ray.org_y[l];
-              ray.org_z = packet.ray.org_z[l];
-              ray.dir_x = packet.ray.dir_x[l];
-              ray.dir_y = packet.ray.dir_y[l];
-              ray.dir_z = packet.ray.dir_z[l];
-              ray.tnear = packet.ray.tnear[l];
-              ray.tfar = packet.ray.tfar[l];
-              ray.mask = 0xFFFFFFFFu;
-              rtcOccluded1(rtc, &context, &ray);
-              packet.ray.tfar[l] = ray.tfar;
-            }
-          }
-          for (int l = 0; l < kLanes; ++l) seen += packet.valid[l] ? packet.ray.tfar[l] >= 0 : packet.visible[l] != 0;
-        }
-      }
-      visible += seen;
-    });
-  });
-  return visible.load();
 }
 
 }  // namespace attenuvis::visgraph

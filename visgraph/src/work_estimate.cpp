@@ -22,6 +22,8 @@ double candidate_radius(const VisibilityOptions& o) {
   return std::min(r, o.max_distance);
 }
 
+double o_max_distance(const VisibilityOptions& o) { return o.max_distance; }
+
 std::vector<double> sorted_x(const std::vector<Eigen::Vector3d>& p) {
   std::vector<double> x;
   x.reserve(p.size());
@@ -44,19 +46,29 @@ WorkEstimate estimate_work(const std::vector<Eigen::Vector3d>& sources, const st
   e.radius = candidate_radius(options);
   e.threads = options.threads > 0 ? options.threads : std::max(1, tbb::info::default_concurrency());
   const double N = static_cast<double>(e.nodes), M = static_cast<double>(e.targets);
-  if (!std::isfinite(e.radius)) {
-    e.pairs = targets ? N * M : N * (N - 1) / 2;
-  } else {
-    // The pass's candidates lie within the radius in x (a slab): count those.
-    const std::vector<double> s = sorted_x(sources);
-    const std::vector<double> t = targets ? sorted_x(*targets) : std::vector<double>();
+  const double all = targets ? N * M : N * (N - 1) / 2;
+  // The pass's candidates lie within the radius in x (a slab): count those.
+  const std::vector<double> s = sorted_x(sources);
+  const std::vector<double> t = targets ? sorted_x(*targets) : std::vector<double>();
+  const auto slab_pairs = [&](double radius) {
+    if (!std::isfinite(radius)) return all;
     const std::vector<double>& partners = targets ? t : s;
+    double pairs = 0;
     for (std::size_t i = 0; i < s.size(); ++i) {
-      const auto hi = std::upper_bound(partners.begin(), partners.end(), s[i] + e.radius);
-      const auto lo = targets ? std::lower_bound(partners.begin(), partners.end(), s[i] - e.radius)
+      const auto hi = std::upper_bound(partners.begin(), partners.end(), s[i] + radius);
+      const auto lo = targets ? std::lower_bound(partners.begin(), partners.end(), s[i] - radius)
                               : partners.begin() + static_cast<std::ptrdiff_t>(i + 1);
-      if (hi > lo) e.pairs += static_cast<double>(hi - lo);
+      if (hi > lo) pairs += static_cast<double>(hi - lo);
     }
+    return pairs;
+  };
+  e.pairs = slab_pairs(e.radius);
+  // The pass runs exact instead of pruning when more than a tenth of the
+  // pairs lie within the pruning radius (visibility.hpp): count its pairs.
+  const bool pruning = e.radius < o_max_distance(options);
+  if (pruning && !options.always_prune && e.pairs > 0.1 * all) {
+    e.radius = options.max_distance;
+    e.pairs = slab_pairs(e.radius);
   }
   // Per thread: slot-major int64 accumulators (degree, distance, one per
   // sigma, within-radius count) and max distances, for every source node.

@@ -36,19 +36,26 @@ struct ThroughputOptions {
   int threads = 1;
   int repeats = 3;
   bool single_rays = true;  // also time the rtcOccluded1 loop (the slowest part)
+  bool brute_force = false;  // also time the engine with culling off (every pair cast)
 };
 
 struct Throughput {
   std::size_t nodes = 0;
   std::uint64_t pairs = 0;  // unordered pairs, N (N-1) / 2
   Timing engine, packets16, single;  // single is zero when not measured
-  std::uint64_t visible_engine = 0, visible_packets16 = 0, visible_single = 0;
+  Timing brute;                      // engine without culling; zero when not measured
+  std::uint64_t visible_engine = 0, visible_packets16 = 0, visible_single = 0, visible_brute = 0;
+  // Where the engine's pairs went: decided by culling (in sight / blocked)
+  // or by a ray; and the seconds spent clustering and classifying.
+  std::uint64_t culled_visible = 0, culled_blocked = 0, cast = 0;
+  double culling_s = 0;
   double engine_mpairs_s() const { return pairs / engine.best_s / 1e6; }
   double packets16_mpairs_s() const { return pairs / packets16.best_s / 1e6; }
   double single_mpairs_s() const { return single.best_s > 0 ? pairs / single.best_s / 1e6 : 0.0; }
   // Speed of the engine as a fraction of the raw loop's speed (1 = as fast as Embree alone).
   double ratio_to_packets16() const { return packets16.best_s / engine.best_s; }
   double ratio_to_single() const { return single.best_s > 0 ? single.best_s / engine.best_s : 0.0; }
+  double ratio_brute_to_packets16() const { return brute.best_s > 0 ? packets16.best_s / brute.best_s : 0.0; }
   bool visible_agree() const;  // every method found the same number of visible pairs
 };
 

@@ -15,10 +15,24 @@
 // relative term the rounding of a direction of length d.  Pairs with d <
 // 1e-6 m are coincident: never cast, neither visible nor counted (reported
 // as `coincident_pairs`).  all_to_all casts every pair from its end earlier
-// in x order (ties by y, z, index), in the same packets whatever outputs are
-// asked for, so that a segment that just touches an edge (Embree's answer
-// then depends on the ray's direction) is decided the same way in every run.  Pairs with d <= 2 gap(d) but not coincident are
-// visible without a ray (no room for geometry between them).
+// in x order (ties by y, z, index), in canonical packets (the row against the
+// partners after it in one cluster of <= 16 nearby nodes) whatever outputs
+// are asked for and whether or not it culls, so that a segment that just
+// touches an edge (Embree's answer then depends on the ray's direction and
+// on the packet it travels in) is decided the same way in every run.  Pairs
+// with d <= 2 gap(d) but not coincident are visible without a ray (no room
+// for geometry between them).
+//
+// Exact culling (all_to_all without a candidate radius; on by default).
+// Clusters of nodes are compared as wholes (src/pair_culling.hpp): a pair of
+// clusters whose convex hull, grown by the margin m = 1e-3 m + 1e-5 L (L the
+// largest |local coordinate| of a node or vertex), meets no triangle is all
+// in sight; one whose sight lines all pass through one planar convex
+// occluder, at least m inside it and m from either end, is all blocked.  m
+// exceeds the end gap and the float rounding of Embree's rays, so those
+// pairs are decided as their rays would be; the rest are cast in the same
+// packets as without culling.  Results (degree, S_S bits, distances, edge
+// list) are identical with culling on or off.
 //
 // Determinism.  Contributions are accumulated as 64-bit integers in fixed
 // point (C in units of 2^-40, distance in units of 2^-20 m): integer addition
@@ -32,7 +46,11 @@
 // radius search).  Each skipped partner would have contributed at most
 // exp(-sigma_k R) <= eps to S_S[k], so |S_S error| <= pruned x eps, reported
 // per node (`pruned`).  Degree and distance statistics need every pair, so
-// they are reported only when no pair within max_distance is pruned.
+// they are reported only when no pair within max_distance is pruned.  A
+// pruned pass casts every pair within R while the exact pass culls, so
+// pruning is applied only when at most 10% of the pairs lie within R along
+// x; otherwise the pass runs exact and says so in `pruning_note`, which also
+// says what a pruned pass dropped.
 #pragma once
 
 #include <attenuvis/visgraph/scene.hpp>
@@ -45,6 +63,7 @@
 #include <functional>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace attenuvis::visgraph {
@@ -52,6 +71,14 @@ namespace attenuvis::visgraph {
 struct Edge {
   std::uint32_t i, j;  // node indices (targets mode: j indexes the targets)
   double distance;     // m
+};
+
+// A pass's progress, once a second from its first second: pairs done
+// (cast, or decided without a ray by culling or the line-of-sight policy),
+// the rate so far and the time left at that rate (-1: unknown).
+struct ProgressReport {
+  std::uint64_t pairs_done = 0, pairs_total = 0;
+  double seconds = 0, pairs_per_s = 0, seconds_left = -1;
 };
 
 struct VisibilityOptions {
@@ -66,7 +93,17 @@ struct VisibilityOptions {
   // end (the order the pass visits them); to_targets: (source, target) in
   // source order.  Asking for edges never changes the scores.
   std::function<void(const std::vector<Edge>&)> edge_sink;
-  bool progress = false;                 // progress line on stderr after ~3 s
+  bool progress = false;                 // progress line on stderr, once a second
+  // If set, called once a second during the pass (from a watcher thread)
+  // with the progress; the Python API and the CLI show it from here.
+  std::function<void(const ProgressReport&)> on_progress;
+  // Exact culling (all_to_all without pruning or max distance): blocks of
+  // pairs decided without rays, results identical to casting every pair.
+  // false: every pair cast (the reference the culling is tested against).
+  bool culling = true;
+  // Prune whenever tolerance > 0 allows it, even where the exact pass would
+  // be faster (tests and error studies of the pruning itself).
+  bool always_prune = false;
   // For a caller watching the pass from another thread (the Python binding
   // polls for Ctrl-C and reports progress): `pairs_done`, if set, counts the
   // pairs processed so far (of pairs_total); once `cancel` reads true the pass
@@ -94,6 +131,10 @@ struct VisibilityResult {
   std::uint64_t pairs_cast = 0;             // pairs given to Embree
   std::uint64_t pairs_visible = 0;
   std::uint64_t coincident_pairs = 0;
+  std::uint64_t pairs_culled_visible = 0;   // culling: pairs decided in sight without rays
+  std::uint64_t pairs_culled_blocked = 0;   // culling: pairs decided blocked without rays
+  double culling_seconds = 0;               // culling: clustering and classification
+  std::string pruning_note;                 // what pruning dropped and why (empty: not asked)
   double seconds = 0;                       // wall time of the pass
 
   // S_A for condition k at node i (NaN when degree is 0 or withheld).

@@ -1,0 +1,481 @@
+// Shaft queries and planar occluders over Embree's own triangles
+// (cull_geometry.hpp; the proofs behind the tests are in pair_culling.hpp).
+#include "cull_geometry.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace attenuvis::visgraph::detail {
+
+namespace {
+using V3 = std::array<double, 3>;
+inline double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline V3 cross(const double* a, const double* b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline V3 sub(const double* a, const double* b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline double norm(const V3& a) { return std::sqrt(dot(a.data(), a.data())); }
+
+// The 8 corners of a box, optionally grown by g on every side.
+void corners(const Box3& b, double g, double (*out)[3]) {
+  for (int k = 0; k < 8; ++k)
+    for (int c = 0; c < 3; ++c) out[k][c] = (k >> c & 1) ? b.hi[c] + g : b.lo[c] - g;
+}
+
+// Convex hull of two grown boxes, as the separating-axis tests see it.
+struct Shaft {
+  double corner[16][3];
+  double lo[3], hi[3];
+  double dir[3];
+  bool has_dir = false;
+  double axis[3][3], amin[3], amax[3];
+  int axes = 0;
+
+  void project(const double* n, double& lo_out, double& hi_out) const {
+    lo_out = hi_out = dot(n, corner[0]);
+    for (int k = 1; k < 16; ++k) {
+      const double p = dot(n, corner[k]);
+      lo_out = std::min(lo_out, p);
+      hi_out = std::max(hi_out, p);
+    }
+  }
+  // True when axis n separates the hull from points p[0..count).
+  bool separates(const double* n, const double (*p)[3], int count) const {
+    if (dot(n, n) < 1e-24) return false;
+    double hl, hh;
+    project(n, hl, hh);
+    double pl = dot(n, p[0]), ph = pl;
+    for (int k = 1; k < count; ++k) {
+      const double v = dot(n, p[k]);
+      pl = std::min(pl, v);
+      ph = std::max(ph, v);
+    }
+    return ph < hl || pl > hh;
+  }
+};
+
+Shaft make_shaft(const Box3& a, const Box3& b, double g) {
+  Shaft s;
+  corners(a, g, s.corner);
+  corners(b, g, s.corner + 8);
+  for (int c = 0; c < 3; ++c) {
+    s.lo[c] = std::min(a.lo[c], b.lo[c]) - g;
+    s.hi[c] = std::max(a.hi[c], b.hi[c]) + g;
+    s.dir[c] = 0.5 * (b.lo[c] + b.hi[c]) - 0.5 * (a.lo[c] + a.hi[c]);
+  }
+  s.has_dir = dot(s.dir, s.dir) > 0;
+  if (s.has_dir)
+    for (int c = 0; c < 3; ++c) {
+      double e[3] = {0, 0, 0};
+      e[c] = 1;
+      const V3 n = cross(s.dir, e);
+      if (dot(n.data(), n.data()) < 1e-24 * dot(s.dir, s.dir)) continue;
+      std::copy(n.begin(), n.end(), s.axis[s.axes]);
+      s.project(s.axis[s.axes], s.amin[s.axes], s.amax[s.axes]);
+      ++s.axes;
+    }
+  return s;
+}
+
+bool boxes_overlap(const double* alo, const double* ahi, const double* blo, const double* bhi) {
+  for (int c = 0; c < 3; ++c)
+    if (ahi[c] < blo[c] || alo[c] > bhi[c]) return false;
+  return true;
+}
+}  // namespace
+
+CullGeometry::CullGeometry(RTCScene scene, std::size_t triangle_count) {
+  RTCGeometry geometry = rtcGetGeometry(scene, 0);
+  const auto* vertex = static_cast<const float*>(rtcGetGeometryBufferData(geometry, RTC_BUFFER_TYPE_VERTEX, 0));
+  const auto* index = static_cast<const unsigned*>(rtcGetGeometryBufferData(geometry, RTC_BUFFER_TYPE_INDEX, 0));
+  if (!vertex || !index) throw std::runtime_error("visibility: the scene's triangles are not readable for culling");
+  tris_.resize(triangle_count);
+  std::vector<double> centroid(3 * triangle_count);
+  for (std::size_t t = 0; t < triangle_count; ++t)
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) {
+        const double v = vertex[3 * index[3 * t + k] + c];
+        tris_[t].v[k][c] = v;
+        centroid[3 * t + c] += v / 3;
+        max_abs_ = std::max(max_abs_, std::abs(v));
+      }
+  order_.resize(triangle_count);
+  std::iota(order_.begin(), order_.end(), 0u);
+  bvh_.reserve(2 * triangle_count / 2 + 1);
+  build(0, static_cast<std::uint32_t>(triangle_count), centroid);
+  build_occluders(index);
+  build_solids(index);
+}
+
+// Closed convex solids: connected sets of at most kMaxSolidTriangles
+// triangles (through shared vertex indices) in which every edge belongs to
+// exactly two triangles and every vertex lies behind every face plane (to
+// within 1e-6 of the solid's size; the excess is kept as slack).  Buildings
+// and obstacles made as closed boxes are such solids.
+void CullGeometry::build_solids(const unsigned* index) {
+  constexpr std::size_t kMaxSolidTriangles = 64;
+  const std::size_t T = tris_.size();
+  solid_of_.assign(T, -1);
+  // Union-find over vertex indices.
+  unsigned max_vertex = 0;
+  for (std::size_t k = 0; k < 3 * T; ++k) max_vertex = std::max(max_vertex, index[k]);
+  std::vector<unsigned> parent(static_cast<std::size_t>(max_vertex) + 1);
+  std::iota(parent.begin(), parent.end(), 0u);
+  const auto find = [&](unsigned v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (std::size_t t = 0; t < T; ++t) {
+    const unsigned a = find(index[3 * t]), b = find(index[3 * t + 1]), c = find(index[3 * t + 2]);
+    parent[b] = a;
+    parent[find(c)] = a;
+  }
+  std::unordered_map<unsigned, std::vector<std::uint32_t>> groups;
+  for (std::size_t t = 0; t < T; ++t) groups[find(index[3 * t])].push_back(static_cast<std::uint32_t>(t));
+  for (auto& [root, tris] : groups) {
+    (void)root;
+    if (tris.size() < 4 || tris.size() > kMaxSolidTriangles) continue;
+    std::unordered_map<std::uint64_t, int> edge_uses;
+    for (std::uint32_t t : tris)
+      for (int k = 0; k < 3; ++k) {
+        const unsigned a = index[3 * t + k], b = index[3 * t + (k + 1) % 3];
+        ++edge_uses[(std::uint64_t{std::min(a, b)} << 32) | std::max(a, b)];
+      }
+    bool closed = true;
+    for (const auto& [edge, uses] : edge_uses) closed &= uses == 2;
+    if (!closed) continue;
+    Solid solid;
+    double centre[3] = {0, 0, 0}, size = 0;
+    for (std::uint32_t t : tris)
+      for (int v = 0; v < 3; ++v)
+        for (int c = 0; c < 3; ++c) centre[c] += tris_[t].v[v][c] / (3.0 * static_cast<double>(tris.size()));
+    for (std::uint32_t t : tris)
+      for (int v = 0; v < 3; ++v) size = std::max(size, norm(sub(tris_[t].v[v], centre)));
+    bool convex = size > 0;
+    for (std::uint32_t t : tris) {
+      const V3 e1 = sub(tris_[t].v[1], tris_[t].v[0]), e2 = sub(tris_[t].v[2], tris_[t].v[0]);
+      V3 n = cross(e1.data(), e2.data());
+      const double l = norm(n);
+      if (l == 0) continue;  // a degenerate triangle bounds nothing
+      n = {n[0] / l, n[1] / l, n[2] / l};
+      double c = dot(n.data(), tris_[t].v[0]);
+      if (dot(n.data(), centre) - c > 0) n = {-n[0], -n[1], -n[2]}, c = -c;
+      if (!(dot(n.data(), centre) - c < -1e-6 * size)) convex = false;  // centre on a face: flat, not a solid
+      for (std::uint32_t u : tris)
+        for (int v = 0; v < 3; ++v) {
+          const double beyond = dot(n.data(), tris_[u].v[v]) - c;
+          if (beyond > 1e-6 * size) convex = false;
+          solid.slack = std::max(solid.slack, beyond);
+        }
+      solid.faces.push_back({n[0], n[1], n[2], c});
+    }
+    if (!convex) continue;
+    // The two triangles of a quad face give (nearly) one plane: keep one.
+    // A plane dropped this way lies within `deviation` of the kept one at
+    // every vertex, which the slack covers.
+    std::vector<std::array<double, 4>> kept;
+    for (const auto& f : solid.faces) {
+      bool duplicate = false;
+      for (const auto& k : kept) {
+        if (f[0] * k[0] + f[1] * k[1] + f[2] * k[2] < 1 - 1e-9) continue;
+        double deviation = 0;
+        for (std::uint32_t u : tris)
+          for (int v = 0; v < 3; ++v) {
+            const double* p = tris_[u].v[v];
+            deviation = std::max(deviation, std::abs((f[0] * p[0] + f[1] * p[1] + f[2] * p[2] - f[3]) -
+                                                     (k[0] * p[0] + k[1] * p[1] + k[2] * p[2] - k[3])));
+          }
+        if (deviation > 1e-6 * size) continue;
+        solid.slack = std::max(solid.slack, deviation);
+        duplicate = true;
+        break;
+      }
+      if (!duplicate) kept.push_back(f);
+    }
+    solid.faces = std::move(kept);
+    std::copy(centre, centre + 3, solid.centre);
+    const auto id = static_cast<std::int32_t>(solids_.size());
+    solids_.push_back(std::move(solid));
+    for (std::uint32_t t : tris) solid_of_[t] = id;
+  }
+}
+
+bool CullGeometry::solid_blocks(std::uint32_t triangle, const Box3& a, const Box3& b, double margin) const {
+  if (solid_of_[triangle] < 0) return false;
+  const Solid& solid = solids_[static_cast<std::size_t>(solid_of_[triangle])];
+  const double m = margin + solid.slack;
+  double ca[8][3], cb[8][3];
+  corners(a, 0, ca);
+  corners(b, 0, cb);
+  // Both boxes outside the solid: beyond one face plane each.
+  const auto outside = [&](const double (*corner)[3]) {
+    for (const auto& f : solid.faces) {
+      bool all = true;
+      for (int k = 0; k < 8 && all; ++k) all = f[0] * corner[k][0] + f[1] * corner[k][1] + f[2] * corner[k][2] - f[3] >= m;
+      if (all) return true;
+    }
+    return false;
+  };
+  if (!outside(ca) || !outside(cb)) return false;
+  double n[3];
+  for (int c = 0; c < 3; ++c) n[c] = 0.5 * (b.lo[c] + b.hi[c]) - 0.5 * (a.lo[c] + a.hi[c]);
+  const double length = std::sqrt(dot(n, n));
+  if (!(length > 0)) return false;
+  for (double& v : n) v /= length;
+  const double c0 = dot(n, solid.centre);
+  double sa[8], sb[8];
+  for (int k = 0; k < 8; ++k) {
+    sa[k] = dot(n, ca[k]) - c0;
+    sb[k] = dot(n, cb[k]) - c0;
+    if (sa[k] > -m || sb[k] < m) return false;
+  }
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) {
+      const double t = sa[i] / (sa[i] - sb[j]);
+      double p[3];
+      for (int c = 0; c < 3; ++c) p[c] = ca[i][c] + t * (cb[j][c] - ca[i][c]);
+      for (const auto& f : solid.faces)
+        if (f[0] * p[0] + f[1] * p[1] + f[2] * p[2] - f[3] > -m) return false;
+    }
+  return true;
+}
+
+// Median split on the longest side of the centroids' box; leaves of <= 4.
+std::uint32_t CullGeometry::build(std::uint32_t first, std::uint32_t count, std::vector<double>& centroid) {
+  const auto id = static_cast<std::uint32_t>(bvh_.size());
+  bvh_.emplace_back();
+  BvhNode node;
+  double clo[3], chi[3];
+  for (int c = 0; c < 3; ++c) node.lo[c] = clo[c] = INFINITY, node.hi[c] = chi[c] = -INFINITY;
+  for (std::uint32_t k = first; k < first + count; ++k) {
+    const Triangle& t = tris_[order_[k]];
+    for (int v = 0; v < 3; ++v)
+      for (int c = 0; c < 3; ++c) node.lo[c] = std::min(node.lo[c], t.v[v][c]), node.hi[c] = std::max(node.hi[c], t.v[v][c]);
+    for (int c = 0; c < 3; ++c)
+      clo[c] = std::min(clo[c], centroid[3 * order_[k] + c]), chi[c] = std::max(chi[c], centroid[3 * order_[k] + c]);
+  }
+  if (count <= 4) {
+    node.first = first;
+    node.count = count;
+    bvh_[id] = node;
+    return id;
+  }
+  int axis = 0;
+  for (int c = 1; c < 3; ++c)
+    if (chi[c] - clo[c] > chi[axis] - clo[axis]) axis = c;
+  const std::uint32_t half = count / 2;
+  std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
+                   [&](std::uint32_t a, std::uint32_t b) { return centroid[3 * a + axis] < centroid[3 * b + axis]; });
+  node.left = static_cast<std::int32_t>(build(first, half, centroid));
+  node.right = static_cast<std::int32_t>(build(first + half, count - half, centroid));
+  bvh_[id] = node;
+  return id;
+}
+
+// One occluder per triangle, or per pair of triangles that share an edge
+// (same vertex indices, so Embree's watertight test leaves no crack between
+// them), lie in one plane to within 1e-6 of their size and form a convex
+// quad.  `depth` holds the second triangle's distance from the first one's
+// plane (used as an extra margin).
+void CullGeometry::build_occluders(const unsigned* index) {
+  const std::size_t T = tris_.size();
+  occluder_of_.assign(T, 0xFFFFFFFFu);
+  std::unordered_map<std::uint64_t, std::uint32_t> first_on_edge;
+  std::vector<std::uint32_t> partner(T, 0xFFFFFFFFu);
+  std::vector<std::uint8_t> shared_edge(T, 0);  // edge k = (v_k, v_k+1) shared with the partner
+  const auto key = [](unsigned a, unsigned b) { return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b); };
+  const auto unit_normal = [&](std::size_t t) {
+    const V3 e1 = sub(tris_[t].v[1], tris_[t].v[0]), e2 = sub(tris_[t].v[2], tris_[t].v[0]);
+    V3 n = cross(e1.data(), e2.data());
+    const double l = norm(n);
+    if (l > 0) n = {n[0] / l, n[1] / l, n[2] / l};
+    return std::make_pair(n, l);
+  };
+  for (std::size_t t = 0; t < T; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const std::uint64_t e = key(index[3 * t + k], index[3 * t + (k + 1) % 3]);
+      const auto [it, fresh] = first_on_edge.emplace(e, static_cast<std::uint32_t>(t));
+      if (fresh) continue;
+      const std::uint32_t u = it->second;
+      if (partner[t] != 0xFFFFFFFFu || partner[u] != 0xFFFFFFFFu || u == t) continue;
+      // Coplanar and convex?
+      const auto [nt, at] = unit_normal(t);
+      const auto [nu, au] = unit_normal(u);
+      if (at == 0 || au == 0 || std::abs(dot(nt.data(), nu.data())) < 1 - 1e-12) continue;
+      int apex_u = 0;
+      for (int j = 0; j < 3; ++j)
+        if (index[3 * u + j] != index[3 * t + k] && index[3 * u + j] != index[3 * t + (k + 1) % 3]) apex_u = j;
+      const double* a = tris_[t].v[k];
+      const double* c = tris_[t].v[(k + 1) % 3];
+      const double* b = tris_[t].v[(k + 2) % 3];
+      const double* d = tris_[u].v[apex_u];
+      const V3 ac = sub(c, a), ab = sub(b, a), ad = sub(d, a), bd = sub(d, b), ba = sub(a, b), bc = sub(c, b);
+      const double side_b = dot(cross(ac.data(), ab.data()).data(), nt.data());
+      const double side_d = dot(cross(ac.data(), ad.data()).data(), nt.data());
+      const double side_a = dot(cross(bd.data(), ba.data()).data(), nt.data());
+      const double side_c = dot(cross(bd.data(), bc.data()).data(), nt.data());
+      if (!(side_b * side_d < 0 && side_a * side_c < 0)) continue;
+      const double size = std::sqrt(std::max(at, au));
+      if (std::abs(dot(nt.data(), ad.data())) > 1e-6 * size) continue;
+      partner[t] = u;
+      partner[u] = static_cast<std::uint32_t>(t);
+      shared_edge[t] = static_cast<std::uint8_t>(k);
+      for (int j = 0; j < 3; ++j)
+        if (j != apex_u && (j + 1) % 3 != apex_u) shared_edge[u] = static_cast<std::uint8_t>(j);
+    }
+  }
+  for (std::size_t t = 0; t < T; ++t) {
+    if (occluder_of_[t] != 0xFFFFFFFFu) continue;
+    Occluder o;
+    const auto [n, area] = unit_normal(t);
+    occluder_of_[t] = static_cast<std::uint32_t>(occluders_.size());
+    if (area == 0) {  // degenerate: never an occluder
+      occluders_.push_back(o);
+      continue;
+    }
+    std::copy(n.begin(), n.end(), o.n);
+    o.c = dot(o.n, tris_[t].v[0]);
+    std::vector<V3> poly = {V3{tris_[t].v[0][0], tris_[t].v[0][1], tris_[t].v[0][2]},
+                            V3{tris_[t].v[1][0], tris_[t].v[1][1], tris_[t].v[1][2]},
+                            V3{tris_[t].v[2][0], tris_[t].v[2][1], tris_[t].v[2][2]}};
+    double depth = 0;
+    if (partner[t] != 0xFFFFFFFFu) {
+      const std::uint32_t u = partner[t];
+      occluder_of_[u] = occluder_of_[t];
+      // The quad in order: u's apex (opposite its shared edge) between the
+      // shared edge's ends (k, k + 1) of t: v_k, apex, v_k+1, v_k+2.
+      const double* p = tris_[u].v[(shared_edge[u] + 2) % 3];
+      const double s = dot(o.n, p) - o.c;
+      depth = std::abs(s);
+      const V3 projected = {p[0] - s * o.n[0], p[1] - s * o.n[1], p[2] - s * o.n[2]};
+      poly.insert(poly.begin() + static_cast<std::ptrdiff_t>(shared_edge[t] + 1), projected);
+    }
+    o.edges = static_cast<int>(poly.size());
+    V3 centre = {0, 0, 0};
+    for (const V3& p : poly)
+      for (int c = 0; c < 3; ++c) centre[c] += p[c] / static_cast<double>(poly.size());
+    for (int k = 0; k < o.edges; ++k) {
+      const V3& p0 = poly[static_cast<std::size_t>(k)];
+      const V3& p1 = poly[static_cast<std::size_t>((k + 1) % o.edges)];
+      const V3 e = sub(p1.data(), p0.data());
+      V3 w = cross(o.n, e.data());
+      const double l = norm(w);
+      if (l == 0) {
+        o.edges = 0;  // degenerate edge
+        break;
+      }
+      w = {w[0] / l, w[1] / l, w[2] / l};
+      if (dot(w.data(), sub(centre.data(), p0.data()).data()) < 0) w = {-w[0], -w[1], -w[2]};
+      std::copy(w.begin(), w.end(), o.u[k]);
+      o.o[k] = dot(w.data(), p0.data());
+    }
+    o.depth = depth;
+    occluders_.push_back(o);
+  }
+}
+
+bool CullGeometry::hull_is_empty(const Box3& a, const Box3& b, double margin) const {
+  const Shaft s = make_shaft(a, b, margin);
+  std::uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  // A hull among many triangles that are near it but not in it is costly to
+  // prove empty and rarely is: give up (undecided, the conservative answer)
+  // after a fixed amount of work, so a test never costs more than a few
+  // packets of rays.
+  int budget = 512;
+  while (top > 0) {
+    if (--budget < 0) return false;
+    const BvhNode& node = bvh_[stack[--top]];
+    if (!boxes_overlap(node.lo, node.hi, s.lo, s.hi)) continue;
+    bool outside = false;
+    for (int k = 0; k < s.axes && !outside; ++k) {
+      const double* n = s.axis[k];
+      double centre = 0, radius = 0;
+      for (int c = 0; c < 3; ++c) {
+        centre += n[c] * 0.5 * (node.lo[c] + node.hi[c]);
+        radius += std::abs(n[c]) * 0.5 * (node.hi[c] - node.lo[c]);
+      }
+      outside = centre + radius < s.amin[k] || centre - radius > s.amax[k];
+    }
+    if (outside) continue;
+    if (node.left >= 0) {
+      if (top + 2 > 128) return false;  // deeper than any tree built here; give up (conservative)
+      stack[top++] = static_cast<std::uint32_t>(node.left);
+      stack[top++] = static_cast<std::uint32_t>(node.right);
+      continue;
+    }
+    for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
+      const Triangle& t = tris_[order_[k]];
+      double tlo[3], thi[3];
+      for (int c = 0; c < 3; ++c) {
+        tlo[c] = std::min({t.v[0][c], t.v[1][c], t.v[2][c]});
+        thi[c] = std::max({t.v[0][c], t.v[1][c], t.v[2][c]});
+      }
+      if (!boxes_overlap(tlo, thi, s.lo, s.hi)) continue;
+      budget -= 8;
+      bool separated = false;
+      for (int q = 0; q < s.axes && !separated; ++q) separated = s.separates(s.axis[q], t.v, 3);
+      const V3 e[3] = {sub(t.v[1], t.v[0]), sub(t.v[2], t.v[1]), sub(t.v[0], t.v[2])};
+      if (!separated) separated = s.separates(cross(e[0].data(), e[1].data()).data(), t.v, 3);
+      for (int q = 0; q < 3 && !separated && s.has_dir; ++q)
+        separated = s.separates(cross(e[q].data(), s.dir).data(), t.v, 3);
+      for (int q = 0; q < 3 && !separated; ++q)
+        for (int c = 0; c < 3 && !separated; ++c) {
+          double axis[3] = {0, 0, 0};
+          axis[c] = 1;
+          separated = s.separates(cross(e[q].data(), axis).data(), t.v, 3);
+        }
+      if (!separated) return false;
+    }
+  }
+  return true;
+}
+
+bool CullGeometry::occluder_blocks(std::uint32_t triangle, const Box3& a, const Box3& b, double margin) const {
+  const Occluder& o = occluders_[occluder_of_[triangle]];
+  if (o.edges == 0) return false;
+  double ca[8][3], cb[8][3], sa[8], sb[8];
+  corners(a, 0, ca);
+  corners(b, 0, cb);
+  double a_lo = INFINITY, a_hi = -INFINITY, b_lo = INFINITY, b_hi = -INFINITY;
+  for (int k = 0; k < 8; ++k) {
+    sa[k] = dot(o.n, ca[k]) - o.c;
+    sb[k] = dot(o.n, cb[k]) - o.c;
+    a_lo = std::min(a_lo, sa[k]), a_hi = std::max(a_hi, sa[k]);
+    b_lo = std::min(b_lo, sb[k]), b_hi = std::max(b_hi, sb[k]);
+  }
+  // A quad's second triangle may stand off the plane by `depth`: both boxes
+  // must clear it, and a sight line meeting the plane at angle theta crosses
+  // that triangle up to depth / sin(theta) from where it crosses the plane,
+  // sin(theta) >= (nearest |s| in A + nearest |s| in B) / longest corner pair.
+  const double side = margin + o.depth;
+  const bool a_below = a_hi <= -side && b_lo >= side;
+  const bool a_above = a_lo >= side && b_hi <= -side;
+  if (!a_below && !a_above) return false;
+  double inside = margin;
+  if (o.depth > 0) {
+    const double s_min = std::min(std::abs(a_lo), std::abs(a_hi)) + std::min(std::abs(b_lo), std::abs(b_hi));
+    double longest = 0;
+    for (int c = 0; c < 3; ++c) {
+      const double span = std::max(a.hi[c], b.hi[c]) - std::min(a.lo[c], b.lo[c]);
+      longest += span * span;
+    }
+    inside += o.depth + o.depth * std::sqrt(longest) / s_min;
+  }
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) {
+      const double t = sa[i] / (sa[i] - sb[j]);
+      double p[3];
+      for (int c = 0; c < 3; ++c) p[c] = ca[i][c] + t * (cb[j][c] - ca[i][c]);
+      for (int k = 0; k < o.edges; ++k)
+        if (dot(o.u[k], p) - o.o[k] < inside) return false;
+    }
+  return true;
+}
+
+}  // namespace attenuvis::visgraph::detail

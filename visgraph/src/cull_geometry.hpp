@@ -1,0 +1,80 @@
+// The scene's triangles as the culling tests need them: exactly the float
+// vertices Embree intersects (read back from its buffers, widened to
+// double), a bounding-volume hierarchy queried by a convex shaft, and the
+// planar convex occluders (a triangle, or two coplanar triangles sharing an
+// edge that form a convex quad).  Internal to the visgraph library.
+//
+// Why a hierarchy of our own: Embree's queries are rays, spheres
+// (rtcPointQuery) and collisions between user geometries (rtcCollide); the
+// question "does any triangle meet this convex hull" is none of them.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace attenuvis::visgraph::detail {
+
+struct Box3 {
+  double lo[3], hi[3];
+};
+
+class CullGeometry {
+ public:
+  CullGeometry(RTCScene scene, std::size_t triangle_count);
+
+  double max_abs_coordinate() const { return max_abs_; }
+  // True when no triangle meets the convex hull of boxes a and b grown by
+  // `margin` (conservative: false whenever the proof fails).
+  bool hull_is_empty(const Box3& a, const Box3& b, double margin) const;
+  // True when the occluder of `triangle` separates a from b with `margin`
+  // (pair_culling.hpp).
+  bool occluder_blocks(std::uint32_t triangle, const Box3& a, const Box3& b, double margin) const;
+  // True when the closed convex solid `triangle` belongs to (if any) blocks
+  // every segment from a to b: both boxes outside it by `margin`, and the
+  // crossings of the 64 corner-to-corner segments with the plane through the
+  // solid's centre normal to the centre-to-centre direction inside it by
+  // `margin` (every segment then passes through its interior, so enters it
+  // through its watertight surface).
+  bool solid_blocks(std::uint32_t triangle, const Box3& a, const Box3& b, double margin) const;
+  // The solid of a triangle, or -1: callers skip a solid already tried.
+  std::int32_t solid_of(std::uint32_t triangle) const { return solid_of_[triangle]; }
+
+ private:
+  struct Triangle {
+    double v[3][3];
+  };
+  struct BvhNode {
+    double lo[3], hi[3];
+    std::uint32_t first = 0, count = 0;  // leaf: triangles order_[first, first + count)
+    std::int32_t left = -1, right = -1;
+  };
+  struct Occluder {
+    double n[3], c;           // plane n.x = c, |n| = 1
+    int edges = 0;            // 3 or 4
+    double u[4][3], o[4];     // inward in-plane edge normals: u.x - o >= 0 inside
+    double depth = 0;         // a quad's second triangle: largest distance from the plane
+  };
+  struct Solid {
+    std::vector<std::array<double, 4>> faces;  // outward unit normal n and c: inside n.x - c <= 0
+    double centre[3];
+    double slack = 0;  // largest distance of a vertex beyond a face plane (non-planar quads)
+  };
+  std::uint32_t build(std::uint32_t first, std::uint32_t count, std::vector<double>& centroid);
+  void build_occluders(const unsigned* index);
+  void build_solids(const unsigned* index);
+
+  std::vector<Triangle> tris_;
+  std::vector<std::uint32_t> order_;
+  std::vector<BvhNode> bvh_;
+  std::vector<Occluder> occluders_;
+  std::vector<std::uint32_t> occluder_of_;
+  std::vector<Solid> solids_;
+  std::vector<std::int32_t> solid_of_;
+  double max_abs_ = 0;
+};
+
+}  // namespace attenuvis::visgraph::detail

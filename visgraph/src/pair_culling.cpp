@@ -1,0 +1,225 @@
+// Cluster tree and dual-tree classification of node pairs (pair_culling.hpp).
+#include "pair_culling.hpp"
+
+#include "cull_geometry.hpp"
+#include "progress.hpp"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/task_group.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <memory>
+#include <cmath>
+#include <numeric>
+
+namespace attenuvis::visgraph::detail {
+
+namespace {
+Box3 box_of(const PairCulling::Node& n) {
+  Box3 b;
+  for (int c = 0; c < 3; ++c) b.lo[c] = n.lo[c], b.hi[c] = n.hi[c];
+  return b;
+}
+
+// Pairs of clusters with more node pairs than this are split in parallel tasks.
+constexpr double kParallelPairs = 1 << 16;
+// Undecided pairs of clusters with at most this many node pairs are cast
+// rather than split further.
+constexpr double kCastPairs = 64;
+}  // namespace
+
+struct PairCulling::Local {
+  std::vector<std::array<std::uint32_t, 3>> records;  // a, b, verdict
+  std::uint64_t blocked = 0, visible = 0, tests = 0;
+};
+
+PairCulling::~PairCulling() = default;
+
+PairCulling::PairCulling(RTCScene scene, std::size_t triangle_count, const std::vector<double>& x,
+                         const std::vector<double>& y, const std::vector<double>& z, bool classify,
+                         Progress* progress)
+    : scene_(scene), progress_(progress), x_(x), y_(y), z_(z) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto n = static_cast<std::uint32_t>(x.size());
+  rows_.resize(n);
+  std::iota(rows_.begin(), rows_.end(), 0u);
+  nodes_.reserve(4 * (n / kLeafNodes + 1));
+  build(0, n, -1);
+  records_.resize(nodes_.size());
+  if (!classify) {  // every pair cast: one record, the root with itself
+    records_[0].push_back({0, Verdict::cast});
+    seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return;
+  }
+  geometry_ = std::make_unique<CullGeometry>(scene, triangle_count);
+  double largest = geometry_->max_abs_coordinate();
+  for (std::size_t i = 0; i < x.size(); ++i)
+    largest = std::max({largest, std::abs(x[i]), std::abs(y[i]), std::abs(z[i])});
+  margin_ = 1e-3 + 1e-5 * largest;
+
+  tbb::enumerable_thread_specific<Local> locals;
+  traverse(0, 0, locals);
+  for (const Local& local : locals) {
+    pairs_blocked_ += local.blocked;
+    pairs_visible_ += local.visible;
+    tests_ += local.tests;
+    for (const auto& r : local.records) {
+      const auto v = static_cast<Verdict>(r[2]);
+      records_[r[0]].push_back({r[1], v});
+      if (r[0] != r[1]) records_[r[1]].push_back({r[0], v});
+    }
+  }
+  seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Split on the longest side of the nodes' bounding box, at the median
+// rounded up to a multiple of kLeafNodes (so every leaf but the last is
+// full: full packets), depth first (so the leaves under any node are
+// consecutive); a leaf's rows sorted.
+std::uint32_t PairCulling::build(std::uint32_t begin, std::uint32_t end, std::int32_t parent) {
+  const auto id = static_cast<std::uint32_t>(nodes_.size());
+  nodes_.emplace_back();
+  Node node;
+  node.begin = begin;
+  node.end = end;
+  node.parent = parent;
+  for (int c = 0; c < 3; ++c) node.lo[c] = INFINITY, node.hi[c] = -INFINITY;
+  const std::vector<double>* axis_values[3] = {&x_, &y_, &z_};
+  for (std::uint32_t k = begin; k < end; ++k)
+    for (int c = 0; c < 3; ++c) {
+      const double v = (*axis_values[c])[rows_[k]];
+      node.lo[c] = std::min(node.lo[c], v), node.hi[c] = std::max(node.hi[c], v);
+    }
+  if (end - begin <= kLeafNodes) {
+    std::sort(rows_.begin() + begin, rows_.begin() + end);
+    node.leaf_begin = static_cast<std::uint32_t>(leaf_nodes_.size());
+    node.leaf_end = node.leaf_begin + 1;
+    leaf_nodes_.push_back(id);
+    nodes_[id] = node;
+    return id;
+  }
+  int axis = 0;
+  for (int c = 1; c < 3; ++c)
+    if (node.hi[c] - node.lo[c] > node.hi[axis] - node.lo[axis]) axis = c;
+  const std::vector<double>& v = *axis_values[axis];
+  const std::uint32_t mid = begin + kLeafNodes * ((end - begin + 2 * kLeafNodes - 1) / (2 * kLeafNodes));
+  std::nth_element(rows_.begin() + begin, rows_.begin() + mid, rows_.begin() + end,
+                   [&](std::uint32_t a, std::uint32_t b) { return v[a] < v[b] || (v[a] == v[b] && a < b); });
+  node.left = static_cast<std::int32_t>(build(begin, mid, static_cast<std::int32_t>(id)));
+  node.right = static_cast<std::int32_t>(build(mid, end, static_cast<std::int32_t>(id)));
+  node.leaf_begin = nodes_[static_cast<std::size_t>(node.left)].leaf_begin;
+  node.leaf_end = nodes_[static_cast<std::size_t>(node.right)].leaf_end;
+  nodes_[id] = node;
+  return id;
+}
+
+// Every unordered pair of nodes (a node with itself: its own pairs) once.
+void PairCulling::traverse(std::uint32_t a, std::uint32_t b, tbb::enumerable_thread_specific<Local>& locals) {
+  const Node& A = nodes_[a];
+  const Node& B = nodes_[b];
+  Local& local = locals.local();
+  const double pairs = a == b ? 0.5 * A.size() * (A.size() - 1.0) : static_cast<double>(A.size()) * B.size();
+  if (pairs == 0) return;
+  const auto record = [&](Verdict v) { local.records.push_back({a, b, static_cast<std::uint32_t>(v)}); };
+  ++local.tests;
+  const Verdict v = a == b ? (geometry_->hull_is_empty(box_of(A), box_of(A), margin_) ? Verdict::visible
+                                                                                                : Verdict::cast)
+                           : classify(a, b);
+  if (v == Verdict::visible) {
+    local.visible += static_cast<std::uint64_t>(pairs);
+    return record(v);
+  }
+  if (v == Verdict::blocked) {
+    local.blocked += static_cast<std::uint64_t>(pairs);
+    if (progress_) progress_->add(static_cast<std::uint64_t>(pairs));  // done: no row will see them
+    return;
+  }
+  if ((A.is_leaf() && B.is_leaf()) || (a != b && pairs <= kCastPairs)) return record(Verdict::cast);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> children;
+  if (a == b) {
+    const auto l = static_cast<std::uint32_t>(A.left), r = static_cast<std::uint32_t>(A.right);
+    children = {{l, l}, {l, r}, {r, r}};
+  } else if (B.is_leaf() || (!A.is_leaf() && A.size() >= B.size())) {
+    children = {{static_cast<std::uint32_t>(A.left), b}, {static_cast<std::uint32_t>(A.right), b}};
+  } else {
+    children = {{a, static_cast<std::uint32_t>(B.left)}, {a, static_cast<std::uint32_t>(B.right)}};
+  }
+  if (pairs > kParallelPairs) {
+    tbb::task_group group;
+    for (const auto& c : children) group.run([this, c, &locals] { traverse(c.first, c.second, locals); });
+    group.wait();
+  } else {
+    for (const auto& c : children) traverse(c.first, c.second, locals);
+  }
+}
+
+// Visible, blocked, or left to rays (pair_culling.hpp).  The ray between the
+// two boxes' centres picks the tests: if it meets nothing, the hull may be
+// empty; if it meets surfaces, they are the candidate occluders.
+Verdict PairCulling::classify(std::uint32_t a, std::uint32_t b) const {
+  return classify_boxes(box_of(nodes_[a]), box_of(nodes_[b]));
+}
+
+Verdict PairCulling::classify_boxes(const Box3& A, const Box3& B) const {
+  double ca[3], d[3];
+  for (int c = 0; c < 3; ++c) {
+    ca[c] = 0.5 * (A.lo[c] + A.hi[c]);
+    d[c] = 0.5 * (B.lo[c] + B.hi[c]) - ca[c];
+  }
+  const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  if (!(length > 4 * margin_))
+    return geometry_->hull_is_empty(A, B, margin_) ? Verdict::visible : Verdict::cast;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh{};
+  rh.ray.org_x = static_cast<float>(ca[0]);
+  rh.ray.org_y = static_cast<float>(ca[1]);
+  rh.ray.org_z = static_cast<float>(ca[2]);
+  rh.ray.dir_x = static_cast<float>(d[0]);
+  rh.ray.dir_y = static_cast<float>(d[1]);
+  rh.ray.dir_z = static_cast<float>(d[2]);
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = 1.0f;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+    return geometry_->hull_is_empty(A, B, margin_) ? Verdict::visible : Verdict::cast;
+  std::int32_t tried_solid = -1;
+  for (int attempt = 0; attempt < kOccluderTries; ++attempt) {
+    const CullGeometry& g = *geometry_;
+    const std::int32_t solid = g.solid_of(rh.hit.primID);
+    if (solid >= 0 && solid != tried_solid) {
+      if (g.solid_blocks(rh.hit.primID, A, B, margin_)) return Verdict::blocked;
+      tried_solid = solid;
+    }
+    if (g.occluder_blocks(rh.hit.primID, A, B, margin_)) return Verdict::blocked;
+    if (attempt + 1 == kOccluderTries) break;
+    rh.ray.tnear = rh.ray.tfar + static_cast<float>(margin_ / length);
+    rh.ray.tfar = 1.0f;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    if (!(rh.ray.tnear < 1.0f)) break;
+    rtcIntersect1(scene_, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+  }
+  return Verdict::cast;
+}
+
+const std::uint32_t* PairCulling::leaf_rows(std::size_t l, std::size_t& count) const {
+  const Node& n = nodes_[leaf_nodes_[l]];
+  count = n.size();
+  return rows_.data() + n.begin;
+}
+
+void PairCulling::partner_blocks(std::size_t l, std::vector<Block>& out) const {
+  out.clear();
+  for (std::int32_t x = static_cast<std::int32_t>(leaf_nodes_[l]); x >= 0; x = nodes_[static_cast<std::size_t>(x)].parent)
+    for (const Record& r : records_[static_cast<std::size_t>(x)]) {
+      const Node& other = nodes_[r.other];
+      for (std::uint32_t leaf = other.leaf_begin; leaf < other.leaf_end; ++leaf) out.push_back({leaf, r.verdict});
+    }
+}
+
+}  // namespace attenuvis::visgraph::detail
