@@ -137,7 +137,10 @@ class VisibilityResult(NamedTuple):
     """degree (N,) uint32 or None when pruning withheld it; sum, average
     (K, N) float64; pruned (N,) uint32; mean_distance, max_distance (N,) or
     None unless distance_stats; edges (Edges) or None unless edges=True;
-    stats: pairs_total/cast/visible, coincident_pairs, pruning_radius (m),
+    stats: pairs_total/cast/visible, pairs_culled_visible/blocked (decided
+    without rays by exact culling), coincident_pairs, pruning_radius (m),
+    pruning_note (what pruning dropped and why, or why it was not applied:
+    a tolerance prunes only where that is faster than the exact pass),
     tolerance, seconds."""
 
     degree: Optional[np.ndarray]
@@ -169,7 +172,7 @@ def _result(d) -> VisibilityResult:
             average[:, degree == 0] = np.nan
     edges = Edges(d["edge_i"], d["edge_j"], d["edge_distance"]) if "edge_i" in d else None
     stats = {k: d[k] for k in ("pairs_total", "pairs_cast", "pairs_visible", "coincident_pairs", "pruning_radius",
-                               "tolerance", "seconds")}
+                               "pruning_note", "pairs_culled_visible", "pairs_culled_blocked", "tolerance", "seconds")}
     return VisibilityResult(degree, total, average, d["pruned"], d["mean_distance"], d["max_distance"], edges, stats)
 
 

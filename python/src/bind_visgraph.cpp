@@ -216,6 +216,9 @@ py::dict pass_result(const vg::VisibilityResult& r, std::size_t K) {
                                                : py::object(Doubles(r.max_distance.size(), r.max_distance.data()));
   out["tolerance"] = r.tolerance;
   out["pruning_radius"] = r.pruning_radius;
+  out["pruning_note"] = r.pruning_note;
+  out["pairs_culled_visible"] = r.pairs_culled_visible;
+  out["pairs_culled_blocked"] = r.pairs_culled_blocked;
   out["pairs_total"] = r.pairs_total;
   out["pairs_cast"] = r.pairs_cast;
   out["pairs_visible"] = r.pairs_visible;
