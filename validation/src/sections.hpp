@@ -102,6 +102,7 @@ struct CityPerformance {
   std::size_t city_nodes = 0;
   std::uint64_t city_pairs = 0;
   double city_exact_seconds = 0;   // all-to-all, degree + all conditions, exact
+  std::uint64_t city_culled_visible = 0, city_culled_blocked = 0, city_cast = 0;  // how its pairs were decided
   struct PruneRow {
     double tolerance = 0, radius_m = 0, seconds = 0;
     std::uint64_t pairs_cast = 0;
