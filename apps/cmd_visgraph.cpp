@@ -28,6 +28,7 @@ namespace vg = attenuvis::visgraph;
 struct VgArguments {
   std::string scene;
   double spacing = 1.0;
+  bool spacing_given = false;  // --spacing on the command line (else: 1 m, coarsened to fit, see place_nodes)
   double eye_height = 1.7;
   std::string walkable;
   double max_slope = 90.0;
@@ -152,8 +153,30 @@ std::vector<Eigen::Vector3d> read_node_file(const std::string& path, SceneInput&
   return points;
 }
 
+// The next spacing of the "nice" sequence 1, 1.5, 2, 3, 4, 5, 6, 8 x 10^k m after h.
+double next_spacing(double h) {
+  const double decade = std::pow(10.0, std::floor(std::log10(h) + 1e-9));
+  for (double f : {1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0})
+    if (f * decade > h * (1 + 1e-9)) return f * decade;
+  return 10 * decade;
+}
+
+// Without --spacing, an all-to-all grid starts at 1 m and is coarsened along
+// next_spacing() until its cells and pairs fit the default limits
+// (kDefaultMaxGridCells, kDefaultMaxPairs): a real district at 1 m has
+// 10^5-10^6 nodes and 10^10-10^12 pairs, hours to days of work.  The choice is
+// announced and recorded in the summary; --spacing (with --allow-large)
+// asks for any grid explicitly.
+struct SpacingChoice {
+  bool automatic = false;
+  double pairs_limit = vg::kDefaultMaxPairs;
+};
+
+double unordered_pairs(std::size_t n) { return 0.5 * static_cast<double>(n) * (static_cast<double>(n) - 1); }
+
 // The node grid; adds the ground plane to a model without ground (--ground-plane).
-vg::NodeSet place_nodes(const VgArguments& a, SceneInput& input, std::unique_ptr<vg::Scene>& scene) {
+vg::NodeSet place_nodes(const VgArguments& a, SceneInput& input, std::unique_ptr<vg::Scene>& scene,
+                        const SpacingChoice& choice) {
   if (a.ground_plane != "auto" && a.ground_plane != "yes" && a.ground_plane != "no")
     throw std::invalid_argument("--ground-plane: expected auto, yes or no, got '" + a.ground_plane + "'");
   vg::NodeGridOptions options;
@@ -162,9 +185,12 @@ vg::NodeSet place_nodes(const VgArguments& a, SceneInput& input, std::unique_ptr
   options.max_slope_deg = a.max_slope;
   options.walkable = a.walkable.empty() ? vg::default_walkable_groups(a.scene) : split(a.walkable, ',');
   options.max_cells = a.allow_large ? 0.0 : vg::kDefaultMaxGridCells;
-  const vg::GridEstimate cells = vg::estimate_grid(*scene, a.spacing);
+  if (choice.automatic)
+    while (options.spacing < vg::kMaxSpacing && vg::estimate_grid(*scene, options.spacing).cells > vg::kDefaultMaxGridCells)
+      options.spacing = next_spacing(options.spacing);
+  const vg::GridEstimate cells = vg::estimate_grid(*scene, options.spacing);
   if (!a.allow_large && cells.cells > vg::kDefaultMaxGridCells)
-    throw std::invalid_argument("--spacing " + io::shortest(a.spacing) + " m over this scene gives " +
+    throw std::invalid_argument("--spacing " + io::shortest(options.spacing) + " m over this scene gives " +
                                 io::significant(cells.nx, 3) + " x " + io::significant(cells.ny, 3) + " = " +
                                 io::significant(cells.cells, 3) + " grid cells (" +
                                 io::significant(cells.bytes / 1e9, 3) + " GB while placing), more than the " +
@@ -183,6 +209,23 @@ vg::NodeSet place_nodes(const VgArguments& a, SceneInput& input, std::unique_ptr
                 "lowest z (--ground-plane yes says so, --ground-plane no refuses)", a.quiet);
     add_plane();
     grid = vg::generate_nodes(*scene, options);
+  }
+  if (choice.automatic) {
+    const std::size_t first_nodes = grid.eyes.size();
+    const double first_spacing = options.spacing;
+    while (unordered_pairs(grid.eyes.size()) > choice.pairs_limit && options.spacing < vg::kMaxSpacing) {
+      options.spacing = next_spacing(options.spacing);
+      grid = vg::generate_nodes(*scene, options);
+    }
+    if (options.spacing != a.spacing) {
+      grid.spacing_rule = "no --spacing: " + io::shortest(options.spacing) + " m, the finest of 1, 1.5, 2, 3, 4, 5, 6, 8 x 10^k m within the default limits (" +
+                          io::significant(vg::kDefaultMaxGridCells, 3) + " grid cells, " +
+                          io::significant(choice.pairs_limit, 3) + " pairs); at " + io::shortest(first_spacing) +
+                          " m the grid had " + std::to_string(first_nodes) + " nodes = " +
+                          io::significant(unordered_pairs(first_nodes), 3) + " pairs";
+      if (!a.quiet)
+        std::cerr << "spacing: " << grid.spacing_rule << " (give --spacing, and --allow-large, for a finer grid)\n";
+    }
   }
   if (!a.quiet) {
     std::vector<std::string> where;
@@ -231,7 +274,13 @@ void run_vg(const VgArguments& a) {
   if (!a.nodes_file.empty()) {
     eyes = read_node_file(a.nodes_file, input, a.quiet);
   } else {
-    grid = std::make_unique<vg::NodeSet>(place_nodes(a, input, scene));
+    // The spacing is chosen only for an unbounded all-to-all run; with a
+    // radius (--max-distance, --prune-below) or targets the pair count is not
+    // N^2/2 and the user's 1 m stands, checked by check_work below.
+    SpacingChoice choice;
+    choice.automatic = !a.spacing_given && !a.allow_large && a.targets_file.empty() && a.target_point.empty() &&
+                       std::isinf(a.max_distance) && a.prune_below == 0;
+    grid = std::make_unique<vg::NodeSet>(place_nodes(a, input, scene, choice));
     eyes = grid->eyes;
   }
   std::vector<Eigen::Vector3d> targets;
@@ -348,7 +397,10 @@ void register_visgraph(CLI::App& app) {
                   "auto | yes | no: a horizontal plane at the scene's lowest z to stand on (auto: when the grid "
                   "finds no ground)")
       ->capture_default_str();
-  vgc->add_option("--spacing", args->spacing, "node grid spacing, 0.001 to 10000 m")->capture_default_str();
+  auto* spacing = vgc->add_option("--spacing", args->spacing,
+                  "node grid spacing, 0.001 to 10000 m (default 1 m, coarsened to 1.5, 2, 3, 4, 5, 6, 8 x 10^k m "
+                  "when an all-to-all grid would exceed the default limits; the choice is printed)")
+      ->capture_default_str();
   vgc->add_option("--eye-height", args->eye_height, "eye height above the walkable surface, 0 to 1000 m")
       ->capture_default_str();
   vgc->add_option("--walkable", args->walkable,
@@ -387,7 +439,8 @@ void register_visgraph(CLI::App& app) {
   vgc->add_flag("--allow-large", args->allow_large,
                 "run even above the default caps: 1e7 grid cells, 2e9 pairs, half the machine's memory "
                 "(never above all of it)");
-  vgc->callback([args, old_prune] {
+  vgc->callback([args, old_prune, spacing] {
+    args->spacing_given = spacing->count() > 0;
     if (old_prune->count() > 0) {
       if (!args->quiet)
         std::cerr << "attenuvis vg: --tolerance is deprecated here (it means the Mie tolerance in sigma and table); "

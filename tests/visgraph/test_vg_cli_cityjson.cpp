@@ -57,6 +57,9 @@ TEST_CASE("vg on CityJSON: nodes on terrain and road, GeoJSON in the scene's CRS
   CHECK(s["scene"]["format"] == "CityJSON 1.0");
   CHECK(s["node_grid"]["nodes_by_surface"]["TINRelief"] == 800);
   CHECK(s["node_grid"]["elevated_nodes"] == 0);
+  CHECK(s["node_grid"]["spacing_m"] == 3.0);
+  CHECK_THAT(s["node_grid"]["spacing_rule"].get<std::string>(), Contains("no --spacing") && Contains("549080 nodes"));
+  CHECK_THAT(r.output, Contains("spacing: no --spacing: 3 m"));
 }
 
 TEST_CASE("vg on a building without terrain offers and adds a ground plane", "[visgraph][cli]") {
@@ -97,8 +100,9 @@ TEST_CASE("scene info lists groups once, sorted, with classes", "[visgraph][cli]
 
 TEST_CASE("vg on the Delfshaven CityJSON: no node on a roof, every output written", "[visgraph][cli][slow]") {
   // ../shared/data/cityjson/README.md: 853 LoD2 buildings, no terrain.  The
-  // default options stand the nodes on a ground plane at the lowest z; a
-  // 4 m grid keeps the run short.
+  // default options stand the nodes on a ground plane at the lowest z, and,
+  // since 1 m gives 549,080 nodes (1.5e11 pairs, far above the default 2e9),
+  // coarsen the grid to the first spacing that fits: 3 m, 60,898 nodes.
   const std::string model = std::string(ATTENUVIS_TEST_DATA_DIR) +
                             "/../../../shared/data/cityjson/rotterdam-delfshaven-3-20.city.json";
   if (!std::filesystem::exists(model)) {
@@ -106,7 +110,7 @@ TEST_CASE("vg on the Delfshaven CityJSON: no node on a roof, every output writte
     return;
   }
   TempDir dir;
-  const Run r = run("vg " + model + " --spacing 4 --conditions clear,fog:advection --out " + (dir / "n.csv") +
+  const Run r = run("vg " + model + " --conditions clear,fog:advection --out " + (dir / "n.csv") +
                     " --geojson " + (dir / "n.geojson") + " --heatmap " + (dir / "n.png") + " --summary " +
                     (dir / "s.json"));
   INFO(r.output);
@@ -125,9 +129,15 @@ TEST_CASE("vg on the Delfshaven CityJSON: no node on a roof, every output writte
   const auto s = nlohmann::json::parse(summary);
   CHECK(std::filesystem::file_size(dir / "s.json") < 8000);
   const auto& by = s["node_grid"]["nodes_by_surface"];
-  CHECK(by.size() == 1);
+  // On the plane, and where a cell falls on a building's GroundSurface (its
+  // footprint at ground level: 1 node at 3 m), there; never on a roof.
+  CHECK(!by.contains("RoofSurface"));
   CHECK(by.contains("GroundPlane"));
+  for (const auto& [name, count] : by.items()) CHECK((name == "GroundPlane" || name == "GroundSurface"));
   CHECK(s["node_grid"]["elevated_nodes"] == 0);
+  CHECK(s["node_grid"]["spacing_m"] == 3.0);
+  CHECK_THAT(s["node_grid"]["spacing_rule"].get<std::string>(), Contains("no --spacing") && Contains("549080 nodes"));
+  CHECK_THAT(r.output, Contains("spacing: no --spacing: 3 m"));
   const auto layer = read_layer(dir / "n.geojson", "urn:ogc:def:crs:EPSG::28992", {"node", "degree", "sum:clear"});
   CHECK(layer["features"].size() == s["nodes"]);
   CHECK(std::filesystem::file_size(dir / "n.png") > 1000);

@@ -237,6 +237,7 @@ NodeSet generate_nodes(const Scene& scene, const NodeGridOptions& options) {
     }
   });
   NodeSet set;
+  set.spacing = options.spacing;
   set.cells = static_cast<std::size_t>(nx * ny);
   set.rule = walkable.rule;
   const bool by_class = !scene.classes().empty();

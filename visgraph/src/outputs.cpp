@@ -220,6 +220,8 @@ std::string summary_json(const ScoreTable& table, const RunInfo& info) {
     }
     if (other) surfaces["(" + std::to_string(info.grid->by_surface.size() - 20) + " others)"] = other;
     j["node_grid"]["rule"] = info.grid->rule;
+    j["node_grid"]["spacing_m"] = info.grid->spacing;
+    if (!info.grid->spacing_rule.empty()) j["node_grid"]["spacing_rule"] = info.grid->spacing_rule;
     j["node_grid"]["nodes_by_surface"] = surfaces;
     j["node_grid"]["elevated_nodes"] = info.grid->elevated;
     j["node_grid"]["max_elevation_m"] = info.grid->max_elevation;

@@ -70,6 +70,8 @@ struct SurfaceCount {
 
 struct NodeSet {
   std::vector<Eigen::Vector3d> eyes;  // world frame
+  double spacing = 0;                 // m, the grid's spacing
+  std::string spacing_rule;           // how the spacing was chosen, in words (set by the caller; "" = as given)
   std::size_t cells = 0;              // grid cells examined
   std::size_t no_surface = 0;         // ray down hit nothing
   std::size_t covered = 0;            // first surface hit not walkable
