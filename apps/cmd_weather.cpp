@@ -128,9 +128,9 @@ void run_table(const TableOptions& t, const CommonOptions& o) {
   const auto unit = w::parse_sigma_unit(o.units);
   if (table_format == w::TableFormat::netcdf && unit == w::SigmaUnit::dB_per_km)
     throw std::invalid_argument("--units dB/km: netCDF tables take --units m or km (CF units must be UDUNITS units)");
-  const auto quantities = [&] {
+  const auto request = [&] {
     try {
-      return w::parse_quantity_list(t.quantities);
+      return w::parse_quantity_request(t.quantities);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(std::string("--quantities: ") + e.what());
     }
@@ -142,9 +142,11 @@ void run_table(const TableOptions& t, const CommonOptions& o) {
       throw std::invalid_argument(std::string("--wavelengths: ") + e.what());
     }
   }();
-  auto table = w::sigma_table(parsed, wavelengths_m, s, t.threads, quantities);
+  auto table = w::sigma_table(parsed, wavelengths_m, s, t.threads, request.quantities, request.max_moment);
   w::write_sigma_table(table, t.out, table_format, unit, {producer()});
-  std::cout << "wrote " << quantities.size() << " quantities x " << table.wavelengths_m.size() << " wavelengths x "
+  std::cout << "wrote " << request.quantities.size() << " quantities"
+            << (request.max_moment >= 0 ? " and moments 0.." + std::to_string(request.max_moment) : std::string())
+            << " x " << table.wavelengths_m.size() << " wavelengths x "
             << parsed.size() << " conditions to " << t.out;
   if (table_format == w::TableFormat::csv) std::cout << " (column descriptions in " << w::csv_sidecar_path(t.out) << ")";
   std::cout << "\n";
@@ -239,8 +241,9 @@ void register_weather(CLI::App& app) {
     cmd->add_option("--wavelengths", t->wavelengths, "START:STOP:STEPunit (400:800:10nm) or a list (550nm,10.6um)")
         ->capture_default_str();
     cmd->add_option("--quantities", t->quantities,
-                    "comma-separated: " + w::quantity_names() + "; all but sigma_ext need a Mie condition (else "
-                    "empty)")
+                    "comma-separated: " + w::quantity_names() +
+                        ", moments:L (Legendre moments chi_0..chi_L of the phase function); all but sigma_ext need "
+                        "a Mie condition (else empty)")
         ->capture_default_str();
     cmd->add_option("--format", t->format, "csv, json or netcdf")->capture_default_str();
     cmd->add_option("--out", t->out, "output file")->required();

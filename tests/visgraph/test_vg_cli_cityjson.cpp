@@ -57,9 +57,9 @@ TEST_CASE("vg on CityJSON: nodes on terrain and road, GeoJSON in the scene's CRS
   CHECK(s["scene"]["format"] == "CityJSON 1.0");
   CHECK(s["node_grid"]["nodes_by_surface"]["TINRelief"] == 800);
   CHECK(s["node_grid"]["elevated_nodes"] == 0);
-  CHECK(s["node_grid"]["spacing_m"] == 3.0);
-  CHECK_THAT(s["node_grid"]["spacing_rule"].get<std::string>(), Contains("no --spacing") && Contains("549080 nodes"));
-  CHECK_THAT(r.output, Contains("spacing: no --spacing: 3 m"));
+  // A small scene keeps the default 1 m: nothing to coarsen, no rule recorded.
+  CHECK(s["node_grid"]["spacing_m"] == 1.0);
+  CHECK(!s["node_grid"].contains("spacing_rule"));
 }
 
 TEST_CASE("vg on a building without terrain offers and adds a ground plane", "[visgraph][cli]") {

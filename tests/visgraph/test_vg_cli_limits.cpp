@@ -73,9 +73,10 @@ TEST_CASE("vg estimates the work first and refuses runs above the caps", "[visgr
   INFO(r.output);
   CHECK(r.status == 0);
   CHECK(read_csv(dir / "nodes.csv").rows.size() == 100000);
-  // A 500 km x 2 m strip: 1e6 nodes at 1 m, 5e11 pairs.
+  // A 500 km x 2 m strip at 1 m, asked for explicitly: 1e6 nodes, 5e11 pairs.  (Without --spacing the
+  // grid would be coarsened until it fits, to 8 m.)
   std::ofstream(dir / "strip.obj") << "v 0 0 0\nv 500000 0 0\nv 500000 2 0\nv 0 2 0\nf 1 2 3\nf 1 3 4\n";
-  r = run("vg " + (dir / "strip.obj") + " --conditions clear --quiet --out " + (dir / "strip.csv"));
+  r = run("vg " + (dir / "strip.obj") + " --spacing 1 --conditions clear --quiet --out " + (dir / "strip.csv"));
   CHECK(r.status != 0);
   CHECK_THAT(r.output, Contains("1000000 nodes = 5e+11 pairs"));
   CHECK(!fs::exists(dir / "strip.csv"));

@@ -21,8 +21,11 @@ import netCDF4
 import pandas
 import xarray
 
-QUANTITIES = ["sigma_ext", "sigma_sca", "sigma_abs", "ssa", "g"]
+QUANTITIES = ["sigma_ext", "sigma_sca", "sigma_abs", "ssa", "g", "backscatter", "lidar_ratio"]
 COEFFICIENTS = {"sigma_ext", "sigma_sca", "sigma_abs"}
+# Units in a --units km table (netCDF UDUNITS text) and the CSV column suffix.
+UNITS = {"backscatter": ("km-1 sr-1", "_per_km_sr"), "lidar_ratio": ("sr", "_sr")}
+MOMENTS = 3  # chi_0..chi_3 on the netCDF dimension "moment"
 # Mie (fog preset), a swept power law, an empirical fog set by a visibility, a given sigma.
 CONDITIONS = "fog:advection:m=1.33+0.001i,rain:1..100/50,fog:kim:500m,sigma:2/km"
 WAVELENGTHS = "550nm,1550nm"
@@ -37,7 +40,7 @@ def check(ok, what):
 
 def run_table(program, out, fmt):
     args = [program, "table", "--conditions", CONDITIONS, "--wavelengths", WAVELENGTHS, "--quantities",
-            ",".join(QUANTITIES), "--units", "km", "--format", fmt, "--out", out, "--threads", "2"]
+            ",".join(QUANTITIES + ["moments:%d" % MOMENTS]), "--units", "km", "--format", fmt, "--out", out, "--threads", "2"]
     r = subprocess.run(args, capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit("attenuvis table failed (%s): %s %s" % (" ".join(args), r.stdout, r.stderr))
@@ -73,7 +76,9 @@ def main():
                  "attenuvis_version", "missing_values"):
         check(attr in nc.ncattrs(), "global attribute " + attr)
     check(nc.getncattr("unit_convention") == "itu", "unit convention itu")
-    check(list(nc.dimensions) == ["wavelength", "condition"], "dimensions %s" % list(nc.dimensions))
+    check(list(nc.dimensions) == ["wavelength", "condition", "moment"], "dimensions %s" % list(nc.dimensions))
+    check(list(nc["moment"][:]) == list(range(MOMENTS + 1)), "moment coordinate")
+    check(nc["chi"].dimensions == ("wavelength", "condition", "moment"), "chi dimensions")
     wavelengths = nc["wavelength"][:]
     labels = list(nc["condition_label"][:])
     check(nc["wavelength"].units == "nm" and nc["wavelength"].standard_name == "radiation_wavelength",
@@ -83,7 +88,7 @@ def main():
 
     for q in QUANTITIES:
         v, e = nc[q], nc[q + "_error"]
-        units = "km-1" if q in COEFFICIENTS else "1"
+        units = "km-1" if q in COEFFICIENTS else UNITS[q][0] if q in UNITS else "1"
         check(v.units == units and e.units == units, "%s units %s" % (q, v.units))
         check(v.dimensions == ("wavelength", "condition"), "%s dimensions" % q)
         check(bool(v.long_name), "%s long_name" % q)
@@ -104,9 +109,13 @@ def main():
             continue
         w, c = w[0], c[0]
         for q in QUANTITIES:
-            suffix = "_per_km" if q in COEFFICIENTS else ""
+            suffix = "_per_km" if q in COEFFICIENTS else UNITS[q][1] if q in UNITS else ""
             same(row[q + suffix], nc[q][w, c], "%s %s %s" % (q, row["wavelength_nm"], row["condition"]))
             same(row[q + "_error" + suffix], nc[q + "_error"][w, c], "%s_error %s" % (q, row["condition"]))
+            compared += 2
+        for l in range(MOMENTS + 1):
+            same(row["chi_%d" % l], nc["chi"][w, c, l], "chi_%d %s" % (l, row["condition"]))
+            same(row["chi_%d_error" % l], nc["chi_error"][w, c, l], "chi_%d_error %s" % (l, row["condition"]))
             compared += 2
         same(row["koschmieder_visibility_m"], nc["koschmieder_visibility"][w, c], "visibility " + row["condition"])
         same(row["rate_mm_h"], nc["rate"][c], "rate " + row["condition"])
@@ -118,6 +127,10 @@ def main():
     for row in rows:
         mie = row["condition"].startswith("fog:advection")
         check((row["ssa"] != "") == mie, "ssa present only for the Mie condition: %s" % row["condition"])
+        check((row["chi_0"] != "") == mie, "moments present only for the Mie condition: %s" % row["condition"])
+        if mie:
+            check(float(row["chi_0"]) == 1.0 or abs(float(row["chi_0"]) - 1) <= float(row["chi_0_error"]) + 1e-15,
+                  "chi_0 = 1: %s" % row["chi_0"])
         check(row["sigma_ext_per_km"] != "", "sigma_ext present: %s" % row["condition"])
     # The swept rates as a numeric coordinate, ending at B.
     check([x for x in nc["rate"][:] if not math.isnan(x)] == [1.0, 51.0, 100.0], "rate coordinate %s" % nc["rate"][:])

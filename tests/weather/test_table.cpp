@@ -168,3 +168,30 @@ TEST_CASE("table backscatter and lidar ratio: the bulk optics' values, per stera
   CHECK(unit_text(info(Quantity::lidar_ratio).kind, SigmaUnit::per_km) == "sr");
   CHECK(column_suffix(info(Quantity::lidar_ratio).kind, SigmaUnit::per_km) == "_sr");
 }
+
+TEST_CASE("table moments:L: chi_0..chi_L of Mie cells, the bulk optics' values; parsing", "[weather][table]") {
+  const QuantityRequest r = parse_quantity_request("g,moments:3");
+  CHECK(r.quantities == std::vector<Quantity>{Quantity::g});
+  CHECK(r.max_moment == 3);
+  CHECK(parse_quantity_request("moments:0").quantities.empty());
+  CHECK(parse_quantity_request("sigma_ext").max_moment == -1);
+  for (const char* bad : {"moments:", "moments:x", "moments:-1", "moments:1001", "moments:2,moments:3", "moments:2.5"})
+    CHECK_THROWS_AS(parse_quantity_request(bad), std::invalid_argument);
+  // Radiation fog at 10.6 um (strongly absorbing: a few hundred Mie evaluations) and a power law.
+  std::vector<LabelledCondition> conditions = expand_conditions("fog:radiation");
+  conditions.push_back(expand_conditions("rain:8").front());
+  const Settings s;
+  const SigmaTable t = sigma_table(conditions, {10.6e-6}, s, 1, {}, 3);
+  OpticsRequest request;
+  request.backscatter = false;
+  request.legendre_moments = 3;
+  const BulkOptics b = condition_optics(std::get<MieCondition>(conditions[0].condition), 10.6e-6, s, request).bulk;
+  for (int l = 0; l <= 3; ++l) {
+    CHECK(table_moment(t.at(0, 0), l).value == b.moments[l]);
+    CHECK(table_moment(t.at(0, 0), l).error == b.moments_error[l]);
+    CHECK(std::isnan(table_moment(t.at(0, 1), l).value));  // no drops: missing
+  }
+  CHECK(std::isnan(table_moment(t.at(0, 0), 4).value));  // beyond L
+  const std::string csv = format_sigma_table_csv(t, SigmaUnit::per_m);
+  CHECK_THAT(first_line(csv), Contains(",chi_0,chi_0_error,chi_1,") && Contains(",chi_3_error,"));
+}

@@ -85,30 +85,46 @@ QuantityValue table_value(const TableCell& cell, Quantity q) {
   return {missing, missing};
 }
 
+QuantityValue table_moment(const TableCell& cell, int l) {
+  constexpr double missing = std::numeric_limits<double>::quiet_NaN();
+  if (!cell.optics || !cell.optics->scattering_computed || l < 0 ||
+      static_cast<std::size_t>(l) >= cell.optics->moments.size())
+    return {missing, missing};
+  return {cell.optics->moments[static_cast<std::size_t>(l)], cell.optics->moments_error[static_cast<std::size_t>(l)]};
+}
+
 std::vector<std::string> conditions_with_missing_values(const SigmaTable& t) {
   std::vector<std::string> out;
   for (std::size_t c = 0; c < t.conditions.size(); ++c) {
     bool missing = false;
-    for (std::size_t w = 0; w < t.wavelengths_m.size() && !missing; ++w)
+    for (std::size_t w = 0; w < t.wavelengths_m.size() && !missing; ++w) {
       for (Quantity q : t.quantities) missing = missing || std::isnan(table_value(t.at(w, c), q).value);
+      if (t.max_moment >= 0) missing = missing || std::isnan(table_moment(t.at(w, c), 0).value);
+    }
     if (missing) out.push_back(t.conditions[c].label);
   }
   return out;
 }
 
 SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const std::vector<double>& wavelengths,
-                       const Settings& settings, int threads, const std::vector<Quantity>& quantities) {
+                       const Settings& settings, int threads, const std::vector<Quantity>& quantities,
+                       int max_moment) {
   SigmaTable t;
   t.wavelengths_m = wavelengths;
   t.conditions = conditions;
   t.quantities = quantities;
+  t.max_moment = max_moment;
   t.settings = settings;
   t.cells.resize(wavelengths.size() * conditions.size());
-  const bool needs_optics = std::any_of(quantities.begin(), quantities.end(),
-                                        [](Quantity q) { return info(q).needs_size_distribution; });
+  const bool needs_optics = max_moment >= 0 || std::any_of(quantities.begin(), quantities.end(), [](Quantity q) {
+                               return info(q).needs_size_distribution;
+                             });
   const bool needs_backscatter = std::any_of(quantities.begin(), quantities.end(), [](Quantity q) {
     return q == Quantity::backscatter || q == Quantity::lidar_ratio;
   });
+  OpticsRequest request;
+  request.backscatter = needs_backscatter;
+  request.legendre_moments = max_moment;
   std::mutex error_mutex;
   std::string first_error;
   auto work = [&] {
@@ -117,8 +133,8 @@ SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const s
       try {
         t.cells[i].sigma = sigma(conditions[c].condition, wavelengths[w], settings);
         if (const auto* mie = std::get_if<MieCondition>(&conditions[c].condition); mie && needs_optics)
-          t.cells[i].optics = needs_backscatter
-                                  ? condition_optics(*mie, wavelengths[w], settings, OpticsRequest{}).bulk
+          t.cells[i].optics = needs_backscatter || max_moment >= 0
+                                  ? condition_optics(*mie, wavelengths[w], settings, request).bulk
                                   : condition_bulk_optics(*mie, wavelengths[w], settings);
       } catch (const std::exception& e) {
         std::lock_guard<std::mutex> lock(error_mutex);

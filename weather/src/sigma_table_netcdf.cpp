@@ -14,6 +14,9 @@
 //                                that fits (table_quantity.cpp: none yet),
 //                                coordinates and ancillary_variables = Q_error
 //   Q_error(wavelength, condition)  its error estimate, same units
+//   moment(moment)               coordinate: l = 0..L (only with moments:L)
+//   chi(wavelength, condition, moment), chi_error   Legendre moments of the
+//                                phase function (DISORT's PMOM), dimensionless
 //   koschmieder_visibility(wavelength, condition), model(condition),
 //   sigma_ext_method(wavelength, condition)
 //
@@ -164,6 +167,33 @@ void write_sigma_table_netcdf(const SigmaTable& t, const std::string& path, Sigm
   std::vector<std::pair<int, std::vector<double>>> parameters;
   const std::string coordinates = define_condition_coordinates(f, t, cdim, unit, parameters);
   const std::vector<Field> fields = define_fields(f, t, unit, wdim, cdim, coordinates);
+  // Legendre moments on a dimension of their own.
+  int moment_var = -1, chi_var = -1, chi_error_var = -1;
+  std::vector<double> chi, chi_error, orders;
+  if (t.max_moment >= 0) {
+    const std::size_t L1 = static_cast<std::size_t>(t.max_moment) + 1;
+    const int mdim = f.add_dimension("moment", L1);
+    moment_var = f.add_double_variable("moment", {mdim});
+    describe(f, moment_var, "1", "order l of the Legendre moment", "");
+    chi_var = f.add_double_variable("chi", {wdim, cdim, mdim});
+    f.set_attribute(chi_var, "_FillValue", kMissing);
+    describe(f, chi_var, "1",
+             "Legendre moments chi_l of the phase function, p(mu) = sum (2l+1) chi_l P_l(mu), chi_0 = 1, chi_1 = g "
+             "(DISORT's PMOM)",
+             "");
+    f.set_attribute(chi_var, "coordinates", coordinates);
+    f.set_attribute(chi_var, "ancillary_variables", "chi_error");
+    chi_error_var = f.add_double_variable("chi_error", {wdim, cdim, mdim});
+    f.set_attribute(chi_error_var, "_FillValue", kMissing);
+    describe(f, chi_error_var, "1", "error estimate of chi", "");
+    for (std::size_t l = 0; l < L1; ++l) orders.push_back(static_cast<double>(l));
+    for (const auto& cell : t.cells)
+      for (std::size_t l = 0; l < L1; ++l) {
+        const QuantityValue v = table_moment(cell, static_cast<int>(l));
+        chi.push_back(v.value);
+        chi_error.push_back(v.error);
+      }
+  }
   const int method_var = f.add_string_variable("sigma_ext_method", {wdim, cdim});
   describe(f, method_var, "", "how sigma_ext was computed: refractive index, integration method, warnings (empty: closed form)", "");
   f.end_definitions();
@@ -179,6 +209,11 @@ void write_sigma_table_netcdf(const SigmaTable& t, const std::string& path, Sigm
   f.write(method_var, methods);
   for (const auto& [var, values] : parameters) f.write(var, values);
   for (const auto& field : fields) f.write(field.variable, field.values);
+  if (t.max_moment >= 0) {
+    f.write(moment_var, orders);
+    f.write(chi_var, chi);
+    f.write(chi_error_var, chi_error);
+  }
   f.commit();
 }
 

@@ -58,6 +58,15 @@ std::vector<Column> numeric_columns(const SigmaTable& t, SigmaUnit unit) {
                      return in_table_unit(kind, table_value(t.at(w, c), q).error, unit);
                    }});
   }
+  for (int l = 0; l <= t.max_moment; ++l) {
+    const std::string name = "chi_" + std::to_string(l);
+    out.push_back({name, "1",
+                   "Legendre moment " + std::to_string(l) +
+                       " of the phase function, p(mu) = sum (2l+1) chi_l P_l(mu), chi_0 = 1 (DISORT's PMOM)",
+                   "", "", [&t, l](std::size_t w, std::size_t c) { return table_moment(t.at(w, c), l).value; }});
+    out.push_back({name + "_error", "1", "error estimate of " + name, "", "",
+                   [&t, l](std::size_t w, std::size_t c) { return table_moment(t.at(w, c), l).error; }});
+  }
   const double threshold = t.settings.contrast_threshold;
   out.push_back({"koschmieder_visibility_m", "m",
                  "visibility from sigma_ext by Koschmieder at contrast threshold " + io::shortest(threshold),

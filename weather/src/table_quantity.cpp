@@ -70,6 +70,34 @@ namespace {
 bool per_km(SigmaUnit unit) { return unit != SigmaUnit::per_m; }
 }  // namespace
 
+QuantityRequest parse_quantity_request(const std::string& text) {
+  QuantityRequest out;
+  std::string rest;
+  std::stringstream in(text);
+  std::string name;
+  while (std::getline(in, name, ',')) {
+    if (name.rfind("moments:", 0) != 0) {
+      rest += (rest.empty() ? "" : ",") + name;
+      continue;
+    }
+    if (out.max_moment >= 0) throw std::invalid_argument("'moments:L' is listed twice");
+    const std::string l = name.substr(8);
+    std::size_t used = 0;
+    int value = -1;
+    try {
+      value = std::stoi(l, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (l.empty() || used != l.size() || value < 0 || value > kMaxTableMoment)
+      throw std::invalid_argument("'" + name + "': L must be a whole number in [0, " +
+                                  std::to_string(kMaxTableMoment) + "]");
+    out.max_moment = value;
+  }
+  if (!rest.empty() || out.max_moment < 0) out.quantities = parse_quantity_list(rest);
+  return out;
+}
+
 std::string unit_text(QuantityKind kind, SigmaUnit unit) {
   switch (kind) {
     case QuantityKind::coefficient: return to_string(unit);

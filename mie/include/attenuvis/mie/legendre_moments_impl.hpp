@@ -49,12 +49,22 @@ namespace attenuvis::mie::detail {
 // Rule of at least `order` nodes, cached per thread: building one costs O(n²)
 // (gauss_legendre.hpp), as much as the moments themselves, and neighbouring
 // spheres of a size distribution need nearly the same order.  Any order >= the
-// one needed is exact, so a cached rule up to ~6% larger is reused.
+// one needed is exact, so the order is rounded up to a multiple of about 1/32
+// to 1/16 of itself and a rule is reused across that bin.  The rounding
+// depends on `order` alone, never on which spheres a thread saw before, so a
+// sphere's moments are the same bits whatever the threads and their history.
+inline std::size_t binned_rule_order(std::size_t order) {
+  std::size_t top = 1;
+  while (top * 2 <= order) top *= 2;
+  const std::size_t q = top >= 64 ? top / 32 : 1;
+  return (order + q - 1) / q * q + 1;
+}
+
 template <class Real>
 const HalfGaussLegendre<Real>& cached_rule(std::size_t order) {
   thread_local HalfGaussLegendre<Real> rule;
-  if (rule.order < order || rule.order > order + order / 16 + 8)
-    rule = half_gauss_legendre<Real>(order + order / 32 + 1);
+  const std::size_t binned = binned_rule_order(order);
+  if (rule.order != binned) rule = half_gauss_legendre<Real>(binned);
   return rule;
 }
 

@@ -40,6 +40,7 @@ struct SigmaTable {
   std::vector<double> wavelengths_m;
   std::vector<LabelledCondition> conditions;  // labels: the "condition" column
   std::vector<Quantity> quantities;           // in the order asked for
+  int max_moment = -1;                        // >= 0: Legendre moments chi_0..chi_L of Mie cells
   std::vector<TableCell> cells;               // cells[w * conditions.size() + c]
   Settings settings;
   const TableCell& at(std::size_t w, std::size_t c) const { return cells[w * conditions.size() + c]; }
@@ -64,7 +65,10 @@ std::vector<double> parse_wavelength_list(const std::string& text);
 // Any failing cell makes the whole call throw, naming the cell.
 SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const std::vector<double>& wavelengths_m,
                        const Settings& settings, int threads = 0,
-                       const std::vector<Quantity>& quantities = {Quantity::sigma_ext});
+                       const std::vector<Quantity>& quantities = {Quantity::sigma_ext}, int max_moment = -1);
+// chi_l of a cell and its error; NaN where the cell has no moments (a
+// condition without drops, or rain's large-x expansion).
+QuantityValue table_moment(const TableCell& cell, int l);
 
 enum class TableFormat { csv, json, netcdf };
 TableFormat parse_table_format(const std::string& text);  // "csv" | "json" | "netcdf"
