@@ -52,6 +52,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace attenuvis::visgraph {
@@ -69,13 +70,17 @@ class PairCulling {
  public:
   static constexpr std::uint32_t kLeafNodes = 16;  // = the packet width: one packet per row and leaf
   static constexpr int kOccluderTries = 4;
+  static constexpr std::size_t kItemsPerShare = 32;  // pairs of clusters dealt to each share
 
   // x, y, z: the nodes (local frame), indexed by row.  Builds the cluster
   // tree and, with `classify`, classifies every pair of clusters (in
   // parallel in the current TBB arena); without, every pair is left to rays.
   // Pairs decided blocked are added to `progress` (if any) as they are found.
+  // With share_count > 1, only this share's pairs of clusters are
+  // classified and recorded (traverse_share): its rows credit only them.
   PairCulling(RTCScene scene, std::size_t triangle_count, const std::vector<double>& x,
-              const std::vector<double>& y, const std::vector<double>& z, bool classify, Progress* progress);
+              const std::vector<double>& y, const std::vector<double>& z, bool classify, Progress* progress,
+              int share_index = 0, int share_count = 1);
 
   struct Block {
     std::uint32_t leaf;  // partner leaf
@@ -110,7 +115,15 @@ class PairCulling {
  private:
   std::uint32_t build(std::uint32_t begin, std::uint32_t end, std::int32_t parent);
   struct Local;
+  enum class Step { empty, visible, blocked, cast, split };
+  double pairs_of(std::uint32_t a, std::uint32_t b) const;
+  Step visit(std::uint32_t a, std::uint32_t b, bool classify_pairs, Local& local,
+             std::vector<std::pair<std::uint32_t, std::uint32_t>>& children) const;
   void traverse(std::uint32_t a, std::uint32_t b, tbb::enumerable_thread_specific<Local>& locals);
+  void traverse_share(bool classify_pairs, int index, int count, tbb::enumerable_thread_specific<Local>& locals);
+  void collect(const tbb::enumerable_thread_specific<Local>& locals);
+  static double margin_for(const CullGeometry& geometry, const std::vector<double>& x, const std::vector<double>& y,
+                           const std::vector<double>& z);
   Verdict classify(std::uint32_t a, std::uint32_t b) const;
   Verdict classify_boxes(const Box3& a, const Box3& b) const;
 

@@ -402,11 +402,9 @@ void run_rows_culled(const Pass& pass, const detail::PairCulling& culling, const
   for (std::size_t r = 0; r < rank_of.size(); ++r) rank_of[pass.caller[r]] = static_cast<std::uint32_t>(r);
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
-    const detail::LeafRange leaves = detail::share_leaves(culling, options.share);
-    progress.set_scale(leaves.scale);
     for (std::size_t block = 0; block < N; block += block_rows) {
       const std::size_t block_end = std::min(N, block + block_rows);
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(leaves.first, leaves.last, 1),
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, culling.leaf_count(), 1),
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           ThreadState& ts = states.local();
                           for (std::size_t leaf = range.begin(); leaf != range.end(); ++leaf)
@@ -592,7 +590,8 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
     std::unique_ptr<detail::PairCulling> culling;
     arena.execute([&] {
       culling = std::make_unique<detail::PairCulling>(pass.rtc, scene.triangle_count(), sources.x, sources.y,
-                                                      sources.z, options.culling, &progress);
+                                                      sources.z, options.culling, &progress, options.share.index,
+                                                      options.share.count);
     });
     result.pairs_culled_visible = culling->pairs_visible();
     result.pairs_culled_blocked = culling->pairs_blocked();

@@ -82,18 +82,20 @@ struct ProgressReport {
 };
 
 // One share of a pass run on several processes (the CLI's MPI layer,
-// apps/mpi_session.hpp).  Every process builds the same cluster tree and
-// classification (deterministic), then accumulates only its share of the
-// rows: all-to-all with culling, a contiguous range of leaf clusters (depth
-// first, so spatially compact) balanced by estimated cost (a cast pair 4
-// units, a pair culled in sight 1, a blocked pair 0); every other path,
-// rows index, index + count, ... .  `combine` is then called once, on the
-// calling thread, with the share's raw integer accumulators (fixed-point
-// sums, counts, counters: an opaque layout of the same length on every
-// share) and its per-node maxima; it must replace them in place by the
-// element-wise sum and maximum over all shares.  Integer addition is exact
-// and associative, so the result is bit-identical to a one-process pass for
-// any number of shares.  The edge list is not available from a shared pass.
+// apps/process_group.hpp).  Every process builds the same cluster tree;
+// all-to-all without a radius then expands the top of the dual-tree
+// traversal identically everywhere and deals its pairs of clusters to the
+// shares by estimated cost (per node pair: cast 4, culled in sight 1, culled
+// blocked 0, still undecided 1.5), so that each process classifies and casts
+// only its own (src/pair_culling.hpp); every other path deals rows index,
+// index + count, ... .  `combine` is then called once, on the calling
+// thread, with the share's raw integer accumulators (fixed-point sums,
+// counts, counters: an opaque layout of the same length on every share) and
+// its per-node maxima; it must replace them in place by the element-wise sum
+// and maximum over all shares.  Integer addition is exact and associative
+// and every pair is decided and cast exactly as in one process, so the
+// result is bit-identical to a one-process pass for any number of shares.
+// The edge list is not available from a shared pass.
 struct PassShare {
   int index = 0;  // this process's share, 0 <= index < count
   int count = 1;
