@@ -69,6 +69,7 @@ int main(int argc, char** argv) {
 
 int attenuvis::cli::run_program(int argc, char** argv) {
   using attenuvis::cli::error_line;
+  using attenuvis::cli::fail;
   using attenuvis::cli::shortened;
   CLI::App app{"attenuvis: Lorenz-Mie reference, ITU-R P.1817 attenuation and weather-weighted visibility graphs"};
   app.require_subcommand(1);
@@ -85,6 +86,12 @@ int attenuvis::cli::run_program(int argc, char** argv) {
   attenuvis::cli::register_scene_command(app);
   attenuvis::cli::register_reproduce(app);
   attenuvis::cli::register_optics(app);
+  // Only `vg` shares its work; any other command on several processes would
+  // do the same work on each and write the same files.
+  if (attenuvis::cli::process_count() > 1 && (argc < 2 || std::string(argv[1]) != "vg"))
+    return attenuvis::cli::fail(error_line("only `attenuvis vg` runs on several processes (mpirun -np " +
+                                           std::to_string(attenuvis::cli::process_count()) +
+                                           "); run this command as one process"));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

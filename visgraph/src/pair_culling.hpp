@@ -35,6 +35,13 @@
 // full pass casts for the leaf pairs it leaves undecided, so every pair gets
 // the same answer.
 //
+// Shares.  A pass run on several processes (PassShare) expands the top of
+// the traversal identically on every process and deals the pairs of
+// clusters to them by estimated cost (traverse_share); each process then
+// classifies and records only its own, so its rows credit only its own
+// blocks, every verdict is the one-process one, and no process repeats the
+// others' classification.
+//
 // Margin.  m = 1e-3 m + 1e-5 L, L the largest |coordinate| (local frame) of
 // any node or vertex.  It covers: the end gap of the line-of-sight policy
 // (1e-4 m + 1e-6 d, d <= 2 sqrt(3) L), the rounding of a node to a float ray
