@@ -117,7 +117,7 @@ std::vector<Vector3d> layout_nodes(const vg::Scene& scene) {
 }  // namespace
 
 TEST_CASE("pass shares: every path of the pass, identical to one process", "[visgraph][share]") {
-  const int layout = GENERATE(1, 2, 3);
+  const int layout = GENERATE(0, 1, 2, 3, 4);
   const vg::Scene scene(vg::classic_layout(layout));
   const std::vector<Vector3d> nodes = layout_nodes(scene);
   INFO(vg::classic_layout_name(layout) << ", " << nodes.size() << " nodes");
