@@ -295,7 +295,8 @@ void run_vg(const VgArguments& given) {
   const std::vector<std::string> panels =
       a.color_by.empty() ? vg::default_heatmap_columns(table) : std::vector<std::string>{a.color_by};
   if (!a.ply.empty() || !a.heatmap.empty()) vg::score_values(table, panels.front());  // check the name before writing
-  if (!root) return;  // every process holds the totals; the first one writes them
+  synchronize_processes();  // every check passed everywhere: nothing can end the writer midway
+  if (!root) return;        // every process holds the totals; the first one writes them
   const auto stage_text = [&staged](const std::string& path, const std::string& text) {
     io::StagedFile& file = staged.add(path);
     file.write(text);

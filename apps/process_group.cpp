@@ -66,6 +66,11 @@ visgraph::PassShare process_share() {
   return share;
 }
 
+void synchronize_processes() {
+  if (joined_ && count_ > 1 && MPI_Barrier(MPI_COMM_WORLD) != MPI_SUCCESS)
+    throw std::runtime_error("MPI: the processes could not meet before writing the outputs");
+}
+
 void abort_process_group(const std::string& message) {
   std::cerr << message << std::flush;
   if (joined_ && count_ > 1) MPI_Abort(MPI_COMM_WORLD, 1);
@@ -84,6 +89,7 @@ void start_process_group(int*, char***) {
 }
 void finish_process_group() {}
 visgraph::PassShare process_share() { return {}; }
+void synchronize_processes() {}
 void abort_process_group(const std::string& message) {
   std::cerr << message << std::flush;
   std::exit(1);

@@ -27,6 +27,11 @@ inline bool is_root_process() { return process_rank() == 0; }
 // over all of them (every process receives the totals).
 visgraph::PassShare process_share();
 
+// Waits until every process has come here.  The first process stages its
+// outputs only after every other one has passed its last check, so that no
+// failure elsewhere can end it (MPI_Abort) with a file half-written.
+void synchronize_processes();
+
 // Ends every process of the group with `message` on stderr and a non-zero
 // exit status (one process failing must not leave the others waiting).
 [[noreturn]] void abort_process_group(const std::string& message);
