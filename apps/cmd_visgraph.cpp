@@ -3,6 +3,7 @@
 // and calls the visgraph library.
 #include "commands.hpp"
 #include "path_clashes.hpp"
+#include "process_group.hpp"
 #include "weather_options.hpp"
 
 #include <attenuvis/io/number_text.hpp>
@@ -247,10 +248,20 @@ vg::NodeSet place_nodes(const VgArguments& a, SceneInput& input, std::unique_ptr
   return grid;
 }
 
-void run_vg(const VgArguments& a) {
+// Under mpirun every process reads the same input and runs the same checks
+// (so bad input fails identically everywhere); each accumulates its share of
+// the pass, the shares are summed exactly, and only the first process
+// reports and writes the outputs.
+void run_vg(const VgArguments& given) {
   const auto start = std::chrono::steady_clock::now();
+  VgArguments a = given;
+  const bool root = is_root_process();
+  if (!root) a.quiet = true;
   if (!a.targets_file.empty() && !a.target_point.empty())
     throw std::invalid_argument("give --targets or --target-point, not both");
+  if (!a.edges.empty() && process_count() > 1)
+    throw std::invalid_argument("--edges is written by a single process: run it without mpirun (the scores "
+                                "are the same; the edge list's order is that of one process)");
   refuse_path_clashes({{"--out", a.out}, {"--ply", a.ply}, {"--heatmap", a.heatmap}, {"--summary", a.summary},
                        {"--edges", a.edges}, {"--geojson", a.geojson}},
                       {{"the scene", vg::is_scene_spec(a.scene) ? "" : a.scene},
@@ -295,6 +306,7 @@ void run_vg(const VgArguments& a) {
   options.threads = a.threads;
   options.progress = !a.quiet;
   options.culling = !a.no_culling;
+  options.share = process_share();
 
   const vg::WorkEstimate work = vg::estimate_work(eyes, targets.empty() ? nullptr : &targets, options);
   check_work(a, work);
@@ -332,6 +344,8 @@ void run_vg(const VgArguments& a) {
   const std::vector<std::string> panels =
       a.color_by.empty() ? vg::default_heatmap_columns(table) : std::vector<std::string>{a.color_by};
   if (!a.ply.empty() || !a.heatmap.empty()) vg::score_values(table, panels.front());  // check the name before writing
+  synchronize_processes();  // every check passed everywhere: nothing can end the writer midway
+  if (!root) return;        // every process holds the totals; the first one writes them
   const auto stage_text = [&staged](const std::string& path, const std::string& text) {
     io::StagedFile& file = staged.add(path);
     file.write(text);
@@ -378,6 +392,7 @@ void run_vg(const VgArguments& a) {
               << result.pairs_cast << " cast, " << result.pairs_culled_visible << " culled in sight, "
               << result.pairs_culled_blocked << " culled blocked, " << result.pairs_visible << " visible) in " << result.seconds
               << " s (clustering and classifying " << result.culling_seconds << " s)"
+              << (process_count() > 1 ? " on " + std::to_string(process_count()) + " processes" : std::string())
               << " = " << (result.seconds > 0 ? result.pairs_total / result.seconds / 1e6 : 0.0)
               << " M pairs/s\n";
 }

@@ -5,6 +5,8 @@
 #include "progress.hpp"
 
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
 #include <algorithm>
@@ -13,6 +15,8 @@
 #include <memory>
 #include <cmath>
 #include <numeric>
+#include <queue>
+#include <tuple>
 
 namespace attenuvis::visgraph::detail {
 
@@ -39,7 +43,7 @@ PairCulling::~PairCulling() = default;
 
 PairCulling::PairCulling(RTCScene scene, std::size_t triangle_count, const std::vector<double>& x,
                          const std::vector<double>& y, const std::vector<double>& z, bool classify,
-                         Progress* progress)
+                         Progress* progress, int share_index, int share_count)
     : scene_(scene), progress_(progress), x_(x), y_(y), z_(z) {
   const auto start = std::chrono::steady_clock::now();
   const auto n = static_cast<std::uint32_t>(x.size());
@@ -48,19 +52,39 @@ PairCulling::PairCulling(RTCScene scene, std::size_t triangle_count, const std::
   nodes_.reserve(4 * (n / kLeafNodes + 1));
   build(0, n, -1);
   records_.resize(nodes_.size());
+  if (share_count > 1) {
+    if (classify) {
+      geometry_ = std::make_unique<CullGeometry>(scene, triangle_count);
+      margin_ = margin_for(*geometry_, x, y, z);
+    }
+    tbb::enumerable_thread_specific<Local> locals;
+    traverse_share(classify, share_index, share_count, locals);
+    collect(locals);
+    seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return;
+  }
   if (!classify) {  // every pair cast: one record, the root with itself
     records_[0].push_back({0, Verdict::cast});
     seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return;
   }
   geometry_ = std::make_unique<CullGeometry>(scene, triangle_count);
-  double largest = geometry_->max_abs_coordinate();
-  for (std::size_t i = 0; i < x.size(); ++i)
-    largest = std::max({largest, std::abs(x[i]), std::abs(y[i]), std::abs(z[i])});
-  margin_ = 1e-3 + 1e-5 * largest;
-
+  margin_ = margin_for(*geometry_, x, y, z);
   tbb::enumerable_thread_specific<Local> locals;
   traverse(0, 0, locals);
+  collect(locals);
+  seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double PairCulling::margin_for(const CullGeometry& geometry, const std::vector<double>& x,
+                               const std::vector<double>& y, const std::vector<double>& z) {
+  double largest = geometry.max_abs_coordinate();
+  for (std::size_t i = 0; i < x.size(); ++i)
+    largest = std::max({largest, std::abs(x[i]), std::abs(y[i]), std::abs(z[i])});
+  return 1e-3 + 1e-5 * largest;
+}
+
+void PairCulling::collect(const tbb::enumerable_thread_specific<Local>& locals) {
   for (const Local& local : locals) {
     pairs_blocked_ += local.blocked;
     pairs_visible_ += local.visible;
@@ -71,7 +95,6 @@ PairCulling::PairCulling(RTCScene scene, std::size_t triangle_count, const std::
       if (r[0] != r[1]) records_[r[1]].push_back({r[0], v});
     }
   }
-  seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // Split on the longest side of the nodes' bounding box, at the median
@@ -115,29 +138,41 @@ std::uint32_t PairCulling::build(std::uint32_t begin, std::uint32_t end, std::in
   return id;
 }
 
-// Every unordered pair of nodes (a node with itself: its own pairs) once.
-void PairCulling::traverse(std::uint32_t a, std::uint32_t b, tbb::enumerable_thread_specific<Local>& locals) {
+double PairCulling::pairs_of(std::uint32_t a, std::uint32_t b) const {
   const Node& A = nodes_[a];
   const Node& B = nodes_[b];
-  Local& local = locals.local();
-  const double pairs = a == b ? 0.5 * A.size() * (A.size() - 1.0) : static_cast<double>(A.size()) * B.size();
-  if (pairs == 0) return;
-  const auto record = [&](Verdict v) { local.records.push_back({a, b, static_cast<std::uint32_t>(v)}); };
-  ++local.tests;
-  const Verdict v = a == b ? (geometry_->hull_is_empty(box_of(A), box_of(A), margin_) ? Verdict::visible
-                                                                                                : Verdict::cast)
-                           : classify(a, b);
-  if (v == Verdict::visible) {
-    local.visible += static_cast<std::uint64_t>(pairs);
-    return record(v);
+  return a == b ? 0.5 * A.size() * (A.size() - 1.0) : static_cast<double>(A.size()) * B.size();
+}
+
+// The verdict on clusters a, b (a == b: the pairs within a); visible and
+// blocked pairs are counted in `local`.  Undecided: `cast` (a pair of
+// clusters small enough to cast) or `split` (children in `children`).
+PairCulling::Step PairCulling::visit(std::uint32_t a, std::uint32_t b, bool classify_pairs, Local& local,
+                                     std::vector<std::pair<std::uint32_t, std::uint32_t>>& children) const {
+  const Node& A = nodes_[a];
+  const Node& B = nodes_[b];
+  children.clear();
+  const double pairs = pairs_of(a, b);
+  if (pairs == 0) return Step::empty;
+  if (classify_pairs) {
+    ++local.tests;
+    const Verdict v = a == b ? (geometry_->hull_is_empty(box_of(A), box_of(A), margin_) ? Verdict::visible
+                                                                                         : Verdict::cast)
+                             : classify(a, b);
+    if (v == Verdict::visible) {
+      local.visible += static_cast<std::uint64_t>(pairs);
+      local.records.push_back({a, b, static_cast<std::uint32_t>(v)});
+      return Step::visible;
+    }
+    if (v == Verdict::blocked) {
+      local.blocked += static_cast<std::uint64_t>(pairs);
+      return Step::blocked;
+    }
   }
-  if (v == Verdict::blocked) {
-    local.blocked += static_cast<std::uint64_t>(pairs);
-    if (progress_) progress_->add(static_cast<std::uint64_t>(pairs));  // done: no row will see them
-    return;
+  if ((A.is_leaf() && B.is_leaf()) || (a != b && pairs <= kCastPairs)) {
+    local.records.push_back({a, b, static_cast<std::uint32_t>(Verdict::cast)});
+    return Step::cast;
   }
-  if ((A.is_leaf() && B.is_leaf()) || (a != b && pairs <= kCastPairs)) return record(Verdict::cast);
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> children;
   if (a == b) {
     const auto l = static_cast<std::uint32_t>(A.left), r = static_cast<std::uint32_t>(A.right);
     children = {{l, l}, {l, r}, {r, r}};
@@ -146,13 +181,102 @@ void PairCulling::traverse(std::uint32_t a, std::uint32_t b, tbb::enumerable_thr
   } else {
     children = {{a, static_cast<std::uint32_t>(B.left)}, {a, static_cast<std::uint32_t>(B.right)}};
   }
-  if (pairs > kParallelPairs) {
+  return Step::split;
+}
+
+// Every unordered pair of nodes under a, b (a == b: under a) once.
+void PairCulling::traverse(std::uint32_t a, std::uint32_t b, tbb::enumerable_thread_specific<Local>& locals) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> children;
+  const Step step = visit(a, b, true, locals.local(), children);
+  // Blocked pairs are done: no row will see them.
+  if (step == Step::blocked && progress_) progress_->add(static_cast<std::uint64_t>(pairs_of(a, b)));
+  if (step != Step::split) return;
+  if (pairs_of(a, b) > kParallelPairs) {
     tbb::task_group group;
     for (const auto& c : children) group.run([this, c, &locals] { traverse(c.first, c.second, locals); });
     group.wait();
   } else {
     for (const auto& c : children) traverse(c.first, c.second, locals);
   }
+}
+
+// Several shares: the top of the traversal is expanded in the same order by
+// every process (the largest pair of clusters first) until kItemsPerShare
+// pairs of clusters per share are left open; those and the pairs decided on
+// the way are dealt to the shares by estimated cost (per node pair: cast 4,
+// in sight 1, blocked 0, still open 1.5, the mean over the city and the
+// layouts), largest first to the least loaded share.  Each process then
+// finishes its own.  visit() is a function of the pair of clusters, so every
+// verdict is the one-process traversal's, and each record belongs to one
+// share: the rows of a share credit only its own blocks.
+void PairCulling::traverse_share(bool classify_pairs, int index, int count,
+                                 tbb::enumerable_thread_specific<Local>& locals) {
+  struct Item {
+    std::uint32_t a, b;
+    Step step;
+    double pairs;
+  };
+  std::vector<Item> items;
+  using Entry = std::tuple<double, std::uint32_t, std::uint32_t>;  // pairs, a, b: a total order
+  std::priority_queue<Entry> open;
+  open.push({pairs_of(0, 0), 0u, 0u});
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> children;
+  const std::size_t target = kItemsPerShare * static_cast<std::size_t>(count);
+  Local expansion;
+  while (!open.empty() && open.size() < target) {
+    const auto [pairs, a, b] = open.top();
+    open.pop();
+    const Step step = visit(a, b, classify_pairs, expansion, children);
+    if (step == Step::split)
+      for (const auto& c : children) open.push({pairs_of(c.first, c.second), c.first, c.second});
+    else if (step != Step::empty)
+      items.push_back({a, b, step, pairs});
+  }
+  for (; !open.empty(); open.pop()) items.push_back({std::get<1>(open.top()), std::get<2>(open.top()), Step::split,
+                                                     std::get<0>(open.top())});
+  // Deal by cost (in half units per node pair), largest first, ties in item order.
+  const auto cost = [](const Item& item) {
+    const std::uint64_t per_pair = item.step == Step::cast ? 8 : item.step == Step::visible ? 2
+                                 : item.step == Step::split ? 3 : 0;
+    return per_pair * static_cast<std::uint64_t>(item.pairs);
+  };
+  std::vector<std::size_t> by_cost(items.size());
+  std::iota(by_cost.begin(), by_cost.end(), std::size_t{0});
+  std::stable_sort(by_cost.begin(), by_cost.end(), [&](std::size_t p, std::size_t q) { return cost(items[p]) > cost(items[q]); });
+  std::vector<std::uint64_t> load(static_cast<std::size_t>(count), 0);
+  std::vector<std::size_t> mine;
+  double my_pairs = 0, all_pairs = 0;
+  for (std::size_t k : by_cost) {
+    const auto least = static_cast<int>(std::min_element(load.begin(), load.end()) - load.begin());
+    load[static_cast<std::size_t>(least)] += cost(items[k]);
+    all_pairs += items[k].pairs;
+    if (least == index) mine.push_back(k), my_pairs += items[k].pairs;
+  }
+  std::sort(mine.begin(), mine.end());
+  // This share's progress, scaled to the whole pass.
+  if (progress_ && my_pairs > 0) progress_->set_scale(all_pairs / my_pairs);
+  Local& own = locals.local();
+  if (index == 0) own.tests += expansion.tests;
+  std::vector<std::uint32_t> to_traverse;
+  for (std::size_t k : mine) {
+    const Item& item = items[k];
+    const auto pairs = static_cast<std::uint64_t>(item.pairs);
+    if (item.step == Step::visible) own.visible += pairs;
+    if (item.step == Step::blocked) {
+      own.blocked += pairs;
+      if (progress_) progress_->add(pairs);
+    }
+    if (item.step == Step::visible || item.step == Step::cast || (item.step == Step::split && !classify_pairs)) {
+      const Verdict v = item.step == Step::visible ? Verdict::visible : Verdict::cast;
+      own.records.push_back({item.a, item.b, static_cast<std::uint32_t>(v)});
+    }
+    if (item.step == Step::split && classify_pairs) to_traverse.push_back(static_cast<std::uint32_t>(k));
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, to_traverse.size(), 1),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t t = range.begin(); t != range.end(); ++t)
+                        traverse(items[to_traverse[t]].a, items[to_traverse[t]].b, locals);
+                    });
 }
 
 // Visible, blocked, or left to rays (pair_culling.hpp).  The ray between the

@@ -35,6 +35,13 @@
 // full pass casts for the leaf pairs it leaves undecided, so every pair gets
 // the same answer.
 //
+// Shares.  A pass run on several processes (PassShare) expands the top of
+// the traversal identically on every process and deals the pairs of
+// clusters to them by estimated cost (traverse_share); each process then
+// classifies and records only its own, so its rows credit only its own
+// blocks, every verdict is the one-process one, and no process repeats the
+// others' classification.
+//
 // Margin.  m = 1e-3 m + 1e-5 L, L the largest |coordinate| (local frame) of
 // any node or vertex.  It covers: the end gap of the line-of-sight policy
 // (1e-4 m + 1e-6 d, d <= 2 sqrt(3) L), the rounding of a node to a float ray
@@ -52,6 +59,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace attenuvis::visgraph {
@@ -69,13 +77,17 @@ class PairCulling {
  public:
   static constexpr std::uint32_t kLeafNodes = 16;  // = the packet width: one packet per row and leaf
   static constexpr int kOccluderTries = 4;
+  static constexpr std::size_t kItemsPerShare = 32;  // pairs of clusters dealt to each share
 
   // x, y, z: the nodes (local frame), indexed by row.  Builds the cluster
   // tree and, with `classify`, classifies every pair of clusters (in
   // parallel in the current TBB arena); without, every pair is left to rays.
   // Pairs decided blocked are added to `progress` (if any) as they are found.
+  // With share_count > 1, only this share's pairs of clusters are
+  // classified and recorded (traverse_share): its rows credit only them.
   PairCulling(RTCScene scene, std::size_t triangle_count, const std::vector<double>& x,
-              const std::vector<double>& y, const std::vector<double>& z, bool classify, Progress* progress);
+              const std::vector<double>& y, const std::vector<double>& z, bool classify, Progress* progress,
+              int share_index = 0, int share_count = 1);
 
   struct Block {
     std::uint32_t leaf;  // partner leaf
@@ -110,7 +122,15 @@ class PairCulling {
  private:
   std::uint32_t build(std::uint32_t begin, std::uint32_t end, std::int32_t parent);
   struct Local;
+  enum class Step { empty, visible, blocked, cast, split };
+  double pairs_of(std::uint32_t a, std::uint32_t b) const;
+  Step visit(std::uint32_t a, std::uint32_t b, bool classify_pairs, Local& local,
+             std::vector<std::pair<std::uint32_t, std::uint32_t>>& children) const;
   void traverse(std::uint32_t a, std::uint32_t b, tbb::enumerable_thread_specific<Local>& locals);
+  void traverse_share(bool classify_pairs, int index, int count, tbb::enumerable_thread_specific<Local>& locals);
+  void collect(const tbb::enumerable_thread_specific<Local>& locals);
+  static double margin_for(const CullGeometry& geometry, const std::vector<double>& x, const std::vector<double>& y,
+                           const std::vector<double>& z);
   Verdict classify(std::uint32_t a, std::uint32_t b) const;
   Verdict classify_boxes(const Box3& a, const Box3& b) const;
 

@@ -27,11 +27,16 @@ class Progress {
            std::atomic<std::uint64_t>* mirror = nullptr, const std::atomic<bool>* cancel = nullptr);
   ~Progress();
   void add(std::uint64_t done) {
+    if (scale_ != 1.0) done = static_cast<std::uint64_t>(static_cast<double>(done) * scale_ + 0.5);
     done_.fetch_add(done, std::memory_order_relaxed);
     if (mirror_) mirror_->fetch_add(done, std::memory_order_relaxed);
     if (cancel_ && cancel_->load(std::memory_order_relaxed)) throw Cancelled();
   }
   void finish();
+  // A process that computes one share of a pass (PassShare) counts its own
+  // pairs times `scale` (the whole pass's pairs over its share's), so that
+  // its line estimates the whole pass.  Set before the workers add.
+  void set_scale(double scale) { scale_ = scale; }
 
  private:
   void run();
@@ -43,6 +48,7 @@ class Progress {
   std::atomic<std::uint64_t> done_{0};
   std::atomic<std::uint64_t>* mirror_;
   const std::atomic<bool>* cancel_;
+  double scale_ = 1.0;
   bool stop_ = false;
   bool printed_ = false;
   std::mutex mutex_;

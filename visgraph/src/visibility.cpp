@@ -28,6 +28,7 @@
 #include "node_points.hpp"
 #include "pair_culling.hpp"
 #include "pair_packet.hpp"
+#include "pass_share.hpp"
 #include "progress.hpp"
 #include "scene_access.hpp"
 
@@ -67,6 +68,20 @@ void validate(const VisibilityOptions& o) {
   if (!(o.tolerance >= 0) || !(o.tolerance < 1)) throw std::invalid_argument("visibility: tolerance must be in [0, 1)");
   if (!(o.max_distance > 0)) throw std::invalid_argument("visibility: max distance must be positive");
   if (o.threads < 0) throw std::invalid_argument("visibility: thread count must be >= 0");
+  if (o.share.count < 1 || o.share.index < 0 || o.share.index >= o.share.count)
+    throw std::invalid_argument("visibility: share " + std::to_string(o.share.index) + " of " +
+                                std::to_string(o.share.count) + " does not exist");
+  if (o.share.count > 1 && !o.share.combine)
+    throw std::invalid_argument("visibility: a pass in several shares needs a combine step");
+  if (o.share.count > 1 && o.edge_sink)
+    throw std::invalid_argument("visibility: the edge list is written by a single process only");
+}
+
+// Is row i (any path but the culled one) in this process's share?  Rows are
+// dealt round-robin: row costs change slowly with i, so every share gets a
+// fair mix.
+bool row_in_share(const PassShare& share, std::size_t i) {
+  return share.count == 1 || i % static_cast<std::size_t>(share.count) == static_cast<std::size_t>(share.index);
 }
 
 // Per-thread state.  Accumulators are slot-major: acc[s * N + i] with slots
@@ -95,6 +110,7 @@ struct Pass {
   bool keep_max = false;
   // All-to-all: caller's index of each (x-sorted) row, for the edge list.
   const std::uint32_t* caller = nullptr;
+  const PassShare* share = nullptr;  // this process's share of the pass
 };
 
 // An edge in the caller's numbering; all-to-all edges as (smaller, larger).
@@ -306,6 +322,7 @@ void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const Visi
       options.edge_sink ? std::max<std::size_t>(1, (std::size_t{1} << 22) / std::max<std::size_t>(M, 1)) : N;
   std::vector<std::vector<Edge>> row_edges(options.edge_sink ? block_rows : 0);
   Progress progress(options.progress, options.on_progress, pairs_total, "vg", options.pairs_done, options.cancel);
+  progress.set_scale(options.share.count);
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     for (std::size_t block = 0; block < N; block += block_rows) {
@@ -314,6 +331,7 @@ void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const Visi
                         [&](const tbb::blocked_range<std::size_t>& range) {
                           ThreadState& ts = states.local();
                           for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                            if (!row_in_share(options.share, i)) continue;
                             std::vector<Edge>* edges = options.edge_sink ? &row_edges[i - block] : nullptr;
                             if (edges) edges->clear();
                             run_row(pass, plan, tree, i, ts, edges, pruned);
@@ -419,6 +437,7 @@ void collect_results(const tbb::enumerable_thread_specific<ThreadState>& states,
     result.pairs_visible += ts.visible;
     result.coincident_pairs += ts.coincident;
   }
+  if (pass.share->count > 1) detail::combine_shares(*pass.share, total, max_distance, pruned, result);
   const auto caller_index = [&](std::size_t i) { return order.empty() ? i : order[i]; };
   if (plan.slab && plan.pruning)
     for (std::size_t i = 0; i < N; ++i)
@@ -549,6 +568,7 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
   pass.max_distance = options.max_distance;
   pass.keep_max = options.distance_stats;
   pass.caller = order.empty() ? nullptr : order.data();
+  pass.share = &options.share;
 
   std::unique_ptr<KdTree> tree;
   if (plan.use_tree) tree = std::make_unique<KdTree>(3, *pass.partners, nanoflann::KDTreeSingleIndexAdaptorParams(16));
@@ -570,7 +590,8 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
     std::unique_ptr<detail::PairCulling> culling;
     arena.execute([&] {
       culling = std::make_unique<detail::PairCulling>(pass.rtc, scene.triangle_count(), sources.x, sources.y,
-                                                      sources.z, options.culling, &progress);
+                                                      sources.z, options.culling, &progress, options.share.index,
+                                                      options.share.count);
     });
     result.pairs_culled_visible = culling->pairs_visible();
     result.pairs_culled_blocked = culling->pairs_blocked();

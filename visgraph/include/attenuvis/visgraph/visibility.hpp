@@ -81,6 +81,27 @@ struct ProgressReport {
   double seconds = 0, pairs_per_s = 0, seconds_left = -1;
 };
 
+// One share of a pass run on several processes (the CLI's MPI layer,
+// apps/process_group.hpp).  Every process builds the same cluster tree;
+// all-to-all without a radius then expands the top of the dual-tree
+// traversal identically everywhere and deals its pairs of clusters to the
+// shares by estimated cost (per node pair: cast 4, culled in sight 1, culled
+// blocked 0, still undecided 1.5), so that each process classifies and casts
+// only its own (src/pair_culling.hpp); every other path deals rows index,
+// index + count, ... .  `combine` is then called once, on the calling
+// thread, with the share's raw integer accumulators (fixed-point sums,
+// counts, counters: an opaque layout of the same length on every share) and
+// its per-node maxima; it must replace them in place by the element-wise sum
+// and maximum over all shares.  Integer addition is exact and associative
+// and every pair is decided and cast exactly as in one process, so the
+// result is bit-identical to a one-process pass for any number of shares.
+// The edge list is not available from a shared pass.
+struct PassShare {
+  int index = 0;  // this process's share, 0 <= index < count
+  int count = 1;
+  std::function<void(std::vector<std::int64_t>& sums, std::vector<double>& maxima)> combine;
+};
+
 struct VisibilityOptions {
   std::vector<double> sigmas;            // extinction coefficients, 1/m, each finite and >= 0
   bool distance_stats = false;           // mean and max visible distance
@@ -110,6 +131,9 @@ struct VisibilityOptions {
   // stops after the rows in flight and throws Cancelled.
   std::atomic<std::uint64_t>* pairs_done = nullptr;
   const std::atomic<bool>* cancel = nullptr;
+  // Several processes: this one computes `share` and combines (PassShare).
+  // Progress then shows this share's pairs scaled to the whole pass.
+  PassShare share;
 };
 
 // Thrown by all_to_all and to_targets when VisibilityOptions::cancel was set.
