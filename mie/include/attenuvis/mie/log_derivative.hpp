@@ -132,7 +132,7 @@ struct HankelRatio {
   C rho{Real(0), Real(1)};
   template <class OverX>
   const C& next(std::size_t n, const OverX& over_x) {
-    rho = recip(C(over_x(Real(2 * n - 1))) - rho);
+    rho = recip(C(over_x(index_real<Real>(2 * n - 1))) - rho);
     return rho;
   }
 };
@@ -163,7 +163,7 @@ void downward_ratios(const ScaledInverse<Real>& over_x, const ScaledInverseCompl
       y[n] = yx;
       store(rho[N + 1 - n], hankel.next(N + 1 - n, over_x));
       if (n == 0) break;
-      Real den = over_x(Real(2 * n + 1)) - yx;
+      Real den = over_x(index_real<Real>(2 * n + 1)) - yx;
       avoid_zero<Real, Real>(den);
       yx = Real(1) / den;
     }
@@ -184,7 +184,7 @@ void downward_ratios(const ScaledInverse<Real>& over_x, const ScaledInverseCompl
       store(w[n], yz);
     }
     if (n == 0) break;
-    const Real k = Real(2 * n + 1);  // 2(n−1)+3
+    const Real k = index_real<Real>(2 * n + 1);  // 2(n−1)+3
     Real den_x = over_x(k) - yx;
     C den_z = over_z(k) - yz;
     avoid_zero<Real, Real>(den_x);
@@ -192,7 +192,7 @@ void downward_ratios(const ScaledInverse<Real>& over_x, const ScaledInverseCompl
     yx = Real(1) / den_x;
     yz = recip(den_z);
     // δ only where it is stored (Slot::value never reads it).
-    if (slot == Slot::difference) d = (c * k + d) * yz * yx;
+    if (slot == Slot::difference) d = cmul(C(c * k + d), yz) * yx;
   }
 }
 
@@ -235,7 +235,7 @@ struct UpwardLogDerivative {
   UpwardLogDerivative(const Real& x, const C& m, const ScaledInverseComplex<Real, C>& over, bool active)
       : over_z(over), d(active ? cot_upper<Real, C>(x, m) : C(Real(0))) {}
   const C& next(std::size_t n) {
-    const C n_over_z = over_z(Real(n));
+    const C n_over_z = over_z(index_real<Real>(n));
     C den = n_over_z - d;
     avoid_zero<C, Real>(den);
     d = recip(den) - n_over_z;

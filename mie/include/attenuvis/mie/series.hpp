@@ -304,6 +304,14 @@ struct SeriesSums {
   }
 };
 
+// The state of SeriesSums<double>'s seven compensated sums as two vectors
+// (lane c: ext, sca, abs, back_re, back_im, g_cross, g_self, unused) for
+// sum_block_double (term_block.hpp); converted back for finish().
+inline void VectorSums::to(SeriesSums<double>& s) const {
+  KahanSum<double>* k[7] = {&s.ext, &s.sca, &s.abs, &s.back_re, &s.back_im, &s.g_cross, &s.g_self};
+  for (int c = 0; c < 7; ++c) k[c]->sum = sum[c], k[c]->carry = carry[c];
+}
+
 // ψ₁(x) = ψ₀ y₀ from y₀ = ψ₁/ψ₀ of the downward pass, without the small-x
 // cancellation of sin x/x − cos x and without dividing by ψ₀ = sin x where it
 // is small (trap sin-zero).  At x ≈ jπ the recurrence forms 1/y₀ = 3/x − y₁ =
@@ -332,19 +340,21 @@ void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bo
   using CW = Complex<Work>;
   const auto& y = tables.y;
   const auto& w = tables.w;
+  Real sign = first % 2 == 0 ? Real(1) : Real(-1);  // (−1)ⁿ
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t n = first + i;
     const CW rho_w(tables.rho[n].real(), tables.rho[n].imag());  // ρₙ = ξ_{n-1}/ξₙ
     // R₁ = (ψ₁/ξ₀) ρ₁ with ψ₁/ξ₀ given as R_w (trap sin-zero: no y₀ here).
-    R_w = n == 1 ? R_w * rho_w : R_w * rho_w * y[n - 1];
+    R_w = n == 1 ? cmul(R_w, rho_w) : cmul(R_w, rho_w) * y[n - 1];
     s_w *= norm2(rho_w);
     const Real yx = static_cast<Real>(y[n]);
-    in.rn[i] = Real(n);
+    in.rn[i] = index_real<Real>(n);
     in.yx[i] = yx;
     in.R_re[i] = static_cast<Real>(R_w.real()), in.R_im[i] = static_cast<Real>(R_w.imag());
     in.s[i] = static_cast<Real>(s_w);
     in.rho_re[i] = static_cast<Real>(rho_w.real()), in.rho_im[i] = static_cast<Real>(rho_w.imag());
-    in.sign[i] = n % 2 == 0 ? Real(1) : Real(-1);
+    in.sign[i] = sign;
+    sign = -sign;
     if (pec) continue;
     if (slot == Slot::difference && !tables.is_value[n]) {
       const C dy(w[n].real(), w[n].imag());
@@ -357,7 +367,7 @@ void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bo
       if (slot != Slot::none) {
         ymx = C(w[n].real(), w[n].imag());
       } else {
-        const CW v = over_mxw(Work(n + 1)) - upward.next(n);
+        const CW v = over_mxw(index_real<Work>(n + 1)) - upward.next(n);
         ymx = C(static_cast<Real>(v.real()), static_cast<Real>(v.imag()));
       }
       in.ymx_re[i] = ymx.real(), in.ymx_im[i] = ymx.imag();
@@ -416,6 +426,7 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   static const double tol_d = std::exp(-tail_log_tolerance<Real>());
   const Real tol(tol_d);
   SeriesSums<Real> sums;
+  VectorSums vector_sums;  // double without extras (pass 3 below)
   const Work sx = sin(xw), cx = cos(xw);
   const Work psi1 = riccati_psi1(sx, cx, tables.y[0], over_xw(Work(1)));
   CW R_w(sx * psi1, cx * psi1);  // ψ₁/ξ₀ (1/ξ₀ = sin x + i cos x); R₁ = ρ₁ ψ₁/ξ₀
@@ -425,8 +436,12 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   thread_local TermOutputs<Real> terms;
   bool converged = !converged_rule, stopped = false;
   std::size_t n_last = N;
-  for (std::size_t first = 1; first <= N && !stopped; first += kTermBlock) {
-    const std::size_t count = std::min(kTermBlock, N + 1 - first);
+  // The first block is short: at x ≲ 1 the series stops after 7–13 orders,
+  // often well before the end of the first table, and the orders beyond the
+  // stop would be computed for nothing.
+  std::size_t block = kFirstTermBlock;
+  for (std::size_t first = 1, count = 0; first <= N && !stopped; first += count, block = kTermBlock) {
+    count = std::min(block, N + 1 - first);
     // Pass 1 (serial, working precision).
     block_inputs<Real, Work>(first, count, tables, pec, slot, over_mxw, upward, R_w, s_w, in);
     // Pass 2 (every order independently): aₙ, bₙ and their terms.  The count
@@ -437,7 +452,21 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
     const std::size_t padded = std::min(kTermBlock, (count + 3) / 4 * 4);
     for (std::size_t i = count; i < padded; ++i) in.copy_entry(count - 1, i);
     block_terms<Real>(pec, constants, in, padded, a_prev, b_prev, terms);
-    // Pass 3 (serial): compensated sums, extras, convergence.
+    // Pass 3 (serial): compensated sums, extras, convergence.  Without extras
+    // in double, the seven sums advance together in one vector per order
+    // (sum_block_double, the same operations per sum).
+    if constexpr (std::is_same_v<Real, double>) {
+      if (!extras.coefficients && !any_angle) {
+        const std::size_t used = sum_block_double(terms, first, count, xd, tol, converged_rule, vector_sums);
+        if (used < count || (converged_rule && vector_sums.converged)) {
+          converged = stopped = vector_sums.converged;
+          n_last = first + used - 1;
+        }
+        a_prev = C(terms.a_re[count - 1], terms.a_im[count - 1]);
+        b_prev = C(terms.b_re[count - 1], terms.b_im[count - 1]);
+        continue;
+      }
+    }
     for (std::size_t i = 0; i < count; ++i) {
       const std::size_t n = first + i;
       sums.add(terms, i, n);
@@ -455,6 +484,9 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
     }
     a_prev = C(terms.a_re[count - 1], terms.a_im[count - 1]);
     b_prev = C(terms.b_re[count - 1], terms.b_im[count - 1]);
+  }
+  if constexpr (std::is_same_v<Real, double>) {
+    if (!extras.coefficients && !any_angle) vector_sums.to(sums);
   }
   sums.finish(x, pec, n_last, out.q);
   return converged;
