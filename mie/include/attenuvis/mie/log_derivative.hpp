@@ -148,13 +148,23 @@ struct HankelRatio {
 // this, a single term near such a pole loses ε|yₙ(x)/yₙ(mx)| (1e-8 at
 // x = 116.78455902863854, m = 1.33+1e-5i, i.e. 9e-9 in Qback).
 template <class Real, class C, class YArray, class RhoArray, class WArray, class FlagArray>
-void downward_ratios(const ScaledInverse<Real>& over_x, const ScaledInverseComplex<Real, C>& over_z, const C& m,
-                     std::size_t N, Slot slot, YArray& y, RhoArray& rho, WArray& w, FlagArray& is_value) {
+void downward_ratios(const ScaledInverse<Real>& over_x_in, const ScaledInverseComplex<Real, C>& over_z_in,
+                     const C& m, std::size_t N, Slot slot, YArray& y_buf, RhoArray& rho_buf, WArray& w_buf,
+                     FlagArray& is_value_buf) {
   // Every entry is written below before it is read.
-  is_value.resize(slot == Slot::difference ? N + 1 : 0);
-  y.resize(N + 1);
-  rho.resize(N + 2);
-  w.resize(slot == Slot::none ? 0 : N + 1);
+  is_value_buf.resize(slot == Slot::difference ? N + 1 : 0);
+  y_buf.resize(N + 1);
+  rho_buf.resize(N + 2);
+  w_buf.resize(slot == Slot::none ? 0 : N + 1);
+  // Locals and raw pointers: the flag stores (unsigned char, which may alias
+  // anything) otherwise force the buffer pointers and the split constants of
+  // k/x, k/(mx) to be reloaded from memory at every order.
+  const ScaledInverse<Real> over_x = over_x_in;
+  const ScaledInverseComplex<Real, C> over_z = over_z_in;
+  auto* const y = &y_buf[0];
+  auto* const rho = &rho_buf[0];
+  auto* const w = slot == Slot::none ? nullptr : &w_buf[0];
+  auto* const is_value = slot == Slot::difference ? &is_value_buf[0] : nullptr;
   HankelRatio<Real, C> hankel;
   // y_N = ψ_{N+1}/ψ_N = 1/(ψ_N/ψ_{N+1}).
   Real yx = Real(1) / riccati_psi_ratio<Real, Real>(N + 1, over_x);

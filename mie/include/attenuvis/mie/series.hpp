@@ -334,12 +334,16 @@ Work riccati_psi1(const Work& sx, const Work& cx, const Work& y0, const Work& in
 template <class Real, class Work, class Tables>
 void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bool pec, Slot slot,
                   const ScaledInverseComplex<Work, Complex<Work>>& over_mxw,
-                  UpwardLogDerivative<Work, Complex<Work>>& upward, Complex<Work>& R_w, Work& s_w,
+                  UpwardLogDerivative<Work, Complex<Work>>& upward, Complex<Work>& R_io, Work& s_io,
                   TermInputs<Real>& in) {
   using C = Complex<Real>;
   using CW = Complex<Work>;
   const auto& y = tables.y;
   const auto& w = tables.w;
+  // The running products in locals: through the references, every store into
+  // `in` (doubles, which might alias them) forced a reload.
+  CW R_w = R_io;
+  Work s_w = s_io;
   Real sign = first % 2 == 0 ? Real(1) : Real(-1);  // (−1)ⁿ
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t n = first + i;
@@ -375,6 +379,8 @@ void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bo
       in.difference[i] = Real(0);
     }
   }
+  R_io = R_w;
+  s_io = s_w;
 }
 
 // One summation of the series from tables of N + 1 entries into `out`.
