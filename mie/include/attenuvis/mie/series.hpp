@@ -405,7 +405,12 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   } release_large_tables{tables};
   const ScaledInverse<Work> over_xw(xw);
   const ScaledInverseComplex<Work, CW> over_mxw(xw, mw);
-  downward_ratios<Work, CW>(over_xw, over_mxw, mw, N, slot, tables.y, tables.rho, tables.w, tables.is_value);
+  std::size_t miller = 0;  // Lentz start unless miller_depth() allows the cheaper one (double only)
+  if constexpr (std::is_same_v<Work, double>) {
+    if (slot != Slot::none) miller = miller_depth(xd, std::complex<double>(m.real(), m.imag()), N);
+  }
+  downward_ratios<Work, CW>(over_xw, over_mxw, mw, N, slot, tables.y, tables.rho, tables.w, tables.is_value,
+                            miller);
   UpwardLogDerivative<Work, CW> upward(xw, mw, over_mxw, method == DMethod::upward);
 
   out = Scattering<Real>{};
