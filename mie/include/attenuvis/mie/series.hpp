@@ -464,13 +464,13 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
     for (std::size_t i = count; i < padded; ++i) in.copy_entry(count - 1, i);
     block_terms<Real>(pec, constants, in, padded, a_prev, b_prev, terms);
     // Pass 3 (serial): compensated sums, extras, convergence.  Without extras
-    // in double, the seven sums advance together in one vector per order
-    // (sum_block_double, the same operations per sum).
+    // in double, the seven sums advance together, two 4-wide vector
+    // operations per order (sum_block_double, the same operations per sum).
     if constexpr (std::is_same_v<Real, double>) {
       if (!extras.coefficients && !any_angle) {
         const std::size_t used = sum_block_double(terms, first, count, xd, tol, converged_rule, vector_sums);
-        if (used < count || (converged_rule && vector_sums.converged)) {
-          converged = stopped = vector_sums.converged;
+        if (vector_sums.converged) {  // stopped at order first + used − 1
+          converged = stopped = true;
           n_last = first + used - 1;
         }
         a_prev = C(terms.a_re[count - 1], terms.a_im[count - 1]);

@@ -191,8 +191,8 @@ struct SeriesSums;
 
 // Pass 3 of series.hpp for double without extras: its seven compensated
 // (Kahan) sums, lane c of `sum`/`carry` the sum c of SeriesSums (ext, sca,
-// abs, back_re, back_im, g_cross, g_self; lane 7 unused).  One vector
-// operation advances all seven — the same IEEE operations per sum as
+// abs, back_re, back_im, g_cross, g_self; lane 7 unused).  Two 4-wide vector
+// operations advance all seven — the same IEEE operations per sum as
 // KahanSum::add, so the same bits — where the scalar loop took seven.
 struct VectorSums {
   alignas(64) double sum[8] = {}, carry[8] = {};
