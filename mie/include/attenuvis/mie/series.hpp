@@ -331,11 +331,13 @@ Work riccati_psi1(const Work& sx, const Work& cx, const Work& y0, const Work& in
 
 // Pass 1 of a block (serial, working precision): Rₙ = R_{n-1} ρₙ ψₙ/ψ_{n-1},
 // sₙ = 1/|ξₙ|², and each order's inputs for term_block.hpp.
-template <class Real, class Work, class Tables>
-void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bool pec, Slot slot,
-                  const ScaledInverseComplex<Work, Complex<Work>>& over_mxw,
-                  UpwardLogDerivative<Work, Complex<Work>>& upward, Complex<Work>& R_io, Work& s_io,
-                  TermInputs<Real>& in) {
+// The mode (perfect conductor, or the slot) is a template argument, so that
+// the per-order loop carries no test of it.
+template <class Real, class Work, bool pec, Slot slot, class Tables>
+void block_inputs_for(std::size_t first, std::size_t count, const Tables& tables,
+                      const ScaledInverseComplex<Work, Complex<Work>>& over_mxw,
+                      UpwardLogDerivative<Work, Complex<Work>>& upward, Complex<Work>& R_io, Work& s_io,
+                      TermInputs<Real>& in) {
   using C = Complex<Real>;
   using CW = Complex<Work>;
   const auto& y = tables.y;
@@ -359,7 +361,7 @@ void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bo
     in.rho_re[i] = static_cast<Real>(rho_w.real()), in.rho_im[i] = static_cast<Real>(rho_w.imag());
     in.sign[i] = sign;
     sign = -sign;
-    if (pec) continue;
+    if constexpr (pec) continue;
     if (slot == Slot::difference && !tables.is_value[n]) {
       const C dy(w[n].real(), w[n].imag());
       const C ymx = C(yx) + dy;
@@ -368,7 +370,7 @@ void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bo
       in.difference[i] = Real(1);
     } else {
       C ymx;
-      if (slot != Slot::none) {
+      if constexpr (slot != Slot::none) {
         ymx = C(w[n].real(), w[n].imag());
       } else {
         const CW v = over_mxw(index_real<Work>(n + 1)) - upward.next(n);
@@ -381,6 +383,21 @@ void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bo
   }
   R_io = R_w;
   s_io = s_w;
+}
+
+template <class Real, class Work, class Tables>
+void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bool pec, Slot slot,
+                  const ScaledInverseComplex<Work, Complex<Work>>& over_mxw,
+                  UpwardLogDerivative<Work, Complex<Work>>& upward, Complex<Work>& R_w, Work& s_w,
+                  TermInputs<Real>& in) {
+  if (pec)
+    block_inputs_for<Real, Work, true, Slot::none>(first, count, tables, over_mxw, upward, R_w, s_w, in);
+  else if (slot == Slot::difference)
+    block_inputs_for<Real, Work, false, Slot::difference>(first, count, tables, over_mxw, upward, R_w, s_w, in);
+  else if (slot == Slot::value)
+    block_inputs_for<Real, Work, false, Slot::value>(first, count, tables, over_mxw, upward, R_w, s_w, in);
+  else
+    block_inputs_for<Real, Work, false, Slot::none>(first, count, tables, over_mxw, upward, R_w, s_w, in);
 }
 
 // One summation of the series from tables of N + 1 entries into `out`.
