@@ -46,6 +46,21 @@ inline std::string refractive_index_error(std::complex<double> m) {
   return os.str();
 }
 
+// m in the domain, tested without building a message or calling hypot (the
+// common case).  Conservative near |m| = 0.5: an index this does not accept
+// goes through refractive_index_error(), which decides exactly and explains.
+// (NaN fails every comparison, so it is never accepted here.)
+inline bool index_in_domain(std::complex<double> m) {
+  const double n = m.real(), k = m.imag();
+  return n >= 0.0 && k >= 0.0 && n <= kMaxIndex && k <= kMaxIndex &&
+         n * n + k * k >= 1.000001 * kMinAbsIndex * kMinAbsIndex;
+}
+
+// Options that select the default series (automatic precision, converged terms).
+inline bool default_options(const Options& o) {
+  return o.terms == TermRule::converged && !o.precision && o.extended_above == 0;
+}
+
 // Where the recurrences need extended precision (Options::precision unset).
 // Double is enough, to well within 1e-10 of the 50-digit referee, except:
 //  * above kDoubleUpTo: the recurrences run through ~x oscillations and in

@@ -12,11 +12,13 @@ namespace attenuvis::mie {
 namespace {
 
 void check_x(double x) {
+  if (x >= detail::kMinX && x <= detail::kMaxX) return;  // common case: no message built
   const std::string e = detail::size_parameter_error(x);
   if (!e.empty()) throw std::invalid_argument(e);
 }
 
 void check_m(std::complex<double> m) {
+  if (detail::index_in_domain(m)) return;  // common case: no message built, no hypot
   const std::string e = detail::refractive_index_error(m);
   if (!e.empty()) throw std::invalid_argument(e);
 }

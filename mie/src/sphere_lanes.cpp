@@ -141,13 +141,16 @@ inline void save(double* p, const T& v) {
 
 // Per-lane constants and start values (as mie_series/sum_series/downward_ratios).
 struct LaneState {
-  std::size_t N = 0;  // longest table of the lanes
-  V x, Njd, mr, mi, m1r, m1i, cr, ci, er, ei, cdr, cdi, yx0, yzr0, yzi0, dr0, di0, Rr, Ri;
+  std::size_t N = 0;      // longest table of the lanes
+  std::size_t start = 0;  // highest start index of the downward pass
+  V x, Njd, start_d, mr, mi, m1r, m1i, cr, ci, er, ei, cdr, cdi, yx0, yzr0, yzi0, dr0, di0, Rr, Ri;
   M diff_slot;
   LaneInverse ox{}, ozr{}, ozi{};
 };
 
 ATTENUVIS_LANE_INLINE void lane_setup(const LaneProblems& in, LaneState& st) {
+  std::size_t miller[L];
+  bool any_lentz = false;
   for (int j = 0; j < L; ++j) {
     st.x[j] = in.x[j];
     const double x = in.x[j];
@@ -155,6 +158,11 @@ ATTENUVIS_LANE_INLINE void lane_setup(const LaneProblems& in, LaneState& st) {
     const std::size_t Nj = first_terms<double>(x, std::cbrt(x));
     st.N = std::max(st.N, Nj);
     st.Njd[j] = double(Nj);
+    // Start of the downward pass: Lentz at N, or zeros at N + K (miller_depth).
+    miller[j] = miller_depth(x, m, Nj);
+    st.start = std::max(st.start, Nj + miller[j]);
+    st.start_d[j] = double(Nj + miller[j]);
+    any_lentz |= miller[j] == 0;
     const C dm = m - 1.0;
     st.diff_slot[j] = norm2(dm) < 0.25 ? -1 : 0;
     const ScaledInverse<double> over_x(x);
@@ -172,13 +180,19 @@ ATTENUVIS_LANE_INLINE void lane_setup(const LaneProblems& in, LaneState& st) {
     // 1/ξ₀ = sin x + i cos x; lane_series multiplies by ψ₁ (riccati_psi1).
     st.Rr[j] = std::sin(x), st.Ri[j] = std::cos(x);
   }
-  // y_N(x) = 1/(ψ_N/ψ_{N+1}) and y_N(mx) at each lane's own N (downward_ratios).
+  // y_N(x) = 1/(ψ_N/ψ_{N+1}) and y_N(mx) at each lane's own N (downward_ratios),
+  // where the lane starts from Lentz's value; zeros where it starts higher.
+  st.yx0 = st.yzr0 = st.yzi0 = st.dr0 = st.di0 = V{};
+  if (!any_lentz) return;
   const V order = st.Njd + 1.0;
   const LaneLentz lx(st.ox, nullptr, order), lz(st.ozr, &st.ozi, order);
-  st.yx0 = 1.0 / lx.fr;
   const V sz = 1 / (lz.fr * lz.fr + lz.fi * lz.fi);
-  st.yzr0 = lz.fr * sz, st.yzi0 = -lz.fi * sz;
-  st.dr0 = st.yzr0 - st.yx0, st.di0 = st.yzi0 - 0.0;  // yz − C(yx)
+  for (int j = 0; j < L; ++j) {
+    if (miller[j] != 0) continue;
+    st.yx0[j] = 1.0 / lx.fr[j];
+    st.yzr0[j] = lz.fr[j] * sz[j], st.yzi0[j] = -lz.fi[j] * sz[j];
+    st.dr0[j] = st.yzr0[j] - st.yx0[j], st.di0[j] = st.yzi0[j] - 0.0;  // yz − C(yx)
+  }
 }
 
 // The downward pass: yₙ(x) and δₙ or yₙ(mx) (downward_ratios), each lane
@@ -186,18 +200,20 @@ ATTENUVIS_LANE_INLINE void lane_setup(const LaneProblems& in, LaneState& st) {
 ATTENUVIS_LANE_INLINE void lane_downward(const LaneState& st, LaneTables& tables) {
   const V zero{}, vtiny = splat((std::numeric_limits<double>::min)() * 1e20);
   V yx = st.yx0, yzr = st.yzr0, yzi = st.yzi0, dr = st.dr0, di = st.di0;
-  for (std::size_t n = st.N;; --n) {
+  for (std::size_t n = st.start;; --n) {
     const double k = double(2 * n + 1);
-    const M start = st.Njd == double(n);  // the lane's own table starts here
+    const M start = st.start_d == double(n);  // the lane's own recurrence starts here
     yx = start ? st.yx0 : yx;
     yzr = start ? st.yzr0 : yzr, yzi = start ? st.yzi0 : yzi;
     dr = start ? st.dr0 : dr, di = start ? st.di0 : di;
     const M value = 64 * (yzr * yzr + yzi * yzi) < yx * yx;
     const M use_d = st.diff_slot & ~value;
-    save(&tables.y[n * L], yx);
-    save(&tables.w_re[n * L], use_d ? dr : yzr);
-    save(&tables.w_im[n * L], use_d ? di : yzi);
-    save(&tables.use_d[n * L], use_d);
+    if (n <= st.N) {  // above: the Miller start's steps, not stored
+      save(&tables.y[n * L], yx);
+      save(&tables.w_re[n * L], use_d ? dr : yzr);
+      save(&tables.w_im[n * L], use_d ? di : yzi);
+      save(&tables.use_d[n * L], use_d);
+    }
     if (n == 0) break;
     V den_x = st.ox.at(k) - yx;
     V dzr = st.ozr.at(k) - yzr, dzi = st.ozi.at(k) - yzi;

@@ -23,7 +23,7 @@ Efficiencies<double> not_a_number() {
   return q;
 }
 
-bool default_options(const Options& o) { return o.terms == TermRule::converged && !o.precision && o.extended_above == 0; }
+using detail::default_options;
 
 // The work: groups of kLanes lane-eligible spheres (sorted by x, so that a
 // group's table lengths are close), then the remaining spheres one by one.

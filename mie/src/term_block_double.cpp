@@ -2,6 +2,9 @@
 // attenuvis/mie/term_block.hpp), one clone per instruction set.
 #include "attenuvis/mie/term_block.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace attenuvis::mie::detail {
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
@@ -26,6 +29,40 @@ ATTENUVIS_MIE_CLONES
 void sum_terms_double(const TermInputs<double>& in, std::size_t count, const Complex<double>& a_prev,
                       const Complex<double>& b_prev, TermOutputs<double>& out) {
   sum_terms(in, count, a_prev, b_prev, out);
+}
+
+ATTENUVIS_MIE_CLONES
+std::size_t sum_block_double(const TermOutputs<double>& t, std::size_t first, std::size_t count, double x,
+                             double tol, bool converged_rule, VectorSums& s) {
+  // Two vectors of four (one register each with AVX2): lanes 0–3 and 4–7.
+  typedef double V __attribute__((vector_size(32)));
+  V sum0, sum1, carry0, carry1;
+  __builtin_memcpy(&sum0, s.sum, sizeof sum0);
+  __builtin_memcpy(&sum1, s.sum + 4, sizeof sum1);
+  __builtin_memcpy(&carry0, s.carry, sizeof carry0);
+  __builtin_memcpy(&carry1, s.carry + 4, sizeof carry1);
+  std::size_t i = 0;
+  while (i < count) {
+    const std::size_t n = first + i;
+    // g_cross starts at n = 2 (SeriesSums::add); its n = 1 entry is not added.
+    const V v0 = {t.ext[i], t.sca[i], t.abs[i], t.back_re[i]};
+    const V v1 = {t.back_im[i], n >= 2 ? t.g_cross[i] : 0.0, t.g_self[i], 0.0};
+    const V y0 = v0 - carry0, y1 = v1 - carry1;  // KahanSum::add, lane by lane
+    const V u0 = sum0 + y0, u1 = sum1 + y1;
+    carry0 = (u0 - sum0) - y0, carry1 = (u1 - sum1) - y1;
+    sum0 = u0, sum1 = u1;
+    ++i;
+    if (converged_rule && static_cast<double>(n) > x &&
+        t.size[i - 1] <= tol * std::min(std::abs(sum0[0]), std::abs(sum0[3]) + std::abs(sum1[0]))) {
+      s.converged = true;
+      break;
+    }
+  }
+  __builtin_memcpy(s.sum, &sum0, sizeof sum0);
+  __builtin_memcpy(s.sum + 4, &sum1, sizeof sum1);
+  __builtin_memcpy(s.carry, &carry0, sizeof carry0);
+  __builtin_memcpy(s.carry + 4, &carry1, sizeof carry1);
+  return i;
 }
 
 }  // namespace attenuvis::mie::detail

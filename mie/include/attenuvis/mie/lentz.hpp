@@ -35,7 +35,7 @@ T riccati_psi_ratio(std::size_t n, const KOverZ& k_over_z) {
   const Real eps2 = eps * eps;
   const Real tiny = (std::numeric_limits<Real>::min)() * Real(1e20);
   // b_j = 2(ν+j)/z = (2n+1+2j)/z.
-  T f = k_over_z(Real(2 * n + 1));
+  T f = k_over_z(index_real<Real>(2 * n + 1));
   if (f == T(Real(0))) f = T(tiny);
   T c = f;
   T d = T(Real(0));
@@ -43,14 +43,14 @@ T riccati_psi_ratio(std::size_t n, const KOverZ& k_over_z) {
   // series.hpp); the bound only stops a runaway loop.
   const std::size_t max_iterations = 400000000;
   for (std::size_t j = 1; j <= max_iterations; ++j) {
-    const T b = k_over_z(Real(2 * n + 1 + 2 * j));
+    const T b = k_over_z(index_real<Real>(2 * n + 1 + 2 * j));
     d = b - d;
     if (d == T(Real(0))) d = T(tiny);
     c = b - inv<Real>(c);
     if (c == T(Real(0))) c = T(tiny);
     d = inv<Real>(d);
-    const T delta = c * d;
-    f *= delta;
+    const T delta = mul<Real>(c, d);
+    f = mul<Real>(f, delta);
     if (mag2<Real>(delta - T(Real(1))) < eps2) return f;
   }
   throw std::runtime_error("attenuvis::mie: Lentz continued fraction did not converge for n=" +

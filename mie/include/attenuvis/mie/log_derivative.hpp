@@ -26,6 +26,7 @@
 // Trap large-kx.  Only ratios appear; nothing grows like e^{kx}.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstddef>
@@ -116,6 +117,32 @@ inline void avoid_zero(T& v) {
   if (v == T(Real(0))) v = T((std::numeric_limits<Real>::min)() * Real(1e20));
 }
 
+// Depth K of the Miller start of downward_ratios (double; 0: Lentz start).
+// Where a = max(x, |mx|) <= N/2, every yₖ(x), yₖ(mx) with k >= N, and every
+// value of the recurrence yₖ = 1/((2k+3)/z − yₖ₊₁) started from 0 above it,
+// is bounded by ρ = a/(2N + 3 − a) < 1/3 (induction: |yₖ₊₁| <= 1 gives
+// |yₖ| <= 1/((2k+3)/|z| − 1)).  Since 1/u − 1/v = (v − u)/(u v), the error
+// of the start value 0 at index N + K (at most ρ) reaches index N multiplied
+// by Π|yₖ ŷₖ| <= ρ^{2K}; relative to |y_N| >= b/(2N + 3 + b), b = min(x, |mx|),
+// it is below ε/16 once ρ^{2K+1} (2N + 3 + b)/b <= ε/16 — as good as the
+// continued fraction's own stopping test (|Δ − 1| < ε, lentz.hpp).  The δ
+// recurrence (trap m-near-1) starts from δ = 0 there and is damped alike.
+// At x ≲ 10 a few steps (4 at x = 0.1) replace two continued fractions that
+// cost a fifth of the call.  Deterministic in (x, m, N): spheres() computes
+// the same K for each lane (sphere_lanes.cpp).
+inline std::size_t miller_depth(double x, std::complex<double> m, std::size_t N) {
+  const double az = std::sqrt(norm2(m)) * x;
+  const double a = std::max(x, az), b = std::min(x, az);
+  const double n = static_cast<double>(N);
+  if (!(a <= 0.5 * n) || !(b > 0)) return 0;
+  const double rho = a / (2 * n + 3 - a);
+  const double tol = std::numeric_limits<double>::epsilon() / 16;
+  double err = rho * ((2 * n + 3 + b) / b);
+  std::size_t K = 0;
+  while (err > tol && K < 64) err *= rho * rho, ++K;
+  return err <= tol ? std::max<std::size_t>(K, 1) : 0;
+}
+
 // What the complex slot of the downward pass holds.
 enum class Slot {
   difference,  // δₙ = yₙ(mx) − yₙ(x)   (|m−1| small: trap m-near-1)
@@ -132,7 +159,7 @@ struct HankelRatio {
   C rho{Real(0), Real(1)};
   template <class OverX>
   const C& next(std::size_t n, const OverX& over_x) {
-    rho = recip(C(over_x(Real(2 * n - 1))) - rho);
+    rho = recip(C(over_x(index_real<Real>(2 * n - 1))) - rho);
     return rho;
   }
 };
@@ -147,31 +174,64 @@ struct HankelRatio {
 // that m does not share, it holds yₙ(mx) itself and is_value[n] = 1.  Without
 // this, a single term near such a pole loses ε|yₙ(x)/yₙ(mx)| (1e-8 at
 // x = 116.78455902863854, m = 1.33+1e-5i, i.e. 9e-9 in Qback).
+//
+// Start values: Lentz's continued fractions at index N + 1, or — with
+// miller > 0 (see miller_depth) — the same recurrences run from yₙ = 0 at
+// index N + miller down to N, which gives yₙ(x), yₙ(mx) and δₙ to within
+// ε/16 of their values at a fraction of the cost.
 template <class Real, class C, class YArray, class RhoArray, class WArray, class FlagArray>
-void downward_ratios(const ScaledInverse<Real>& over_x, const ScaledInverseComplex<Real, C>& over_z, const C& m,
-                     std::size_t N, Slot slot, YArray& y, RhoArray& rho, WArray& w, FlagArray& is_value) {
+void downward_ratios(const ScaledInverse<Real>& over_x_in, const ScaledInverseComplex<Real, C>& over_z_in,
+                     const C& m, std::size_t N, Slot slot, YArray& y_buf, RhoArray& rho_buf, WArray& w_buf,
+                     FlagArray& is_value_buf, std::size_t miller = 0) {
   // Every entry is written below before it is read.
-  is_value.resize(slot == Slot::difference ? N + 1 : 0);
-  y.resize(N + 1);
-  rho.resize(N + 2);
-  w.resize(slot == Slot::none ? 0 : N + 1);
+  is_value_buf.resize(slot == Slot::difference ? N + 1 : 0);
+  y_buf.resize(N + 1);
+  rho_buf.resize(N + 2);
+  w_buf.resize(slot == Slot::none ? 0 : N + 1);
+  // Locals and raw pointers: the flag stores (unsigned char, which may alias
+  // anything) otherwise force the buffer pointers and the split constants of
+  // k/x, k/(mx) to be reloaded from memory at every order.
+  const ScaledInverse<Real> over_x = over_x_in;
+  const ScaledInverseComplex<Real, C> over_z = over_z_in;
+  auto* const y = &y_buf[0];
+  auto* const rho = &rho_buf[0];
+  auto* const w = slot == Slot::none ? nullptr : &w_buf[0];
+  auto* const is_value = slot == Slot::difference ? &is_value_buf[0] : nullptr;
   HankelRatio<Real, C> hankel;
-  // y_N = ψ_{N+1}/ψ_N = 1/(ψ_N/ψ_{N+1}).
-  Real yx = Real(1) / riccati_psi_ratio<Real, Real>(N + 1, over_x);
   if (slot == Slot::none) {
+    // y_N = ψ_{N+1}/ψ_N = 1/(ψ_N/ψ_{N+1}).
+    Real yx = Real(1) / riccati_psi_ratio<Real, Real>(N + 1, over_x);
     for (std::size_t n = N;; --n) {
       y[n] = yx;
       store(rho[N + 1 - n], hankel.next(N + 1 - n, over_x));
       if (n == 0) break;
-      Real den = over_x(Real(2 * n + 1)) - yx;
+      Real den = over_x(index_real<Real>(2 * n + 1)) - yx;
       avoid_zero<Real, Real>(den);
       yx = Real(1) / den;
     }
     return;
   }
   const C c = (m - C(Real(1))) * over_z(Real(1));  // (m−1)/(m x)
-  C yz = recip(riccati_psi_ratio<C, Real>(N + 1, over_z));
-  C d = yz - C(yx);
+  Real yx;
+  C yz, d;
+  if (miller > 0) {
+    // The loop below without its stores, from zeros at index N + miller.
+    yx = Real(0), yz = C(Real(0)), d = C(Real(0));
+    for (std::size_t n = N + miller; n > N; --n) {
+      const Real k = index_real<Real>(2 * n + 1);
+      Real den_x = over_x(k) - yx;
+      C den_z = over_z(k) - yz;
+      avoid_zero<Real, Real>(den_x);
+      avoid_zero<C, Real>(den_z);
+      yx = Real(1) / den_x;
+      yz = recip(den_z);
+      d = cmul(C(c * k + d), yz) * yx;
+    }
+  } else {
+    yx = Real(1) / riccati_psi_ratio<Real, Real>(N + 1, over_x);  // ψ_{N+1}/ψ_N
+    yz = recip(riccati_psi_ratio<C, Real>(N + 1, over_z));
+    d = yz - C(yx);
+  }
   for (std::size_t n = N;; --n) {
     y[n] = yx;
     store(rho[N + 1 - n], hankel.next(N + 1 - n, over_x));
@@ -184,7 +244,7 @@ void downward_ratios(const ScaledInverse<Real>& over_x, const ScaledInverseCompl
       store(w[n], yz);
     }
     if (n == 0) break;
-    const Real k = Real(2 * n + 1);  // 2(n−1)+3
+    const Real k = index_real<Real>(2 * n + 1);  // 2(n−1)+3
     Real den_x = over_x(k) - yx;
     C den_z = over_z(k) - yz;
     avoid_zero<Real, Real>(den_x);
@@ -192,7 +252,7 @@ void downward_ratios(const ScaledInverse<Real>& over_x, const ScaledInverseCompl
     yx = Real(1) / den_x;
     yz = recip(den_z);
     // δ only where it is stored (Slot::value never reads it).
-    if (slot == Slot::difference) d = (c * k + d) * yz * yx;
+    if (slot == Slot::difference) d = cmul(C(c * k + d), yz) * yx;
   }
 }
 
@@ -235,7 +295,7 @@ struct UpwardLogDerivative {
   UpwardLogDerivative(const Real& x, const C& m, const ScaledInverseComplex<Real, C>& over, bool active)
       : over_z(over), d(active ? cot_upper<Real, C>(x, m) : C(Real(0))) {}
   const C& next(std::size_t n) {
-    const C n_over_z = over_z(Real(n));
+    const C n_over_z = over_z(index_real<Real>(n));
     C den = n_over_z - d;
     avoid_zero<C, Real>(den);
     d = recip(den) - n_over_z;

@@ -304,6 +304,14 @@ struct SeriesSums {
   }
 };
 
+// The state of SeriesSums<double>'s seven compensated sums as two vectors
+// (lane c: ext, sca, abs, back_re, back_im, g_cross, g_self, unused) for
+// sum_block_double (term_block.hpp); converted back for finish().
+inline void VectorSums::to(SeriesSums<double>& s) const {
+  KahanSum<double>* k[7] = {&s.ext, &s.sca, &s.abs, &s.back_re, &s.back_im, &s.g_cross, &s.g_self};
+  for (int c = 0; c < 7; ++c) k[c]->sum = sum[c], k[c]->carry = carry[c];
+}
+
 // ψ₁(x) = ψ₀ y₀ from y₀ = ψ₁/ψ₀ of the downward pass, without the small-x
 // cancellation of sin x/x − cos x and without dividing by ψ₀ = sin x where it
 // is small (trap sin-zero).  At x ≈ jπ the recurrence forms 1/y₀ = 3/x − y₁ =
@@ -323,29 +331,37 @@ Work riccati_psi1(const Work& sx, const Work& cx, const Work& y0, const Work& in
 
 // Pass 1 of a block (serial, working precision): Rₙ = R_{n-1} ρₙ ψₙ/ψ_{n-1},
 // sₙ = 1/|ξₙ|², and each order's inputs for term_block.hpp.
-template <class Real, class Work, class Tables>
-void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bool pec, Slot slot,
-                  const ScaledInverseComplex<Work, Complex<Work>>& over_mxw,
-                  UpwardLogDerivative<Work, Complex<Work>>& upward, Complex<Work>& R_w, Work& s_w,
-                  TermInputs<Real>& in) {
+// The mode (perfect conductor, or the slot) is a template argument, so that
+// the per-order loop carries no test of it.
+template <class Real, class Work, bool pec, Slot slot, class Tables>
+void block_inputs_for(std::size_t first, std::size_t count, const Tables& tables,
+                      const ScaledInverseComplex<Work, Complex<Work>>& over_mxw,
+                      UpwardLogDerivative<Work, Complex<Work>>& upward, Complex<Work>& R_io, Work& s_io,
+                      TermInputs<Real>& in) {
   using C = Complex<Real>;
   using CW = Complex<Work>;
   const auto& y = tables.y;
   const auto& w = tables.w;
+  // The running products in locals: through the references, every store into
+  // `in` (doubles, which might alias them) forced a reload.
+  CW R_w = R_io;
+  Work s_w = s_io;
+  Real sign = first % 2 == 0 ? Real(1) : Real(-1);  // (−1)ⁿ
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t n = first + i;
     const CW rho_w(tables.rho[n].real(), tables.rho[n].imag());  // ρₙ = ξ_{n-1}/ξₙ
     // R₁ = (ψ₁/ξ₀) ρ₁ with ψ₁/ξ₀ given as R_w (trap sin-zero: no y₀ here).
-    R_w = n == 1 ? R_w * rho_w : R_w * rho_w * y[n - 1];
+    R_w = n == 1 ? cmul(R_w, rho_w) : cmul(R_w, rho_w) * y[n - 1];
     s_w *= norm2(rho_w);
     const Real yx = static_cast<Real>(y[n]);
-    in.rn[i] = Real(n);
+    in.rn[i] = index_real<Real>(n);
     in.yx[i] = yx;
     in.R_re[i] = static_cast<Real>(R_w.real()), in.R_im[i] = static_cast<Real>(R_w.imag());
     in.s[i] = static_cast<Real>(s_w);
     in.rho_re[i] = static_cast<Real>(rho_w.real()), in.rho_im[i] = static_cast<Real>(rho_w.imag());
-    in.sign[i] = n % 2 == 0 ? Real(1) : Real(-1);
-    if (pec) continue;
+    in.sign[i] = sign;
+    sign = -sign;
+    if constexpr (pec) continue;
     if (slot == Slot::difference && !tables.is_value[n]) {
       const C dy(w[n].real(), w[n].imag());
       const C ymx = C(yx) + dy;
@@ -354,10 +370,10 @@ void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bo
       in.difference[i] = Real(1);
     } else {
       C ymx;
-      if (slot != Slot::none) {
+      if constexpr (slot != Slot::none) {
         ymx = C(w[n].real(), w[n].imag());
       } else {
-        const CW v = over_mxw(Work(n + 1)) - upward.next(n);
+        const CW v = over_mxw(index_real<Work>(n + 1)) - upward.next(n);
         ymx = C(static_cast<Real>(v.real()), static_cast<Real>(v.imag()));
       }
       in.ymx_re[i] = ymx.real(), in.ymx_im[i] = ymx.imag();
@@ -365,6 +381,23 @@ void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bo
       in.difference[i] = Real(0);
     }
   }
+  R_io = R_w;
+  s_io = s_w;
+}
+
+template <class Real, class Work, class Tables>
+void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bool pec, Slot slot,
+                  const ScaledInverseComplex<Work, Complex<Work>>& over_mxw,
+                  UpwardLogDerivative<Work, Complex<Work>>& upward, Complex<Work>& R_w, Work& s_w,
+                  TermInputs<Real>& in) {
+  if (pec)
+    block_inputs_for<Real, Work, true, Slot::none>(first, count, tables, over_mxw, upward, R_w, s_w, in);
+  else if (slot == Slot::difference)
+    block_inputs_for<Real, Work, false, Slot::difference>(first, count, tables, over_mxw, upward, R_w, s_w, in);
+  else if (slot == Slot::value)
+    block_inputs_for<Real, Work, false, Slot::value>(first, count, tables, over_mxw, upward, R_w, s_w, in);
+  else
+    block_inputs_for<Real, Work, false, Slot::none>(first, count, tables, over_mxw, upward, R_w, s_w, in);
 }
 
 // One summation of the series from tables of N + 1 entries into `out`.
@@ -389,7 +422,12 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   } release_large_tables{tables};
   const ScaledInverse<Work> over_xw(xw);
   const ScaledInverseComplex<Work, CW> over_mxw(xw, mw);
-  downward_ratios<Work, CW>(over_xw, over_mxw, mw, N, slot, tables.y, tables.rho, tables.w, tables.is_value);
+  std::size_t miller = 0;  // Lentz start unless miller_depth() allows the cheaper one (double only)
+  if constexpr (std::is_same_v<Work, double>) {
+    if (slot != Slot::none) miller = miller_depth(xd, std::complex<double>(m.real(), m.imag()), N);
+  }
+  downward_ratios<Work, CW>(over_xw, over_mxw, mw, N, slot, tables.y, tables.rho, tables.w, tables.is_value,
+                            miller);
   UpwardLogDerivative<Work, CW> upward(xw, mw, over_mxw, method == DMethod::upward);
 
   out = Scattering<Real>{};
@@ -416,6 +454,7 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   static const double tol_d = std::exp(-tail_log_tolerance<Real>());
   const Real tol(tol_d);
   SeriesSums<Real> sums;
+  VectorSums vector_sums;  // double without extras (pass 3 below)
   const Work sx = sin(xw), cx = cos(xw);
   const Work psi1 = riccati_psi1(sx, cx, tables.y[0], over_xw(Work(1)));
   CW R_w(sx * psi1, cx * psi1);  // ψ₁/ξ₀ (1/ξ₀ = sin x + i cos x); R₁ = ρ₁ ψ₁/ξ₀
@@ -425,8 +464,12 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   thread_local TermOutputs<Real> terms;
   bool converged = !converged_rule, stopped = false;
   std::size_t n_last = N;
-  for (std::size_t first = 1; first <= N && !stopped; first += kTermBlock) {
-    const std::size_t count = std::min(kTermBlock, N + 1 - first);
+  // The first block is short: at x ≲ 1 the series stops after 7–13 orders,
+  // often well before the end of the first table, and the orders beyond the
+  // stop would be computed for nothing.
+  std::size_t block = kFirstTermBlock;
+  for (std::size_t first = 1, count = 0; first <= N && !stopped; first += count, block = kTermBlock) {
+    count = std::min(block, N + 1 - first);
     // Pass 1 (serial, working precision).
     block_inputs<Real, Work>(first, count, tables, pec, slot, over_mxw, upward, R_w, s_w, in);
     // Pass 2 (every order independently): aₙ, bₙ and their terms.  The count
@@ -437,7 +480,21 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
     const std::size_t padded = std::min(kTermBlock, (count + 3) / 4 * 4);
     for (std::size_t i = count; i < padded; ++i) in.copy_entry(count - 1, i);
     block_terms<Real>(pec, constants, in, padded, a_prev, b_prev, terms);
-    // Pass 3 (serial): compensated sums, extras, convergence.
+    // Pass 3 (serial): compensated sums, extras, convergence.  Without extras
+    // in double, the seven sums advance together, two 4-wide vector
+    // operations per order (sum_block_double, the same operations per sum).
+    if constexpr (std::is_same_v<Real, double>) {
+      if (!extras.coefficients && !any_angle) {
+        const std::size_t used = sum_block_double(terms, first, count, xd, tol, converged_rule, vector_sums);
+        if (vector_sums.converged) {  // stopped at order first + used − 1
+          converged = stopped = true;
+          n_last = first + used - 1;
+        }
+        a_prev = C(terms.a_re[count - 1], terms.a_im[count - 1]);
+        b_prev = C(terms.b_re[count - 1], terms.b_im[count - 1]);
+        continue;
+      }
+    }
     for (std::size_t i = 0; i < count; ++i) {
       const std::size_t n = first + i;
       sums.add(terms, i, n);
@@ -455,6 +512,9 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
     }
     a_prev = C(terms.a_re[count - 1], terms.a_im[count - 1]);
     b_prev = C(terms.b_re[count - 1], terms.b_im[count - 1]);
+  }
+  if constexpr (std::is_same_v<Real, double>) {
+    if (!extras.coefficients && !any_angle) vector_sums.to(sums);
   }
   sums.finish(x, pec, n_last, out.q);
   return converged;

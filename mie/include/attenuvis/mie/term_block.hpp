@@ -25,6 +25,7 @@
 namespace attenuvis::mie::detail {
 
 constexpr std::size_t kTermBlock = 64;
+constexpr std::size_t kFirstTermBlock = 8;  // the first block of a series (series.hpp)
 
 // The loops below are inlined into each instruction-set clone of
 // term_block_double.cpp; a call to one shared copy would run its SSE2 code.
@@ -185,6 +186,20 @@ ATTENUVIS_MIE_INLINE void sum_terms(const TermInputs<Real>& in, std::size_t coun
                       out.b_re[i - 1] * out.b_re[i] + out.b_im[i - 1] * out.b_im[i];
 }
 
+template <class Real>
+struct SeriesSums;
+
+// Pass 3 of series.hpp for double without extras: its seven compensated
+// (Kahan) sums, lane c of `sum`/`carry` the sum c of SeriesSums (ext, sca,
+// abs, back_re, back_im, g_cross, g_self; lane 7 unused).  Two 4-wide vector
+// operations advance all seven — the same IEEE operations per sum as
+// KahanSum::add, so the same bits — where the scalar loop took seven.
+struct VectorSums {
+  alignas(64) double sum[8] = {}, carry[8] = {};
+  bool converged = false;  // the convergence test stopped the series
+  void to(SeriesSums<double>& s) const;  // series.hpp
+};
+
 // The double instances, compiled in mie/src/term_block_double.cpp for SSE2,
 // AVX2 and AVX-512 and chosen at run time by the CPU (GCC target_clones).
 // Built with -ffp-contract=off, every instance performs the same IEEE
@@ -195,5 +210,10 @@ void conductor_terms_double(const TermConstants<double>& k, const TermInputs<dou
                             TermOutputs<double>& out);
 void sum_terms_double(const TermInputs<double>& in, std::size_t count, const Complex<double>& a_prev,
                       const Complex<double>& b_prev, TermOutputs<double>& out);
+// Adds orders first .. first+count−1 of `t` to `s`, stopping after the first
+// order n > x whose size is <= tol·min(|Σext|, |Σback_re| + |Σback_im|)
+// (converged_rule; sets s.converged).  Returns the number of orders added.
+std::size_t sum_block_double(const TermOutputs<double>& t, std::size_t first, std::size_t count, double x,
+                             double tol, bool converged_rule, VectorSums& s);
 
 }  // namespace attenuvis::mie::detail
