@@ -334,7 +334,9 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
     }();
     CityPerformance::PruneRow row;
     row.tolerance = eps;
-    row.radius_m = pr.pruning_radius;
+    row.radius_m = std::isfinite(pr.pruning_radius) ? pr.pruning_radius : radius;
+    row.not_applied = !std::isfinite(pr.pruning_radius);
+    row.note = pr.pruning_note;
     row.seconds = pr.seconds;
     row.pairs_cast = pr.pairs_cast;
     for (std::size_t i = 0; i < n; ++i) {

@@ -110,6 +110,8 @@ struct CityPerformance {
     double max_bound = 0;          // max over nodes of the certified bound
     std::size_t bound_violations = 0;
     bool skipped = false;          // radius beyond the city: identical to exact, not run
+    bool not_applied = false;      // the engine ran exact: pruning would have been slower (note says why)
+    std::string note;              // the engine's pruning_note
   };
   double city_diameter_m = 0;
   std::vector<PruneRow> prune;
