@@ -90,12 +90,16 @@ void run_scene(const SceneArgs& a) {
   if (a.out.empty()) throw std::invalid_argument("scene " + a.what + ": --out FILE.obj is required");
   const vg::Mesh mesh = vg::scene_from_spec(a.what, a.city);  // validates the spec and options
   vg::write_obj(mesh, a.out);
-  std::printf("scene: %s -> %s\n", a.what.c_str(), a.out.c_str());
+  // One line: what was written.  `scene info FILE` describes the file, so the
+  // two commands in a row do not print the same description twice.
+  std::printf("scene: %s -> %s: %zu triangles, %zu groups: %s (attenuvis scene info %s describes it)\n",
+              a.what.c_str(), a.out.c_str(), mesh.triangles.size(), mesh.groups.size(),
+              vg::preview_names(mesh.groups, 6, "").c_str(), a.out.c_str());
   if (a.what.rfind("city", 0) == 0) {
     std::printf("sidewalk+crosswalk: %.1f m^2 projected (closed form %.1f m^2)\n",
                 vg::walkable_area(mesh, vg::city_walkable_groups()), vg::city_walkable_area_estimate(a.city));
   }
-  print_stats(mesh, a.all_groups);
+  if (a.all_groups) print_stats(mesh, true);
 }
 
 }  // namespace
