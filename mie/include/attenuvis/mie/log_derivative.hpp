@@ -214,19 +214,22 @@ void downward_ratios(const ScaledInverse<Real>& over_x_in, const ScaledInverseCo
   const C c = (m - C(Real(1))) * over_z(Real(1));  // (m−1)/(m x)
   Real yx;
   C yz, d;
+  // One step down from index n to n − 1 of the three ratios (k = 2n + 1);
+  // δ only when asked (Slot::value never reads it).
+  const auto step_down = [&](std::size_t n, bool with_delta) {
+    const Real k = index_real<Real>(2 * n + 1);
+    Real den_x = over_x(k) - yx;
+    C den_z = over_z(k) - yz;
+    avoid_zero<Real, Real>(den_x);
+    avoid_zero<C, Real>(den_z);
+    yx = Real(1) / den_x;
+    yz = recip(den_z);
+    if (with_delta) d = cmul(C(c * k + d), yz) * yx;
+  };
   if (miller > 0) {
     // The loop below without its stores, from zeros at index N + miller.
     yx = Real(0), yz = C(Real(0)), d = C(Real(0));
-    for (std::size_t n = N + miller; n > N; --n) {
-      const Real k = index_real<Real>(2 * n + 1);
-      Real den_x = over_x(k) - yx;
-      C den_z = over_z(k) - yz;
-      avoid_zero<Real, Real>(den_x);
-      avoid_zero<C, Real>(den_z);
-      yx = Real(1) / den_x;
-      yz = recip(den_z);
-      d = cmul(C(c * k + d), yz) * yx;
-    }
+    for (std::size_t n = N + miller; n > N; --n) step_down(n, true);
   } else {
     yx = Real(1) / riccati_psi_ratio<Real, Real>(N + 1, over_x);  // ψ_{N+1}/ψ_N
     yz = recip(riccati_psi_ratio<C, Real>(N + 1, over_z));
@@ -244,15 +247,7 @@ void downward_ratios(const ScaledInverse<Real>& over_x_in, const ScaledInverseCo
       store(w[n], yz);
     }
     if (n == 0) break;
-    const Real k = index_real<Real>(2 * n + 1);  // 2(n−1)+3
-    Real den_x = over_x(k) - yx;
-    C den_z = over_z(k) - yz;
-    avoid_zero<Real, Real>(den_x);
-    avoid_zero<C, Real>(den_z);
-    yx = Real(1) / den_x;
-    yz = recip(den_z);
-    // δ only where it is stored (Slot::value never reads it).
-    if (slot == Slot::difference) d = cmul(C(c * k + d), yz) * yx;
+    step_down(n, slot == Slot::difference);
   }
 }
 
