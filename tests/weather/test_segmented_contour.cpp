@@ -118,6 +118,28 @@ TEST_CASE("segmented contour: 200-point log-normal table in water, reported erro
   }
 }
 
+TEST_CASE("segmented contour: the error bound holds at every tolerance and path height", "[weather][segmented]") {
+  // Loose tolerances leave the fewest panels (one per piece and per leg):
+  // the reported error must still bound the actual one, against the
+  // independent-path reference (head of this file).
+  const auto table = log_normal_table();
+  const auto m = refractive_index_table("water").at(550e-9);
+  const double reference = independent_path_reference(table, 550e-9, m);
+  for (double height : {2.0, 4.0})
+    for (double tol : {1e-4, 1e-6, 1e-8}) {
+      SegmentedContourSettings s;
+      s.height = height;
+      s.rel_tolerance = tol;
+      const auto c = route(table, 550e-9, m, s);
+      const double actual = std::abs(c.extinction.value - reference);
+      INFO(std::setprecision(13) << "h " << height << ", tol " << tol << ": " << c.extinction.value << " +- "
+                                 << c.extinction.error() << " (" << c.evaluations << " evaluations), reference "
+                                 << reference << ", actual error " << actual);
+      CHECK(actual <= c.extinction.error());
+      CHECK(c.extinction.error() <= 1.1 * tol * reference);
+    }
+}
+
 TEST_CASE("segmented contour agrees with the real axis for absorbing drops", "[weather][segmented]") {
   // Reference: the real-axis rule at 1e-11 over the same density (head of this file).
   std::vector<SizeDistribution> cases = awkward_tables();
@@ -137,10 +159,12 @@ TEST_CASE("segmented contour agrees with the real axis for absorbing drops", "[w
   }
 }
 
-TEST_CASE("segmented contour: kinks, truncated ends, zero segments and bins in water", "[weather][segmented]") {
+TEST_CASE("segmented contour: kinks, truncated ends, zero segments, bins and a power law in water", "[weather][segmented]") {
   // Reference: the independent path (head of this file); the real axis within its resonance error.
   const auto m = refractive_index_table("water").at(550e-9);
-  for (const auto& d : awkward_tables()) {
+  std::vector<SizeDistribution> cases = awkward_tables();
+  cases.push_back(SizeDistribution::power_law(1e4, 3.5, 0.1e-6, 10e-6));  // Junge, n = C r^-3.5
+  for (const auto& d : cases) {
     const auto c = route(d, 550e-9, m);
     const double reference = independent_path_reference(d, 550e-9, m);
     const double actual = std::abs(c.extinction.value - reference);

@@ -178,10 +178,10 @@ class Integrand {
     return 2 * scale_ * s_max * (std::abs(jump) * y1 + slope * y1 * y1 / (2 * k_));
   }
   // Where to cut a leg's panel [0, b] on the axis so that the lower part's
-  // bound is about `allowed`: between b/4096 and b/8 (the upper part is split
-  // again at its middle if its |K - G| asks).
-  double axis_cut(std::size_t k, double b, double allowed) const {
-    double lo = b / 4096, hi = b / 8;
+  // bound is about `allowed`: between b/4096 and `largest` (the upper part is
+  // split again at its middle if its |K - G| asks).
+  double axis_cut(std::size_t k, double b, double allowed, double largest) const {
+    double lo = b / 4096, hi = largest;
     if (near_axis_bound(k, lowest_node(hi)) <= allowed) return hi;
     for (int i = 0; i < 40; ++i) {  // bisection in log: the bound grows with the height
       const double mid = std::sqrt(lo * hi);
@@ -216,7 +216,7 @@ double ripple_residual(Complex m, double h) {
 // low enough that the new near-axis bound is about `allowed` (it falls like
 // y_1 or y_1^2).
 double split_point(const Integrand& f, const Panel& p, double allowed) {
-  if (p.where == Where::leg && p.quad.a == 0) return f.axis_cut(p.index, p.quad.b, allowed);
+  if (p.where == Where::leg && p.quad.a == 0) return f.axis_cut(p.index, p.quad.b, allowed, p.quad.b / 8);
   return 0.5 * (p.quad.a + p.quad.b);
 }
 
@@ -228,7 +228,7 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
   if (!pieces) return std::nullopt;
   const double k = 2 * kPi / wavelength_m;
   const double x_min = k * pieces->front().r0, x_max = k * pieces->back().r1;
-  if (!(x_max <= s.max_x) || !(x_min > 0)) return std::nullopt;
+  if (!(x_max <= s.max_x) || !(x_min > 0) || pieces->size() > s.max_pieces) return std::nullopt;
   const mie::Precision arithmetic = s.rel_tolerance >= 1e-9 && s.height <= 4 ? mie::Precision::double_precision
                                                                                : mie::Precision::extended;
   const Integrand f(std::move(*pieces), wavelength_m, m, s, arithmetic);
@@ -237,7 +237,8 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
   // Initial panels.  The path over each piece: edges at the breakpoints, and
   // inside a piece every panel_width, graded towards x = 0 up to the rise
   // length 2H/theta as contour_extinction.cpp does (resonance poles sit at
-  // ~theta x from the low path there).  Legs: one panel from the axis up.
+  // ~theta x from the low path there).  The legs follow, once the path has
+  // given the scale of sigma_ext.
   struct Task {
     Where where;
     std::size_t index;
@@ -257,12 +258,31 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
     for (int j = 1; j <= n; ++j) edges.push_back(j == n ? b : from + (b - from) * j / n);
     for (std::size_t j = 0; j + 1 < edges.size(); ++j) tasks.push_back({Where::path, i, edges[j], edges[j + 1]});
   }
-  for (std::size_t kb = 0; kb < f.breakpoints(); ++kb)
-    if (!f.leg_vanishes(kb)) tasks.push_back({Where::leg, kb, 0.0, f.height(f.x_at(kb))});
-  std::vector<Panel> panels(tasks.size());
-  tbb::parallel_for(std::size_t(0), tasks.size(), [&](std::size_t i) {
-    panels[i] = f.evaluate(tasks[i].where, tasks[i].index, tasks[i].a, tasks[i].b);
-  });
+  const auto evaluate_all = [&](const std::vector<Task>& ts) {
+    std::vector<Panel> out(ts.size());
+    tbb::parallel_for(std::size_t(0), ts.size(),
+                      [&](std::size_t i) { out[i] = f.evaluate(ts[i].where, ts[i].index, ts[i].a, ts[i].b); });
+    return out;
+  };
+  std::vector<Panel> panels = evaluate_all(tasks);
+  // The legs add ~h^2 / w^2 of sigma_ext (w the width of the distribution in
+  // x), so the path alone sizes their near-axis budget: each leg starts as
+  // panels [0, c], [c, 16c], [16c, 256c], ..., h, c set so that the bound below
+  // its lowest node is a quarter of the leg's share of the tolerance.
+  std::size_t legs = 0;
+  for (std::size_t kb = 0; kb < f.breakpoints(); ++kb) legs += !f.leg_vanishes(kb);
+  Complex path_total{};
+  for (const auto& p : panels) path_total += p.quad.kronrod;
+  const double leg_allowed = 0.25 * s.rel_tolerance * std::abs(path_total.real()) / std::max<std::size_t>(legs, 1);
+  std::vector<Task> leg_tasks;
+  for (std::size_t kb = 0; kb < f.breakpoints(); ++kb) {
+    if (f.leg_vanishes(kb)) continue;
+    const double h = f.height(f.x_at(kb));
+    double c = f.axis_cut(kb, h, leg_allowed, h);
+    leg_tasks.push_back({Where::leg, kb, 0.0, c});
+    for (; c < h; c *= 16) leg_tasks.push_back({Where::leg, kb, c, std::min(16 * c, h)});
+  }
+  for (Panel& p : evaluate_all(leg_tasks)) panels.push_back(std::move(p));
 
   std::size_t evaluations = 0;
   for (const auto& p : panels) evaluations += p.quad.evaluations;
@@ -358,8 +378,6 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
     panels.swap(halves);
   }
 
-  std::size_t legs = 0;
-  for (const auto& t : tasks) legs += t.where == Where::leg;
   ContourExtinction out;
   out.extinction.value = fine.total.real();
   out.extinction.quadrature_error = fine.error;

@@ -94,7 +94,7 @@ Sigma mie_sigma(const MieCondition& c, double wavelength_m, const Settings& s) {
                        {"tails", ce->extinction.tail_error},
                        {"rounding", ce->extinction.rounding_error}};
     if (ce->extinction.resonance_error > 0)
-      out.error_terms.push_back({"resonances below the lowest node (bound)", ce->extinction.resonance_error});
+      out.error_terms.push_back({"near-axis resonances (bound)", ce->extinction.resonance_error});
   } else {
     const BulkOptics b = bulk_optics_of(c, wavelength_m, s, d, m);
     out.per_m = b.extinction.value;

@@ -22,9 +22,10 @@
 // integrand vanishes on the axis, so the resonances just below it weigh like
 // their width squared.  At a jump (a bin edge, a truncated end, a zero segment)
 // the integrand is the full jump times S(0) on the axis.  Both are handled the
-// same way: each leg is a Gauss-Kronrod panel (split geometrically towards the
-// axis when the error asks), and what its rule cannot see below its lowest node
-// y_1 is bounded, not estimated:
+// same way: each leg is a run of Gauss-Kronrod panels graded towards the axis
+// ([0, c], [c, 16c], ..., split further when the error asks), and what the
+// rule of its lowest panel cannot see below its lowest node y_1 is bounded,
+// not estimated:
 //
 //   |int_0^{y_1} D_k| <= (4 pi / k^3) S_max e^{2 y_1} (|J| y_1 + |s_k - s_{k-1}| y_1^2 / (2 k)),
 //
@@ -57,6 +58,7 @@ struct SegmentedContourSettings {
   double height = 4.0;          // H: the path's height in x above the real axis
   double angle = 0.25;          // theta: the path rises as h = theta x near x = 0
   double max_x = 5000;          // tables reaching further are left to bulk_optics (cost ~ x_max^2)
+  std::size_t max_pieces = 4000;  // longer tables too (each point costs a leg, ~30-60 evaluations)
   double panel_width = 40;      // initial path panels at most this wide in Re x
   int kronrod_points = 15;      // Gauss-Kronrod order of every panel (15, 21, 31, 41, 51, 61)
   bool verify = false;          // split every converged panel once and charge the change
@@ -64,7 +66,8 @@ struct SegmentedContourSettings {
 };
 
 // Nothing (no throw) when the route does not apply: the distribution is not a
-// table or a power law, or it reaches beyond s.max_x.  Throws
+// table or a power law, it reaches beyond s.max_x, or it has more than
+// s.max_pieces pieces; sigma() then takes the real axis (bulk_optics.hpp).  Throws
 // std::runtime_error if the tolerance cannot be met within s.max_evaluations.
 // The result's resonance_error holds the near-axis bounds; tail_error is 0.
 std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribution& d, double wavelength_m,
