@@ -29,8 +29,9 @@
 //
 //   |int_0^{y_1} D_k| <= (4 pi / k^3) S_max e^{2 y_1} (|J| y_1 + |s_k - s_{k-1}| y_1^2 / (2 k)),
 //
-// S_max = (N + 1)^2 >= |S(0)| on the real axis (|a_n|, |b_n| <= 1 for a passive
-// sphere, B&H eq. 4.53; N = x + 4.05 x^(1/3) + 2 terms, Wiscombe 1980), grown by
+// S_max = (N + 1)^2 >= |S(0)| on the real axis (a partial wave of a passive
+// sphere scatters no more than it extinguishes, |a_n|^2 <= Re a_n, so
+// |a_n|, |b_n| <= 1; N = x + 4.05 x^(1/3) + 2 terms, Wiscombe 1980), grown by
 // e^{2 y} at most above it (the growth of the Mie terms, forward_amplitude.hpp);
 // twice that is charged (the rule's own extrapolation over [0, y_1] as well) as
 // the "resonance" error.  The path's pieces are Gauss-Kronrod panels that never
@@ -42,6 +43,12 @@
 // points.  When the ripple left at height H is not far below the tolerance
 // (as contour_extinction.cpp), or when asked, every converged panel is split
 // once and the change is charged too.
+//
+// Cost: one panel per piece and ~2 per leg; a 200-point log-normal table in
+// water at 550 nm takes 9,735 evaluations of S(0) at 1e-9, the analytic
+// log-normal 625 (validation/bench/bulk_optics_speed table).  The near-axis
+// bound, not the path, sets the cost: it stands 1e5-1e6 times above the actual
+// error in tests/weather/test_segmented_contour.cpp.
 #pragma once
 
 #include <complex>
