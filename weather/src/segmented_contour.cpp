@@ -323,8 +323,7 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
                                " (relative) still above the tolerance " + significant(s.rel_tolerance, 3) + " after " +
                                std::to_string(evaluations) + " Mie evaluations");
   };
-  // Adaptive: split every panel above its share of the target (at least the
-  // worst) until |K - G| plus the near-axis bounds meet it.
+  // Adaptive: split panels until |K - G| plus the near-axis bounds meet the target.
   const auto refine = [&](std::vector<Panel>& ps) {
     for (;;) {
       const Sums sum = sums(ps);
@@ -332,14 +331,24 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
       const double target = s.rel_tolerance * std::abs(sum.total.real());
       if (sum.error + sum.near_axis <= target) return;
       check_budget("quadrature error", sum.error + sum.near_axis, sum);
+      // The largest charges first, until they cover the excess over half
+      // the target (the halves keep some of it); at least the worst, so every
+      // round spends evaluations and the budget ends the loop.  Which ones
+      // depends on the values alone, not on the thread count.
       const double share = target / static_cast<double>(ps.size());
+      std::vector<std::size_t> order(ps.size());
+      std::iota(order.begin(), order.end(), std::size_t(0));
+      std::stable_sort(order.begin(), order.end(),
+                       [&](std::size_t i, std::size_t j) { return ps[i].charged() > ps[j].charged(); });
+      const double excess = sum.error + sum.near_axis - 0.5 * target;
       std::vector<std::size_t> split;
-      std::size_t worst = 0;
-      for (std::size_t i = 0; i < ps.size(); ++i) {
-        if (ps[i].charged() > share) split.push_back(i);
-        if (ps[i].charged() > ps[worst].charged()) worst = i;
+      double taken = 0;
+      for (std::size_t i : order) {
+        if (!split.empty() && taken >= excess) break;
+        split.push_back(i);
+        taken += ps[i].charged();
       }
-      if (split.empty()) split.push_back(worst);
+      std::sort(split.begin(), split.end());
       const std::vector<Panel> halves = halves_of(ps, split, 0.5 * share);
       std::vector<Panel> next;
       next.reserve(ps.size() + split.size());
