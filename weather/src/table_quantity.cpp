@@ -76,6 +76,11 @@ QuantityRequest parse_quantity_request(const std::string& text) {
   std::stringstream in(text);
   std::string name;
   while (std::getline(in, name, ',')) {
+    if (name == "phase") {
+      if (out.phase) throw std::invalid_argument("'phase' is listed twice");
+      out.phase = true;
+      continue;
+    }
     if (name.rfind("moments:", 0) != 0) {
       rest += (rest.empty() ? "" : ",") + name;
       continue;
@@ -94,7 +99,7 @@ QuantityRequest parse_quantity_request(const std::string& text) {
                                   std::to_string(kMaxTableMoment) + "]");
     out.max_moment = value;
   }
-  if (!rest.empty() || out.max_moment < 0) out.quantities = parse_quantity_list(rest);
+  if (!rest.empty() || (out.max_moment < 0 && !out.phase)) out.quantities = parse_quantity_list(rest);
   return out;
 }
 
