@@ -5,7 +5,9 @@
 // contour integral, otherwise the real-axis quadrature.  The quantities that
 // need the whole single-scattering result (sigma_sca, sigma_abs, ssa, g) come
 // from condition_bulk_optics(), the real-axis quadrature, computed only when
-// one of them is asked for.  Only Mie conditions have a size distribution:
+// one of them is asked for; the Legendre moments and the phase function on
+// an angle grid come from condition_optics() (its second pass: per drop,
+// O(x^2) for the moments, O(x) per angle), only when asked for.  Only Mie conditions have a size distribution:
 // for every other condition (power laws, visibility models, clear air, a
 // given sigma) those quantities are missing — an empty CSV cell, JSON null,
 // the netCDF _FillValue — and so are they where the integral used the
