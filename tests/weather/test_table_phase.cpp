@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <boost/math/constants/constants.hpp>
+#include <boost/math/special_functions/legendre.hpp>
 #include <nlohmann/json.hpp>
 
 #include "attenuvis/weather.hpp"
@@ -157,6 +158,36 @@ TEST_CASE("table phase: (1/2) int p sin(theta) dtheta = 1 by Simpson's rule on a
   // Forward peaked (p(0) > p(180)) and p(0) well above the isotropic p = 1.
   CHECK(p.front() > 2);
   CHECK(p.front() > p.back());
+}
+
+TEST_CASE("table phase: p(theta) = sum (2l+1) chi_l P_l(cos theta) with the table's own moments, at every angle",
+          "[weather][table][phase]") {
+  // Each drop's phase function is a polynomial of degree 2N in mu = cos theta with Legendre
+  // coefficients (2l+1) chi_l (legendre_moments.hpp), so the bulk one is the same sum of the bulk
+  // moments once L reaches 2N of the largest drop integrated.  Radiation fog at 10.6 um: x < 25
+  // keeps 2N below ~110 (mie's series length, a little above Wiscombe's x + 4 x^(1/3) + 2).
+  const std::vector<LabelledCondition> fog = expand_conditions("fog:radiation");
+  const std::vector<double> angles = {0, 1, 5, 10, 30, 60, 90, 120, 150, 170, 179, 180};
+  const int L = 150;
+  const SigmaTable t = sigma_table(fog, {10.6e-6}, Settings{}, 1, {}, L, angles);
+  REQUIRE(t.at(0, 0).optics);
+  REQUIRE(t.at(0, 0).optics->max_size_parameter < 25);
+  CHECK(std::abs(table_moment(t.at(0, 0), L).value) < 1e-300);  // the sum is complete: chi_L vanishes
+  const double deg = boost::math::constants::pi<double>() / 180;
+  for (std::size_t i = 0; i < angles.size(); ++i) {
+    const double mu = std::cos(angles[i] * deg);
+    double sum = 0, sum_error = 0;
+    for (int l = 0; l <= L; ++l) {
+      const double pl = boost::math::legendre_p(l, mu);
+      sum += (2 * l + 1) * table_moment(t.at(0, 0), l).value * pl;
+      sum_error += (2 * l + 1) * table_moment(t.at(0, 0), l).error * std::abs(pl);
+    }
+    const QuantityValue p = table_phase(t.at(0, 0), i);
+    INFO("theta = " << angles[i] << " deg: p = " << p.value << " +- " << p.error << ", sum = " << sum << " +- "
+                    << sum_error);
+    CHECK(std::abs(p.value - sum) <= p.error + sum_error);
+    CHECK(std::abs(p.value - sum) < 1e-6 * p.value);  // the errors are small: the check is tight
+  }
 }
 
 TEST_CASE("table --quantities ...,phase: the values of optics --angles; CSV and JSON agree",
