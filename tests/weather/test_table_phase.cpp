@@ -61,6 +61,8 @@ TEST_CASE("table phase: parsing of the request and of the angle grid", "[weather
   CHECK(parse_quantity_request("phase").quantities.empty());
   CHECK(!parse_quantity_request("sigma_ext").phase);
   CHECK_THROWS_WITH(parse_quantity_request("phase,phase"), Contains("'phase' is listed twice"));
+  CHECK_THROWS_WITH(parse_quantity_request("g,phse"), Contains("unknown quantity 'phse'") && Contains("lidar_ratio") &&
+                                                          Contains("moments:L") && Contains("phase (the phase"));
   CHECK_NOTHROW(check_table_angles({0, 0.5, 90, 180}));
   CHECK_THROWS_WITH(check_table_angles({0, 181}), Contains("scattering angle 2 (181 deg) is outside [0, 180]"));
   CHECK_THROWS_WITH(check_table_angles({-1}), Contains("outside [0, 180]"));
