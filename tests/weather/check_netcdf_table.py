@@ -81,8 +81,7 @@ def check_phase_table(program, work):
           "phase table dimensions %s" % list(nc.dimensions))
     # The phase function: a CF coordinate variable "angle" and the field with its error companion.
     check(list(nc["angle"][:]) == ANGLES, "angle coordinate %s" % list(nc["angle"][:]))
-    check(nc["angle"].units == "degree" and nc["angle"].long_name == "scattering angle" and
-          nc["angle"].standard_name == "scattering_angle", "angle attributes")
+    check(nc["angle"].units == "degree" and nc["angle"].long_name == "scattering angle", "angle attributes")
     p, pe = nc["phase_function"], nc["phase_function_error"]
     check(p.dimensions == ("wavelength", "condition", "angle") and pe.dimensions == p.dimensions,
           "phase_function dimensions %s" % (p.dimensions,))

@@ -227,8 +227,10 @@ void write_sigma_table_netcdf(const SigmaTable& t, const std::string& path, Sigm
                                             "bulk phase function, scattering-weighted, normalised " +
                                                 phase_function_normalisation(),
                                             t.angles_deg, table_phase));
-    // CF standard name scattering_angle: between the incident and the scattered radiation's directions.
-    describe(f, axis_fields.back().coordinate, "degree", "scattering angle", "scattering_angle");
+    // No standard_name: the angle between incident and scattered directions is
+    // named by units and long_name only, as the CF conventions allow, rather
+    // than by a standard name this project cannot check against the table.
+    describe(f, axis_fields.back().coordinate, "degree", "scattering angle", "");
   }
   const int method_var = f.add_string_variable("sigma_ext_method", {wdim, cdim});
   describe(f, method_var, "", "how sigma_ext was computed: refractive index, integration method, warnings (empty: closed form)", "");
