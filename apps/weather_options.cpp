@@ -70,7 +70,6 @@ std::vector<double> angle_list(const std::string& option, const std::string& tex
   if (angles.size() > max_count)
     throw std::invalid_argument(option + " '" + text + "' gives " + std::to_string(angles.size()) +
                                 " angles, more than " + std::to_string(max_count) + "; give a coarser step");
-  for (double& a : angles) a = std::stod(io::significant(a, 12));
   return angles;
 }
 

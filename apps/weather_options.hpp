@@ -39,9 +39,8 @@ double wavelength_m(const WeatherOptions& o);
 
 // Scattering angles (degrees) of an option such as --angles: the grammar of
 // mie::batch::parse_angles (START:STOP:STEP, STOP included when on the grid,
-// or A,B,...; each in [0, 180]), every angle rounded to 12 significant digits
-// so a decimal step gives the angles it names (0:1:0.1 gives 0.3, not
-// 0.30000000000000004) in every command alike.  Throws std::invalid_argument
+// or A,B,...; each in [0, 180]; a grid's angles rounded to 12 significant
+// digits, so 0:1:0.1 gives 0.3).  Throws std::invalid_argument
 // "OPTION 'TEXT': ..." for a bad grid or more than max_count angles.
 std::vector<double> angle_list(const std::string& option, const std::string& text, std::size_t max_count);
 
