@@ -43,7 +43,7 @@ struct LaneState {
   std::size_t N = 0;      // longest table of the lanes
   std::size_t start = 0;  // highest start index of the downward pass
   double tol = 0;         // relative size of the last term kept (tail_log_tolerance)
-  V x, Njd, start_d, mr, mi, m1r, m1i, cr, ci, er, ei, cdr, cdi, yx0, yzr0, yzi0, dr0, di0, Rr, Ri;
+  V x, inv_x, Njd, start_d, mr, mi, m1r, m1i, cr, ci, er, ei, cdr, cdi, yx0, yzr0, yzi0, dr0, di0, Rr, Ri;
   M diff_slot, lentz;  // δ slot; downward pass started from Lentz's value (not Miller's)
   LaneInverse ox{}, ozr{}, ozi{};
 };
@@ -127,7 +127,7 @@ void lane_setup(const LaneProblems& in, LaneState& st) {
     st.x[j] = in.x[j];
     const double x = in.x[j];
     const C m = in.m[j];
-    const std::size_t Nj = first_terms<double>(x, std::cbrt(x));
+    const std::size_t Nj = in.terms[j];  // first_terms(x), from lane_terms()
     st.N = std::max(st.N, Nj);
     st.Njd[j] = double(Nj);
     const std::size_t miller = miller_depth(x, m, Nj);
@@ -138,6 +138,7 @@ void lane_setup(const LaneProblems& in, LaneState& st) {
     st.diff_slot[j] = norm2(dm) < 0.25 ? -1 : 0;
     const ScaledInverse<double> over_x(x);
     const ScaledInverseComplex<double, C> over_z(x, m);
+    st.inv_x[j] = over_x(1.0);
     st.ox.h1[j] = over_x.split.h1, st.ox.h2[j] = over_x.split.h2, st.ox.lo[j] = over_x.split.lo;
     st.ozr.h1[j] = over_z.re.h1, st.ozr.h2[j] = over_z.re.h2, st.ozr.lo[j] = over_z.re.lo;
     st.ozi.h1[j] = over_z.im.h1, st.ozi.h2[j] = over_z.im.h2, st.ozi.lo[j] = over_z.im.lo;
@@ -156,7 +157,7 @@ void lane_setup(const LaneProblems& in, LaneState& st) {
 void lane_psi1(const LaneTables& tables, LaneState& st) {
   for (int j = 0; j < L; ++j) {
     const double x = st.x[j], sx = std::sin(x), cx = std::cos(x);
-    const double psi1 = riccati_psi1(sx, cx, tables.y[j], ScaledInverse<double>(x)(1.0));
+    const double psi1 = riccati_psi1(sx, cx, tables.y[j], st.inv_x[j]);
     st.Rr[j] = sx * psi1, st.Ri[j] = cx * psi1;
   }
 }

@@ -26,6 +26,7 @@ constexpr int kLanes = 8;
 struct LaneProblems {
   double x[kLanes];
   std::complex<double> m[kLanes];
+  std::size_t terms[kLanes];  // lane_terms(x, m), as the plan computed it
 };
 
 struct LaneResults {

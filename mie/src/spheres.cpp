@@ -33,6 +33,7 @@ using detail::default_options;
 // remaining spheres one by one.
 struct Plan {
   std::vector<std::size_t> lanes;   // indices, by table length, padded to a multiple of kLanes
+  std::vector<std::uint32_t> terms; // table length of each entry of `lanes` (lane_terms)
   std::size_t lane_count = 0;       // real entries in `lanes`
   std::vector<std::size_t> single;  // indices for sphere()
   int kernel = 0;                   // lane kernels (sphere_lanes.hpp)
@@ -40,15 +41,21 @@ struct Plan {
 
 // Orders `lanes` by `terms` (counting sort: stable, so ties keep input
 // order and the plan is deterministic).
-void order_by_terms(std::vector<std::size_t>& lanes, const std::vector<std::uint32_t>& terms) {
+void order_by_terms(std::vector<std::size_t>& lanes, std::vector<std::uint32_t>& terms) {
   if (lanes.size() <= static_cast<std::size_t>(kLanes)) return;
   const std::uint32_t top = *std::max_element(terms.begin(), terms.end());
   std::vector<std::size_t> start(static_cast<std::size_t>(top) + 2, 0);
   for (std::uint32_t t : terms) ++start[t + 1];
   std::partial_sum(start.begin(), start.end(), start.begin());
   std::vector<std::size_t> sorted(lanes.size());
-  for (std::size_t k = 0; k < lanes.size(); ++k) sorted[start[terms[k]]++] = lanes[k];
+  std::vector<std::uint32_t> sorted_terms(lanes.size());
+  for (std::size_t k = 0; k < lanes.size(); ++k) {
+    const std::size_t to = start[terms[k]]++;
+    sorted[to] = lanes[k];
+    sorted_terms[to] = terms[k];
+  }
   lanes.swap(sorted);
+  terms.swap(sorted_terms);
 }
 
 template <class IndexOf>
@@ -59,6 +66,7 @@ void evaluate_group(const Plan& plan, std::size_t g, const double* x, const Inde
     const std::size_t i = plan.lanes[g * kLanes + j];
     in.x[j] = x[i];
     in.m[j] = m_of(i);
+    in.terms[j] = plan.terms[g * kLanes + j];
   }
   detail::sphere_lanes(in, res, plan.kernel);
   for (int j = 0; j < kLanes; ++j) {
@@ -80,7 +88,7 @@ std::vector<SphereError> run(const double* x, const IndexOf& m_of, std::size_t c
     throw std::invalid_argument("mie: spheres(): instruction set '" + options.instruction_set +
                                 "' is not available on this CPU");
   const bool lanes_allowed = default_options(options.options);
-  std::vector<std::uint32_t> terms;
+  std::vector<std::uint32_t>& terms = plan.terms;
   for (std::size_t i = 0; i < count; ++i) {
     const std::complex<double> m = m_of(i);
     // The common case, tested without building a message (NaN fails the comparisons).
@@ -103,7 +111,10 @@ std::vector<SphereError> run(const double* x, const IndexOf& m_of, std::size_t c
   }
   order_by_terms(plan.lanes, terms);
   plan.lane_count = plan.lanes.size();
-  while (plan.lanes.size() % kLanes != 0) plan.lanes.push_back(plan.lanes.back());
+  while (plan.lanes.size() % kLanes != 0) {
+    plan.lanes.push_back(plan.lanes.back());
+    plan.terms.push_back(plan.terms.back());
+  }
   const std::size_t groups = plan.lanes.size() / kLanes;
   // Work items: the single spheres (extended precision or long series: the
   // costliest), then the lane groups from the longest tables down; threads
