@@ -98,7 +98,7 @@ namespace generic {
 
 struct LaneKernels {
   const char* name;
-  bool (*start_and_downward)(LaneState&, const LaneTablePointers&);
+  bool (*start_and_downward)(LaneState&, const LaneTablePointers&, LaneState*, const LaneTablePointers*);
   void (*series)(const LaneState&, const LaneTablePointers&, LaneSums&);
 };
 
@@ -208,19 +208,24 @@ std::size_t lane_terms(double x, std::complex<double> m) {
   return first_terms<double>(x, cbrt_x);
 }
 
-void sphere_lanes(const LaneProblems& in, LaneResults& out, int kernel) {
+void sphere_lanes(const LaneProblems* in, LaneResults* out, int groups, int kernel) {
   const LaneKernels& k = kernels().at(static_cast<std::size_t>(kernel));
-  LaneState st;
-  lane_setup(in, st);
-  thread_local LaneTables tables;
-  tables.resize(st.N);
-  const LaneTablePointers p{tables.y.data(), tables.w_re.data(), tables.w_im.data(), tables.use_d.data()};
-  if (!k.start_and_downward(st, p))
+  LaneState st[2];
+  thread_local LaneTables tables[2];
+  LaneTablePointers p[2];
+  for (int g = 0; g < groups; ++g) {
+    lane_setup(in[g], st[g]);
+    tables[g].resize(st[g].N);
+    p[g] = {tables[g].y.data(), tables[g].w_re.data(), tables[g].w_im.data(), tables[g].use_d.data()};
+  }
+  if (!k.start_and_downward(st[0], p[0], groups > 1 ? &st[1] : nullptr, groups > 1 ? &p[1] : nullptr))
     throw std::runtime_error("attenuvis::mie: Lentz continued fraction did not converge");
-  lane_psi1(tables, st);
-  LaneSums sums;
-  k.series(st, p, sums);
-  lane_finish(st, sums, out);
+  for (int g = 0; g < groups; ++g) {
+    lane_psi1(tables[g], st[g]);
+    LaneSums sums;
+    k.series(st[g], p[g], sums);
+    lane_finish(st[g], sums, out[g]);
+  }
 }
 
 }  // namespace attenuvis::mie::detail

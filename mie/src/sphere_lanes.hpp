@@ -43,8 +43,11 @@ bool lane_eligible(double x, std::complex<double> m);
 // (first_terms in series.hpp), the order count a group is sized by; 0 where
 // the sphere is not lane-eligible.
 std::size_t lane_terms(double x, std::complex<double> m);
-// kernel: an index into lane_instruction_sets() (0: the best for this CPU).
-void sphere_lanes(const LaneProblems& in, LaneResults& out, int kernel = 0);
+// One or two groups (`groups` entries of in and out; two run their downward
+// passes interleaved).  kernel: an index into lane_instruction_sets() (0: the
+// best for this CPU).
+constexpr int kMaxGroups = 2;
+void sphere_lanes(const LaneProblems* in, LaneResults* out, int groups = 1, int kernel = 0);
 
 // The instruction sets of the lane kernels this CPU can run, best first:
 // "avx512" (x86-64-v4), "avx2" (x86-64-v3), "generic" (any CPU).  All give

@@ -58,24 +58,29 @@ void order_by_terms(std::vector<std::size_t>& lanes, std::vector<std::uint32_t>&
   terms.swap(sorted_terms);
 }
 
+// Groups first .. first + count − 1 (count <= detail::kMaxGroups) in one call.
 template <class IndexOf>
-void evaluate_group(const Plan& plan, std::size_t g, const double* x, const IndexOf& m_of, Efficiencies<double>* out) {
-  detail::LaneProblems in;
-  detail::LaneResults res;
-  for (int j = 0; j < kLanes; ++j) {
-    const std::size_t i = plan.lanes[g * kLanes + j];
-    in.x[j] = x[i];
-    in.m[j] = m_of(i);
-    in.terms[j] = plan.terms[g * kLanes + j];
-  }
-  detail::sphere_lanes(in, res, plan.kernel);
-  for (int j = 0; j < kLanes; ++j) {
-    const std::size_t slot = g * kLanes + j;
-    if (slot >= plan.lane_count) break;  // padding repeats the last sphere
-    const std::size_t i = plan.lanes[slot];
-    // A lane whose first table was too short: sphere() redoes it with the longer one.
-    out[i] = res.converged[j] ? res.q[j] : sphere(x[i], m_of(i));
-  }
+void evaluate_groups(const Plan& plan, std::size_t first, int count, const double* x, const IndexOf& m_of,
+                     Efficiencies<double>* out) {
+  detail::LaneProblems in[detail::kMaxGroups];
+  detail::LaneResults res[detail::kMaxGroups];
+  for (int g = 0; g < count; ++g)
+    for (int j = 0; j < kLanes; ++j) {
+      const std::size_t slot = (first + g) * kLanes + j;
+      const std::size_t i = plan.lanes[slot];
+      in[g].x[j] = x[i];
+      in[g].m[j] = m_of(i);
+      in[g].terms[j] = plan.terms[slot];
+    }
+  detail::sphere_lanes(in, res, count, plan.kernel);
+  for (int g = 0; g < count; ++g)
+    for (int j = 0; j < kLanes; ++j) {
+      const std::size_t slot = (first + g) * kLanes + j;
+      if (slot >= plan.lane_count) break;  // padding repeats the last sphere
+      const std::size_t i = plan.lanes[slot];
+      // A lane whose first table was too short: sphere() redoes it with the longer one.
+      out[i] = res[g].converged[j] ? res[g].q[j] : sphere(x[i], m_of(i));
+    }
 }
 
 template <class IndexOf>
@@ -116,13 +121,16 @@ std::vector<SphereError> run(const double* x, const IndexOf& m_of, std::size_t c
     plan.terms.push_back(plan.terms.back());
   }
   const std::size_t groups = plan.lanes.size() / kLanes;
+  // Lane work items: pairs of neighbouring groups (similar table lengths),
+  // whose downward passes run interleaved; the last may be a single group.
+  const std::size_t pairs = (groups + 1) / 2;
   // Work items: the single spheres (extended precision or long series: the
   // costliest), then the lane groups from the longest tables down; threads
   // take the next item from a shared counter (items differ in cost by orders
   // of magnitude, and the cheap ones last keep the threads' finishing times
   // close).
   const std::size_t singles = plan.single.size();
-  const std::size_t items = groups + singles;
+  const std::size_t items = pairs + singles;
   unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(1, items / 4)));
   std::atomic<std::size_t> next{0};
@@ -132,7 +140,8 @@ std::vector<SphereError> run(const double* x, const IndexOf& m_of, std::size_t c
     try {
       for (std::size_t k; (k = next.fetch_add(1)) < items;) {
         if (k >= singles) {
-          evaluate_group(plan, groups - 1 - (k - singles), x, m_of, out);
+          const std::size_t pair = pairs - 1 - (k - singles);
+          evaluate_groups(plan, 2 * pair, 2 * pair + 1 < groups ? 2 : 1, x, m_of, out);
         } else {
           const std::size_t i = plan.single[k];
           out[i] = sphere(x[i], m_of(i), options.options);
