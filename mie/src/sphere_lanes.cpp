@@ -22,36 +22,31 @@ namespace {
 constexpr int L = kLanes;
 using C = std::complex<double>;
 
-// kLanes doubles / 64-bit masks in one GCC vector (one AVX-512 register, two
-// AVX2 or four SSE2 registers, by the kernel that runs).  Arithmetic is
-// element-wise IEEE, so each lane computes what the scalar code computes.
-typedef double V __attribute__((vector_size(8 * kLanes)));
-typedef long long M __attribute__((vector_size(8 * kLanes)));
-typedef long long M4 __attribute__((vector_size(32)));
-typedef long long M2 __attribute__((vector_size(16)));
-
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 constexpr double kTiny = (std::numeric_limits<double>::min)() * 1e20;  // avoid_zero()'s stand-in
 
+// The per-lane data of a group, lane j at index j of each array (the kernels
+// load them a register at a time).
 // k/x or one part of k/(mx) per lane: the split constants of SplitInverse.
 struct LaneInverse {
-  V h1, h2, lo;
+  alignas(64) double h1[L], h2[L], lo[L];
 };
 
-// Per-lane constants and start values (as mie_series/sum_series/downward_ratios).
+// Per-lane constants (as mie_series/sum_series/downward_ratios).
 struct LaneState {
   std::size_t N = 0;      // longest table of the lanes
   std::size_t start = 0;  // highest start index of the downward pass
   double tol = 0;         // relative size of the last term kept (tail_log_tolerance)
-  V x, inv_x, Njd, start_d, mr, mi, m1r, m1i, cr, ci, er, ei, cdr, cdi, yx0, yzr0, yzi0, dr0, di0, Rr, Ri;
-  M diff_slot, lentz;  // δ slot; downward pass started from Lentz's value (not Miller's)
+  alignas(64) double x[L], inv_x[L], Njd[L], start_d[L], mr[L], mi[L], m1r[L], m1i[L], cr[L], ci[L], er[L], ei[L],
+      cdr[L], cdi[L], Rr[L], Ri[L];
+  alignas(64) long long diff_slot[L], lentz[L];  // δ slot; downward pass started from Lentz's value (not Miller's)
   LaneInverse ox{}, ozr{}, ozi{};
 };
 
 // The per-lane sums the series ends with.
 struct LaneSums {
-  V ext, sca, abs, back_re, back_im, g_cross, g_self, terms;
-  M converged;
+  alignas(64) double ext[L], sca[L], abs[L], back_re[L], back_im[L], g_cross[L], g_self[L], terms[L];
+  alignas(64) long long converged[L];
 };
 
 // Per-thread tables of the downward pass, one vector per order n, in plain
@@ -78,7 +73,9 @@ struct LaneTablePointers {
 #pragma GCC target("arch=x86-64-v4")
 namespace {
 namespace avx512 {
+#define ATTENUVIS_LANE_WIDTH 8
 #include "sphere_lanes_kernels.inc"
+#undef ATTENUVIS_LANE_WIDTH
 }  // namespace avx512
 }  // namespace
 #pragma GCC pop_options
@@ -86,19 +83,23 @@ namespace avx512 {
 #pragma GCC target("arch=x86-64-v3")
 namespace {
 namespace avx2 {
+#define ATTENUVIS_LANE_WIDTH 4
 #include "sphere_lanes_kernels.inc"
+#undef ATTENUVIS_LANE_WIDTH
 }  // namespace avx2
 }  // namespace
 #pragma GCC pop_options
 #endif
 namespace {
 namespace generic {
+#define ATTENUVIS_LANE_WIDTH 2
 #include "sphere_lanes_kernels.inc"
+#undef ATTENUVIS_LANE_WIDTH
 }  // namespace generic
 
 struct LaneKernels {
   const char* name;
-  bool (*start_and_downward)(LaneState&, const LaneTablePointers&, LaneState*, const LaneTablePointers*);
+  bool (*start_and_downward)(const LaneState&, const LaneTablePointers&, const LaneState*, const LaneTablePointers*);
   void (*series)(const LaneState&, const LaneTablePointers&, LaneSums&);
 };
 
