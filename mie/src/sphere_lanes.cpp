@@ -1,7 +1,7 @@
 // kLanes spheres at once, one per vector lane: see sphere_lanes.hpp.  The
 // scalar set-up and finish are here; the vector kernels (plain arithmetic on
-// GCC vectors of kLanes doubles) are in sphere_lanes_kernels.inc, compiled
-// once per instruction set and chosen at run time; each lane's operations are
+// GCC vectors of one register) are in sphere_lanes_kernels.inc, compiled once
+// per instruction set and chosen at run time; each lane's operations are
 // those of series.hpp.
 #include "sphere_lanes.hpp"
 
