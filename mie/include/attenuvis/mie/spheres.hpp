@@ -6,9 +6,9 @@
 // are ordered by their number of terms and evaluated kLanes = 8 at a time,
 // one sphere per vector lane: the serial recurrences that bound a single call
 // by their latency then advance eight spheres per instruction (AVX-512, AVX2
-// or the baseline SSE2, chosen at run time).  Each lane performs the very operations of sphere(), so its results
-// are bit for bit those of sphere() (the library is built without fused
-// multiply-add contraction).  Every other sphere (extended precision, upward
+// or the baseline SSE2, chosen at run time).  Each lane performs the very
+// operations of sphere(), so its results are bit for bit those of sphere()
+// (the library is built without fused multiply-add contraction).  Every other sphere (extended precision, upward
 // Dₙ(mx), non-default options) goes through sphere() itself.  The work is
 // split over threads.
 //
