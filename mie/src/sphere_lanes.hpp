@@ -13,6 +13,9 @@
 #pragma once
 
 #include <complex>
+#include <cstddef>
+#include <string>
+#include <vector>
 
 #include "attenuvis/mie.hpp"
 
@@ -23,6 +26,7 @@ constexpr int kLanes = 8;
 struct LaneProblems {
   double x[kLanes];
   std::complex<double> m[kLanes];
+  std::size_t terms[kLanes];  // lane_terms(x, m), as the plan computed it
 };
 
 struct LaneResults {
@@ -35,6 +39,21 @@ struct LaneResults {
 // Every lane must be one sphere() would evaluate in double with Dₙ(mx) going
 // downward and the converged term rule (lane_eligible()).
 bool lane_eligible(double x, std::complex<double> m);
-void sphere_lanes(const LaneProblems& in, LaneResults& out);
+// For x and m in the domain: the length of the first table a lane runs
+// (first_terms in series.hpp), the order count a group is sized by; 0 where
+// the sphere is not lane-eligible.
+std::size_t lane_terms(double x, std::complex<double> m);
+// One or two groups (`groups` entries of in and out; two run their downward
+// passes interleaved).  kernel: an index into lane_instruction_sets() (0: the
+// best for this CPU).
+constexpr int kMaxGroups = 2;
+void sphere_lanes(const LaneProblems* in, LaneResults* out, int groups = 1, int kernel = 0);
+
+// The instruction sets of the lane kernels this CPU can run, best first:
+// "avx512" (x86-64-v4), "avx2" (x86-64-v3), "generic" (any CPU).  All give
+// the same bits.
+std::vector<std::string> lane_instruction_sets();
+// The index of a name in lane_instruction_sets(); "" gives 0; -1 if absent.
+int lane_kernel_index(const std::string& name);
 
 }  // namespace attenuvis::mie::detail

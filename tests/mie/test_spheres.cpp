@@ -10,6 +10,8 @@
 #include <complex>
 #include <cstring>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "attenuvis/mie.hpp"
@@ -111,4 +113,32 @@ TEST_CASE("spheres(): bad elements are reported by index, the others computed", 
 
 TEST_CASE("spheres(): an empty batch does nothing", "[mie][spheres]") {
   CHECK(mie::spheres(nullptr, cd(1.33, 0), 0, nullptr).empty());
+}
+
+TEST_CASE("spheres(): every instruction set this CPU runs gives sphere()'s bits", "[mie][spheres]") {
+  const auto sets = mie::spheres_instruction_sets();
+  REQUIRE(!sets.empty());
+  CHECK(sets.back() == "generic");
+  // Mixed indices (δ and value slots, Lentz and Miller starts), x from 1e-3 to
+  // 2e3, in an order the plan must rearrange (long and short series interleaved).
+  const std::vector<cd> ms = {{1.33, 1e-8}, {1.5, 0.1}, {10, 10}, {1.0001, 0}, {1.05, 0.01}, {2, 1}};
+  const auto x = random_x(203, 1e-3, 2e3, 11);
+  std::vector<cd> m(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) m[i] = ms[(i * 7) % ms.size()];
+  for (const auto& set : sets) {
+    mie::SpheresOptions o;
+    o.threads = 1;
+    o.instruction_set = set;
+    std::vector<mie::Efficiencies<double>> out(x.size());
+    CHECK(mie::spheres(x.data(), m.data(), x.size(), out.data(), o).empty());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      INFO(set << ": x[" << i << "] = " << x[i] << ", m = " << m[i]);
+      check_equal(out[i], mie::sphere(x[i], m[i]));
+    }
+  }
+  mie::SpheresOptions unknown;
+  unknown.instruction_set = "avx1024";
+  mie::Efficiencies<double> q;
+  const double one = 1.0;
+  CHECK_THROWS_AS(mie::spheres(&one, cd(1.33, 0), 1, &q, unknown), std::invalid_argument);
 }

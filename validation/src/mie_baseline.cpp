@@ -137,7 +137,25 @@ BatchSpeed mie_batch_vs_baseline(const MieBaseline& baseline, BatchSpeed b, int 
     return batch[0].qext;
   };
   b.ns_baseline = b.ns_single = b.ns_batch = b.ns_batch_threads = std::numeric_limits<double>::infinity();
+  b.instruction_sets = mie::spheres_instruction_sets();
+  b.ns_batch_by_set.assign(b.instruction_sets.size(), std::numeric_limits<double>::infinity());
+  std::vector<mie::Efficiencies<double>> by_set(b.count);
+  b.identical_by_set = true;
   for (int k = 0; k < std::max(1, blocks); ++k) {
+    for (std::size_t s = 0; s < b.instruction_sets.size(); ++s) {
+      mie::SpheresOptions o = one;
+      o.instruction_set = b.instruction_sets[s];
+      auto run_set = [&] {
+        mie::spheres(x.data(), b.m, b.count, by_set.data(), o);
+        return by_set[0].qext;
+      };
+      b.ns_batch_by_set[s] = std::min(b.ns_batch_by_set[s], block_ns(run_set, 1) / n);
+      if (k == 0) {
+        for (std::size_t i = 0; i < b.count; ++i) single[i] = mie::sphere(x[i], b.m);
+        b.identical_by_set =
+            b.identical_by_set && std::memcmp(single.data(), by_set.data(), sizeof(single[0]) * b.count) == 0;
+      }
+    }
     b.ns_baseline = std::min(b.ns_baseline, block_ns(run_base, 1) / n);
     b.ns_single = std::min(b.ns_single, block_ns(run_single, 1) / n);
     b.ns_batch = std::min(b.ns_batch, block_ns(run_batch, 1) / n);
@@ -165,6 +183,15 @@ std::string format_batch_speed(const BatchSpeed& b) {
                 b.ns_batch_threads, b.ns_baseline / b.ns_batch_threads);
   os << buf;
   os << "  spheres() " << (b.identical ? "equals" : "DIFFERS FROM") << " sphere() bit for bit on every sphere\n";
+  if (!b.instruction_sets.empty()) {
+    os << "spheres(), 1 thread, by vector instruction set (the first is chosen on this CPU):\n";
+    for (std::size_t s = 0; s < b.instruction_sets.size(); ++s) {
+      std::snprintf(buf, sizeof buf, "  %-8s %9.1f  (%.2fx)\n", b.instruction_sets[s].c_str(), b.ns_batch_by_set[s],
+                    b.ns_baseline / b.ns_batch_by_set[s]);
+      os << buf;
+    }
+    os << "  every instruction set " << (b.identical_by_set ? "gives" : "DOES NOT give") << " sphere()'s bits\n";
+  }
   return os.str();
 }
 

@@ -3,12 +3,12 @@
 //
 // How: the spheres that sphere() evaluates in double with Dₙ(mx) going
 // downward (the default precision rule, attenuvis/mie.hpp, up to x = 1e4)
-// are sorted by x and evaluated kLanes = 8 at a time, one sphere per vector
-// lane: the serial recurrences that bound a single call by their latency then
-// advance eight spheres per instruction (SSE2, AVX2 or AVX-512, chosen at run
-// time).  Each lane performs the very operations of sphere(), so its results
-// are bit for bit those of sphere() (the library is built without fused
-// multiply-add contraction).  Every other sphere (extended precision, upward
+// are ordered by their number of terms and evaluated kLanes = 8 at a time,
+// one sphere per vector lane: the serial recurrences that bound a single call
+// by their latency then advance eight spheres per instruction (AVX-512, AVX2
+// or the baseline SSE2, chosen at run time).  Each lane performs the very
+// operations of sphere(), so its results are bit for bit those of sphere()
+// (the library is built without fused multiply-add contraction).  Every other sphere (extended precision, upward
 // Dₙ(mx), non-default options) goes through sphere() itself.  The work is
 // split over threads.
 //
@@ -28,7 +28,15 @@ namespace attenuvis::mie {
 struct SpheresOptions {
   Options options;       // term rule and precision, as for sphere()
   unsigned threads = 0;  // 0: std::thread::hardware_concurrency(); 1: the calling thread only
+  // Vector kernels: "" the best this CPU runs, else one of
+  // spheres_instruction_sets() (benchmarks and tests; every one gives the
+  // same bits).  A name this CPU cannot run throws std::invalid_argument.
+  std::string instruction_set;
 };
+
+// The instruction sets of the vector path this CPU can run, best first:
+// "avx512" (x86-64-v4), "avx2" (x86-64-v3), "generic" (any CPU).
+std::vector<std::string> spheres_instruction_sets();
 
 struct SphereError {
   std::size_t index;    // position in the input arrays
