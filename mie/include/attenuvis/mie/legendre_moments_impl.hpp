@@ -37,7 +37,9 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <map>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "attenuvis/mie.hpp"
@@ -60,12 +62,30 @@ inline std::size_t binned_rule_order(std::size_t order) {
   return (order + q - 1) / q * q + 1;
 }
 
+//
+// Every binned order a thread meets is kept (a map, whose entries stay put), not
+// only the last one: the nodes of a size-distribution quadrature panel visit
+// sizes in the order of the Kronrod abscissae, so consecutive spheres alternate
+// between bins, and with a single cached rule more than half of the time of
+// `attenuvis optics … --moments 64` went into rebuilding rules.  ~32 bins per
+// octave of order, each rule 16 bytes per node pair, is ~800·n_max bytes for
+// all orders up to n_max (1.6 MB at x = 1000, L = 2N); past kMaxCachedNodes
+// nodes the cache starts afresh, which changes only the time, never a result.
+inline constexpr std::size_t kMaxCachedNodes = std::size_t(1) << 22;
+
 template <class Real>
 const HalfGaussLegendre<Real>& cached_rule(std::size_t order) {
-  thread_local HalfGaussLegendre<Real> rule;
+  thread_local std::map<std::size_t, HalfGaussLegendre<Real>> rules;
+  thread_local std::size_t cached_nodes = 0;
   const std::size_t binned = binned_rule_order(order);
-  if (rule.order != binned) rule = half_gauss_legendre<Real>(binned);
-  return rule;
+  const auto found = rules.find(binned);
+  if (found != rules.end()) return found->second;
+  if (cached_nodes + binned > kMaxCachedNodes) {
+    rules.clear();
+    cached_nodes = 0;
+  }
+  cached_nodes += binned;
+  return rules.emplace(binned, half_gauss_legendre<Real>(binned)).first->second;
 }
 
 // Products of the amplitude functions at ±μ of each half-rule node, divided by
@@ -122,9 +142,25 @@ struct AmplitudeSeries {
   }
 };
 
+// The node loops run on blocks of kLanes nodes: the state of one block (four
+// recurrence values and eight partial sums per node) then fits the vector
+// registers of AVX-512 (12 of 32) and nearly those of AVX2, instead of going
+// through memory for every term.  The moments are accumulated over chunks of
+// kChunk nodes (moments_chunk).  Neither size changes any result of a node,
+// and the chunk sums are formed in an order fixed by kLanes and kChunk alone,
+// so the results do not depend on the instruction set either.
+inline constexpr std::size_t kLanes = 8;
 inline constexpr std::size_t kChunk = 32;
 
-// S1, S2 (even and odd parts) at `len` <= kChunk consecutive nodes, added to out[k][j0 + j].
+// The kernels are inlined into their per-instruction-set callers
+// (mie/src/legendre_moments_double.cpp), which is what compiles them for each set.
+#if defined(__GNUC__)
+#define ATTENUVIS_MIE_KERNEL __attribute__((always_inline)) inline
+#else
+#define ATTENUVIS_MIE_KERNEL inline
+#endif
+
+// S1, S2 (even and odd parts) at kLanes nodes, one series term at a time.
 // The angular functions are carried normalised to 1 at μ = 1:
 //   uₙ = πₙ/cₙ,  tₙ = τₙ/cₙ,  cₙ = n(n+1)/2 = πₙ(1) = τₙ(1).  From B&H 4.47:
 //   (n+2) uₙ₊₁ = (2n+1) μ uₙ − (n−1) uₙ₋₁,      tₙ = n μ uₙ − (n−1) uₙ₋₁.
@@ -135,25 +171,30 @@ inline constexpr std::size_t kChunk = 32;
 //   Eₙ₊₁ = ((n−1) Eₙ − 2s (2n+1) uₙ)/(n+2),  uₙ₊₁ = uₙ + Eₙ₊₁,
 //   tₙ = uₙ₋₁ + n (Eₙ − 2s uₙ),
 // obtained by subtracting the μ = 1 identity (n+2) = (2n+1) − (n−1).
-template <class Real, bool NearForward>
-void amplitude_chunk(const AmplitudeSeries<Real>& c, const Real* two_s, std::size_t len, Real* const out[8],
-                     std::size_t j0) {
-  Real ts[kChunk], u0[kChunk], u1[kChunk], e[kChunk];
-  Real s1e_r[kChunk], s1e_i[kChunk], s1o_r[kChunk], s1o_i[kChunk];
-  Real s2e_r[kChunk], s2e_i[kChunk], s2o_r[kChunk], s2o_i[kChunk];
-  for (std::size_t j = 0; j < kChunk; ++j) {
-    ts[j] = j < len ? two_s[j] : Real(0);
-    u0[j] = 1;  // u₀ is arbitrary (its coefficient is zero); 1 makes E₁ = 0
-    u1[j] = 1;
-    e[j] = 0;
-    s1e_r[j] = s1e_i[j] = s1o_r[j] = s1o_i[j] = s2e_r[j] = s2e_i[j] = s2o_r[j] = s2o_i[j] = Real(0);
+template <class Real>
+struct AmplitudeBlock {
+  Real ts[kLanes], u0[kLanes], u1[kLanes], e[kLanes];
+  Real s1e_r[kLanes], s1e_i[kLanes], s1o_r[kLanes], s1o_i[kLanes];
+  Real s2e_r[kLanes], s2e_i[kLanes], s2o_r[kLanes], s2o_i[kLanes];
+
+  AmplitudeBlock(const Real* two_s, std::size_t len) {
+    for (std::size_t j = 0; j < kLanes; ++j) {
+      ts[j] = j < len ? two_s[j] : Real(0);
+      u0[j] = 1;  // u₀ is arbitrary (its coefficient is zero); 1 makes E₁ = 0
+      u1[j] = 1;
+      e[j] = 0;
+      s1e_r[j] = s1e_i[j] = s1o_r[j] = s1o_i[j] = s2e_r[j] = s2e_i[j] = s2o_r[j] = s2o_i[j] = Real(0);
+    }
   }
-  const std::size_t nt = c.pr.size();
-  for (std::size_t i = 0; i < nt; ++i) {
-    const bool odd = i % 2 == 0;  // n = i+1
+
+  // Term n = i + 1 (OddN: n odd, see AmplitudeSeries for the even/odd split);
+  // odd and even n are separate instances so that the loop over the nodes has
+  // no selection in it.
+  template <bool NearForward, bool OddN>
+  ATTENUVIS_MIE_KERNEL void term(const AmplitudeSeries<Real>& c, std::size_t i) {
     const Real pr = c.pr[i], pi = c.pi[i], qr = c.qr[i], qi = c.qi[i];
     const Real rn = Real(i + 1), rn1 = Real(i), kp = c.k_prev[i], kc = c.k_cur[i];
-    for (std::size_t j = 0; j < kChunk; ++j) {
+    for (std::size_t j = 0; j < kLanes; ++j) {
       const Real u = u1[j];
       Real t;
       if constexpr (NearForward) {
@@ -167,7 +208,7 @@ void amplitude_chunk(const AmplitudeSeries<Real>& c, const Real* two_s, std::siz
         u1[j] = kc * mu_u - kp * u0[j];
         u0[j] = u;
       }
-      const Real ev = odd ? u : t, od = odd ? t : u;
+      const Real ev = OddN ? u : t, od = OddN ? t : u;
       s1e_r[j] += pr * ev;
       s1e_i[j] += pi * ev;
       s1o_r[j] += qr * od;
@@ -178,16 +219,152 @@ void amplitude_chunk(const AmplitudeSeries<Real>& c, const Real* two_s, std::siz
       s2o_i[j] += pi * od;
     }
   }
-  for (std::size_t j = 0; j < len; ++j) {
-    out[0][j0 + j] = s1e_r[j];
-    out[1][j0 + j] = s1e_i[j];
-    out[2][j0 + j] = s1o_r[j];
-    out[3][j0 + j] = s1o_i[j];
-    out[4][j0 + j] = s2e_r[j];
-    out[5][j0 + j] = s2e_i[j];
-    out[6][j0 + j] = s2o_r[j];
-    out[7][j0 + j] = s2o_i[j];
+
+  template <bool NearForward>
+  ATTENUVIS_MIE_KERNEL void sum(const AmplitudeSeries<Real>& c) {
+    const std::size_t nt = c.pr.size();
+    std::size_t i = 0;
+    for (; i + 1 < nt; i += 2) {
+      term<NearForward, true>(c, i);
+      term<NearForward, false>(c, i + 1);
+    }
+    if (i < nt) term<NearForward, true>(c, i);
   }
+};
+
+// S1, S2 (even and odd parts) at `count` consecutive nodes 2s = two_s[j], all on
+// one side of s = ¼ (`near`: s <= ¼), stored to out[k][j].
+template <class Real>
+ATTENUVIS_MIE_KERNEL void amplitudes(const AmplitudeSeries<Real>& c, const Real* two_s, std::size_t count,
+                                     bool near, Real* const out[8]) {
+  for (std::size_t j0 = 0; j0 < count; j0 += kLanes) {
+    const std::size_t len = std::min(kLanes, count - j0);
+    AmplitudeBlock<Real> b(two_s + j0, len);
+    if (near)
+      b.template sum<true>(c);
+    else
+      b.template sum<false>(c);
+    for (std::size_t j = 0; j < len; ++j) {
+      out[0][j0 + j] = b.s1e_r[j];
+      out[1][j0 + j] = b.s1e_i[j];
+      out[2][j0 + j] = b.s1o_r[j];
+      out[3][j0 + j] = b.s1o_i[j];
+      out[4][j0 + j] = b.s2e_r[j];
+      out[5][j0 + j] = b.s2e_i[j];
+      out[6][j0 + j] = b.s2o_r[j];
+      out[7][j0 + j] = b.s2o_i[j];
+    }
+  }
+}
+
+// Bonnet's recurrence (l+2)P_{l+2} = (2l+3)μP_{l+1} − (l+1)P_l as
+// P_{l+2} = k1[l] μP_{l+1} − k2[l] P_l, for l = 0..lmax.
+template <class Real>
+struct BonnetCoefficients {
+  std::vector<Real> k1, k2;
+  explicit BonnetCoefficients(std::size_t lmax) : k1(lmax + 1), k2(lmax + 1) {
+    for (std::size_t l = 0; l <= lmax; ++l) {
+      k1[l] = Real(2 * l + 3) / Real(l + 2);
+      k2[l] = Real(l + 1) / Real(l + 2);
+    }
+  }
+};
+
+// acc[k] += Σ_q f[q·kLanes + k] g[q·kLanes + k] over one chunk: kLanes running
+// sums per moment, added up at the end (lane_total) — the same additions in the
+// same order whatever the vector width, and no reduction across lanes per chunk.
+template <class Real>
+ATTENUVIS_MIE_KERNEL void accumulate_chunk(const Real* f, const Real* g, Real* acc) {
+  for (std::size_t q = 0; q < kChunk; q += kLanes)
+    for (std::size_t k = 0; k < kLanes; ++k) acc[k] += f[q + k] * g[q + k];
+}
+
+template <class Real>
+Real lane_total(const Real* acc) {
+  static_assert(kLanes == 8, "lane_total adds eight running sums");
+  return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+}
+
+// Adds to acc[l·kLanes + k] (l = 0..lmax) the share ½ Σ w p(±μ) P_l(±μ) of `len` <= kChunk nodes,
+// all on one side of s = ¼ (NearForward: s <= ¼), with weight[j] = w_j / W.
+// The phase function at ±μ is split into its even and odd parts, which P_l of
+// even and odd l pick out; P_l runs by Bonnet's recurrence, for s <= ¼ in the
+// difference form Dₗ₊₁ = (l Dₗ − 2s(2l+1) Pₗ)/(l+1), Pₗ₊₁ = Pₗ + Dₗ₊₁ (see
+// gauss_legendre.hpp for why).  All of it stays in L1 for one chunk.
+template <class Real, bool NearForward>
+ATTENUVIS_MIE_KERNEL void moments_chunk(const AmplitudeSeries<Real>& c, const BonnetCoefficients<Real>& k,
+                                        const Real* two_s, const Real* weight, std::size_t len, std::size_t lmax,
+                                        Real* acc) {
+  Real e1r[kChunk], e1i[kChunk], o1r[kChunk], o1i[kChunk], e2r[kChunk], e2i[kChunk], o2r[kChunk], o2i[kChunk];
+  Real* const parts[8] = {e1r, e1i, o1r, o1i, e2r, e2i, o2r, o2i};
+  amplitudes(c, two_s, len, NearForward, parts);
+  Real even[kChunk], odd[kChunk], ts[kChunk], p0[kChunk], p1[kChunk], d[kChunk];
+  for (std::size_t j = 0; j < kChunk; ++j) {
+    even[j] = odd[j] = ts[j] = Real(0);  // the unused nodes weigh nothing
+    if (j < len) {
+      const Real ww = weight[j];
+      ts[j] = two_s[j];
+      Real at[2];
+      for (int side = 0; side < 2; ++side) {
+        const Real s1r = side == 0 ? e1r[j] + o1r[j] : e1r[j] - o1r[j];
+        const Real s1i = side == 0 ? e1i[j] + o1i[j] : e1i[j] - o1i[j];
+        const Real s2r = side == 0 ? e2r[j] + o2r[j] : e2r[j] - o2r[j];
+        const Real s2i = side == 0 ? e2i[j] + o2i[j] : e2i[j] - o2i[j];
+        at[side] = ww * ((s1r * s1r + s1i * s1i) + (s2r * s2r + s2i * s2i));
+      }
+      even[j] = (at[0] + at[1]) / 2;
+      odd[j] = (at[0] - at[1]) / 2;
+    }
+    p0[j] = 1;
+    p1[j] = 1 - ts[j];
+    d[j] = -ts[j];
+  }
+  for (std::size_t l = 0; l <= lmax; ++l) {
+    accumulate_chunk(l % 2 == 0 ? even : odd, p0, acc + l * kLanes);
+    const Real k1 = k.k1[l], k2 = k.k2[l];
+    for (std::size_t j = 0; j < kChunk; ++j) {
+      if constexpr (NearForward) {
+        const Real nd = k2 * d[j] - k1 * ts[j] * p1[j];
+        p0[j] = p1[j];
+        p1[j] += nd;
+        d[j] = nd;
+      } else {
+        const Real next = k1 * (p1[j] - ts[j] * p1[j]) - k2 * p0[j];
+        p0[j] = p1[j];
+        p1[j] = next;
+      }
+    }
+  }
+}
+
+// The double instances, compiled once per instruction set with run-time choice
+// (mie/src/legendre_moments_double.cpp).
+void amplitudes_double(const AmplitudeSeries<double>& c, const double* two_s, std::size_t count, bool near,
+                       double* const out[8]);
+void moments_chunk_double(const AmplitudeSeries<double>& c, const BonnetCoefficients<double>& k,
+                          const double* two_s, const double* weight, std::size_t len, bool near, std::size_t lmax,
+                          double* acc);
+
+// PerIsa: for double, the per-instruction-set instances (the same operations);
+// otherwise, and for wider types, the kernels as compiled here.
+template <class Real, bool PerIsa>
+void amplitudes_any(const AmplitudeSeries<Real>& c, const Real* two_s, std::size_t count, bool near,
+                    Real* const out[8]) {
+  if constexpr (PerIsa && std::is_same_v<Real, double>)
+    amplitudes_double(c, two_s, count, near, out);
+  else
+    amplitudes(c, two_s, count, near, out);
+}
+
+template <class Real, bool PerIsa>
+void moments_chunk_any(const AmplitudeSeries<Real>& c, const BonnetCoefficients<Real>& k, const Real* two_s,
+                       const Real* weight, std::size_t len, bool near, std::size_t lmax, Real* acc) {
+  if constexpr (PerIsa && std::is_same_v<Real, double>)
+    moments_chunk_double(c, k, two_s, weight, len, near, lmax, acc);
+  else if (near)
+    moments_chunk<Real, true>(c, k, two_s, weight, len, lmax, acc);
+  else
+    moments_chunk<Real, false>(c, k, two_s, weight, len, lmax, acc);
 }
 
 template <class Real>
@@ -202,19 +379,12 @@ WeightedProducts<Real> weighted_products(const std::vector<Complex<Real>>& a,
     two_s[j] = 2 * rule.s[j];
     if (rule.s[j] <= Real(0.25)) split = j + 1;
   }
-  // Chunks of nodes small enough for the per-node state to stay in L1 (and, for
-  // double, to let the compiler vectorise across nodes without aliasing doubts).
-  Real* const parts[8] = {e1r.data(), e1i.data(), o1r.data(), o1i.data(),
-                          e2r.data(), e2i.data(), o2r.data(), o2i.data()};
-  for (std::size_t j0 = 0; j0 < m;) {
-    const bool near = j0 < split;
-    const std::size_t len = std::min(kChunk, (near ? split : m) - j0);
-    if (near)
-      amplitude_chunk<Real, true>(c, two_s.data() + j0, len, parts, j0);
-    else
-      amplitude_chunk<Real, false>(c, two_s.data() + j0, len, parts, j0);
-    j0 += len;
-  }
+  Real* const near_parts[8] = {e1r.data(), e1i.data(), o1r.data(), o1i.data(),
+                               e2r.data(), e2i.data(), o2r.data(), o2i.data()};
+  Real* far_parts[8];
+  for (int k = 0; k < 8; ++k) far_parts[k] = near_parts[k] + split;
+  amplitudes_any<Real, true>(c, two_s.data(), split, true, near_parts);
+  amplitudes_any<Real, true>(c, two_s.data() + split, m - split, false, far_parts);
   const Real inv_w = 1 / scattering_norm<Real>(a, b);
   WeightedProducts<Real> out;
   for (int side = 0; side < 2; ++side) {
@@ -302,8 +472,10 @@ struct LegendreSweep {
   }
 };
 
-// χ_l = ½ ∫ p P_l dμ for l = 0..max_l (entries above 2N are exactly zero).
-template <class Real>
+// χ_l = ½ ∫ p P_l dμ for l = 0..max_l (entries above 2N are exactly zero),
+// chunk by chunk of nodes (moments_chunk).  PerIsa as for amplitudes_any (false:
+// the kernels as compiled in the caller, which the tests compare bit for bit).
+template <class Real, bool PerIsa = true>
 std::vector<Real> legendre_moments(const std::vector<Complex<Real>>& a, const std::vector<Complex<Real>>& b,
                                    std::size_t max_l) {
   if (a.empty() || a.size() != b.size())
@@ -311,19 +483,26 @@ std::vector<Real> legendre_moments(const std::vector<Complex<Real>>& a, const st
         "Legendre moments need the Mie coefficients: call scatter() with extras.coefficients = true");
   const std::size_t nt = a.size(), lmax = std::min(max_l, 2 * nt);
   const HalfGaussLegendre<Real>& rule = cached_rule<Real>(exact_order(nt, lmax));
-  const WeightedProducts<Real> f = weighted_products<Real>(a, b, rule, false);
   const std::size_t m = rule.s.size();
-  std::vector<Real> even(m), odd(m);
+  const AmplitudeSeries<Real> c(a, b);
+  const BonnetCoefficients<Real> k(lmax);
+  const Real inv_w = 1 / scattering_norm<Real>(a, b);
+  std::vector<Real> two_s(m), weight(m);
+  std::size_t split = 0;  // nodes [0, split) have s <= ¼ (ascending s)
   for (std::size_t j = 0; j < m; ++j) {
-    even[j] = (f.a1[0][j] + f.a1[1][j]) / 2;
-    odd[j] = (f.a1[0][j] - f.a1[1][j]) / 2;
+    two_s[j] = 2 * rule.s[j];
+    weight[j] = rule.w[j] * inv_w;
+    if (rule.s[j] <= Real(0.25)) split = j + 1;
+  }
+  std::vector<Real> acc((lmax + 1) * kLanes, Real(0));
+  for (std::size_t j0 = 0; j0 < m;) {
+    const bool near = j0 < split;
+    const std::size_t len = std::min(kChunk, (near ? split : m) - j0);
+    moments_chunk_any<Real, PerIsa>(c, k, two_s.data() + j0, weight.data() + j0, len, near, lmax, acc.data());
+    j0 += len;
   }
   std::vector<Real> chi(output_length(nt, max_l), Real(0));
-  LegendreSweep<Real> p(rule);
-  for (std::size_t l = 0; l <= lmax; ++l) {
-    chi[l] = dot4(l % 2 == 0 ? even : odd, p.p0);
-    p.advance(l);
-  }
+  for (std::size_t l = 0; l <= lmax; ++l) chi[l] = lane_total(acc.data() + l * kLanes);
   return chi;
 }
 
