@@ -16,12 +16,6 @@ namespace attenuvis::mie::detail {
 #endif
 
 ATTENUVIS_MOMENTS_CLONES
-void amplitudes_double(const AmplitudeSeries<double>& c, const double* two_s, std::size_t count, bool near,
-                       double* const out[8]) {
-  amplitudes(c, two_s, count, near, out);
-}
-
-ATTENUVIS_MOMENTS_CLONES
 void moments_chunk_double(const AmplitudeSeries<double>& c, const BonnetCoefficients<double>& k,
                           const double* two_s, const double* weight, std::size_t len, bool near, std::size_t lmax,
                           double* acc) {
@@ -29,6 +23,16 @@ void moments_chunk_double(const AmplitudeSeries<double>& c, const BonnetCoeffici
     moments_chunk<double, true>(c, k, two_s, weight, len, lmax, acc);
   else
     moments_chunk<double, false>(c, k, two_s, weight, len, lmax, acc);
+}
+
+ATTENUVIS_MOMENTS_CLONES
+void gsf_chunk_double(const AmplitudeSeries<double>& c, const BonnetCoefficients<double>& kp,
+                      const WignerCoefficients<double>& kw, const double* two_s, const double* weight,
+                      std::size_t len, bool near, std::size_t lmax, double* acc) {
+  if (near)
+    gsf_chunk<double, true>(c, kp, kw, two_s, weight, len, lmax, acc);
+  else
+    gsf_chunk<double, false>(c, kp, kw, two_s, weight, len, lmax, acc);
 }
 
 }  // namespace attenuvis::mie::detail

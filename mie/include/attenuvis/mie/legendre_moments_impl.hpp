@@ -19,7 +19,10 @@
 // Cost O(N·n_q + L·n_q) = O(N²).  Both loops use the parity of the angular
 // functions (πₙ(−μ) = (−1)^{n−1} πₙ(μ), τₙ(−μ) = (−1)ⁿ τₙ(μ), P_l(−μ) = (−1)^l P_l,
 // d^l_{22}(−μ) = (−1)^l d^l_{2,−2}(μ), d^l_{02}(−μ) = (−1)^l d^l_{02}(μ)), so only
-// the nodes with μ >= 0 are visited.
+// the nodes with μ >= 0 are visited.  They run chunk by chunk of nodes: S1, S2
+// at kChunk nodes, their products, then every degree l for those nodes, so that
+// all of it stays in L1 and the nodes of a chunk form the vector lanes (in
+// double, one clone per instruction set: mie/src/legendre_moments_double.cpp).
 //
 // Accuracy near θ = 0 (the forward peak, which carries half of the scattering of
 // a large sphere in a cone Δθ ≈ 1/x):
@@ -87,20 +90,6 @@ const HalfGaussLegendre<Real>& cached_rule(std::size_t order) {
   cached_nodes += binned;
   return rules.emplace(binned, half_gauss_legendre<Real>(binned)).first->second;
 }
-
-// Products of the amplitude functions at ±μ of each half-rule node, divided by
-// W = Σ (2n+1)(|aₙ|² + |bₙ|²) = x² Qsca / 2 (then a1 = (|S1|²+|S2|²)/W is the
-// phase function with ½∫a1 dμ = 1), and multiplied by the node's weight.
-template <class Real>
-struct WeightedProducts {
-  // index [0] at +μ, [1] at −μ
-  std::array<std::vector<Real>, 2> a1;      // (|S1|² + |S2|²)/W   = p
-  std::array<std::vector<Real>, 2> a3;      // 2 Re(S2 S1*)/W      (= a4 for spheres)
-  std::array<std::vector<Real>, 2> sum;     // |S1 + S2|²/W = a2 + a3
-  std::array<std::vector<Real>, 2> diff;    // |S1 − S2|²/W = a2 − a3
-  std::array<std::vector<Real>, 2> b1;      // (|S2|² − |S1|²)/W
-  std::array<std::vector<Real>, 2> b2;      // −2 Im(S2 S1*)/W  (sign: see legendre_moments.hpp)
-};
 
 template <class Real>
 Real scattering_norm(const std::vector<Complex<Real>>& a, const std::vector<Complex<Real>>& b) {
@@ -279,6 +268,13 @@ ATTENUVIS_MIE_KERNEL void accumulate_chunk(const Real* f, const Real* g, Real* a
     for (std::size_t k = 0; k < kLanes; ++k) acc[k] += f[q + k] * g[q + k];
 }
 
+// acc[k] += Σ_q f[q·kLanes + k], in the same order.
+template <class Real>
+ATTENUVIS_MIE_KERNEL void accumulate_chunk_sum(const Real* f, Real* acc) {
+  for (std::size_t q = 0; q < kChunk; q += kLanes)
+    for (std::size_t k = 0; k < kLanes; ++k) acc[k] += f[q + k];
+}
+
 template <class Real>
 Real lane_total(const Real* acc) {
   static_assert(kLanes == 8, "lane_total adds eight running sums");
@@ -337,25 +333,14 @@ ATTENUVIS_MIE_KERNEL void moments_chunk(const AmplitudeSeries<Real>& c, const Bo
   }
 }
 
-// The double instances, compiled once per instruction set with run-time choice
+// The double instance, compiled once per instruction set with run-time choice
 // (mie/src/legendre_moments_double.cpp).
-void amplitudes_double(const AmplitudeSeries<double>& c, const double* two_s, std::size_t count, bool near,
-                       double* const out[8]);
 void moments_chunk_double(const AmplitudeSeries<double>& c, const BonnetCoefficients<double>& k,
                           const double* two_s, const double* weight, std::size_t len, bool near, std::size_t lmax,
                           double* acc);
 
-// PerIsa: for double, the per-instruction-set instances (the same operations);
-// otherwise, and for wider types, the kernels as compiled here.
-template <class Real, bool PerIsa>
-void amplitudes_any(const AmplitudeSeries<Real>& c, const Real* two_s, std::size_t count, bool near,
-                    Real* const out[8]) {
-  if constexpr (PerIsa && std::is_same_v<Real, double>)
-    amplitudes_double(c, two_s, count, near, out);
-  else
-    amplitudes(c, two_s, count, near, out);
-}
-
+// PerIsa: for double, the per-instruction-set instance (the same operations);
+// otherwise, and for wider types, the kernel as compiled here.
 template <class Real, bool PerIsa>
 void moments_chunk_any(const AmplitudeSeries<Real>& c, const BonnetCoefficients<Real>& k, const Real* two_s,
                        const Real* weight, std::size_t len, bool near, std::size_t lmax, Real* acc) {
@@ -367,56 +352,6 @@ void moments_chunk_any(const AmplitudeSeries<Real>& c, const BonnetCoefficients<
     moments_chunk<Real, false>(c, k, two_s, weight, len, lmax, acc);
 }
 
-template <class Real>
-WeightedProducts<Real> weighted_products(const std::vector<Complex<Real>>& a,
-                                         const std::vector<Complex<Real>>& b,
-                                         const HalfGaussLegendre<Real>& rule, bool full_matrix) {
-  const std::size_t m = rule.s.size();
-  AmplitudeSeries<Real> c(a, b);
-  std::vector<Real> e1r(m), e1i(m), o1r(m), o1i(m), e2r(m), e2i(m), o2r(m), o2i(m), two_s(m);
-  std::size_t split = 0;  // nodes [0, split) have s <= 1/4 (ascending s)
-  for (std::size_t j = 0; j < m; ++j) {
-    two_s[j] = 2 * rule.s[j];
-    if (rule.s[j] <= Real(0.25)) split = j + 1;
-  }
-  Real* const near_parts[8] = {e1r.data(), e1i.data(), o1r.data(), o1i.data(),
-                               e2r.data(), e2i.data(), o2r.data(), o2i.data()};
-  Real* far_parts[8];
-  for (int k = 0; k < 8; ++k) far_parts[k] = near_parts[k] + split;
-  amplitudes_any<Real, true>(c, two_s.data(), split, true, near_parts);
-  amplitudes_any<Real, true>(c, two_s.data() + split, m - split, false, far_parts);
-  const Real inv_w = 1 / scattering_norm<Real>(a, b);
-  WeightedProducts<Real> out;
-  for (int side = 0; side < 2; ++side) {
-    out.a1[side].resize(m);
-    if (full_matrix) {
-      out.a3[side].resize(m);
-      out.sum[side].resize(m);
-      out.diff[side].resize(m);
-      out.b1[side].resize(m);
-      out.b2[side].resize(m);
-    }
-  }
-  for (std::size_t j = 0; j < m; ++j) {
-    const Real ww = rule.w[j] * inv_w;
-    for (int side = 0; side < 2; ++side) {
-      const Real sg = side == 0 ? Real(1) : Real(-1);
-      const Real s1r = e1r[j] + sg * o1r[j], s1i = e1i[j] + sg * o1i[j];
-      const Real s2r = e2r[j] + sg * o2r[j], s2i = e2i[j] + sg * o2i[j];
-      const Real i1 = s1r * s1r + s1i * s1i, i2 = s2r * s2r + s2i * s2i;
-      out.a1[side][j] = ww * (i1 + i2);
-      if (!full_matrix) continue;
-      const Real re = s2r * s1r + s2i * s1i, im = s2i * s1r - s2r * s1i;
-      out.a3[side][j] = ww * 2 * re;
-      out.sum[side][j] = ww * ((s1r + s2r) * (s1r + s2r) + (s1i + s2i) * (s1i + s2i));
-      out.diff[side][j] = ww * ((s1r - s2r) * (s1r - s2r) + (s1i - s2i) * (s1i - s2i));
-      out.b1[side][j] = ww * (i2 - i1);
-      out.b2[side][j] = ww * (-2 * im);
-    }
-  }
-  return out;
-}
-
 // Length of the result: up to 2N, or to max_l when the caller asked for more
 // (all_orders means "up to 2N").
 inline std::size_t output_length(std::size_t terms, std::size_t max_l) {
@@ -426,55 +361,9 @@ inline std::size_t output_length(std::size_t terms, std::size_t max_l) {
 // Number of nodes needed for exact coefficients up to l = max_l with N terms.
 inline std::size_t exact_order(std::size_t terms, std::size_t max_l) { return terms + (max_l + 2) / 2; }
 
-// Σ_j f[j]·g[j] with four partial sums (independent additions vectorise).
-template <class Real>
-Real dot4(const std::vector<Real>& f, const std::vector<Real>& g) {
-  std::array<Real, 4> acc{Real(0), Real(0), Real(0), Real(0)};
-  const std::size_t m = f.size();
-  std::size_t j = 0;
-  for (; j + 4 <= m; j += 4)
-    for (std::size_t q = 0; q < 4; ++q) acc[q] += f[j + q] * g[j + q];
-  for (; j < m; ++j) acc[0] += f[j] * g[j];
-  return (acc[0] + acc[1]) + (acc[2] + acc[3]);
-}
-
-// P_l at every node of a half rule, one degree at a time: Bonnet's recurrence,
-// for s <= ¼ in the difference form Dₗ₊₁ = (l Dₗ − 2s(2l+1) Pₗ)/(l+1),
-// Pₗ₊₁ = Pₗ + Dₗ₊₁ (see weighted_products and gauss_legendre.hpp for why).
-template <class Real>
-struct LegendreSweep {
-  std::vector<Real> p0, p1, d, two_s;  // P_l, P_{l+1}, P_{l+1} − P_l
-  std::size_t split = 0;               // nodes [0, split) have s <= ¼
-
-  explicit LegendreSweep(const HalfGaussLegendre<Real>& rule)
-      : p0(rule.s.size(), Real(1)), p1(rule.s.size()), d(rule.s.size()), two_s(rule.s.size()) {
-    for (std::size_t j = 0; j < rule.s.size(); ++j) {
-      two_s[j] = 2 * rule.s[j];
-      p1[j] = 1 - two_s[j];
-      d[j] = -two_s[j];
-      if (rule.s[j] <= Real(0.25)) split = j + 1;
-    }
-  }
-  // On entry p0 = P_l; on exit p0 = P_{l+1}.
-  void advance(std::size_t l) {
-    const Real k1 = Real(2 * l + 3) / Real(l + 2), k2 = Real(l + 1) / Real(l + 2);
-    for (std::size_t j = 0; j < split; ++j) {
-      const Real nd = k2 * d[j] - k1 * two_s[j] * p1[j];
-      p0[j] = p1[j];
-      p1[j] += nd;
-      d[j] = nd;
-    }
-    for (std::size_t j = split; j < p0.size(); ++j) {
-      const Real next = k1 * (p1[j] - two_s[j] * p1[j]) - k2 * p0[j];
-      p0[j] = p1[j];
-      p1[j] = next;
-    }
-  }
-};
-
 // χ_l = ½ ∫ p P_l dμ for l = 0..max_l (entries above 2N are exactly zero),
-// chunk by chunk of nodes (moments_chunk).  PerIsa as for amplitudes_any (false:
-// the kernels as compiled in the caller, which the tests compare bit for bit).
+// chunk by chunk of nodes (moments_chunk).  PerIsa as for moments_chunk_any (false:
+// the kernel as compiled in the caller, which the tests compare bit for bit).
 template <class Real, bool PerIsa = true>
 std::vector<Real> legendre_moments(const std::vector<Complex<Real>>& a, const std::vector<Complex<Real>>& b,
                                    std::size_t max_l) {
