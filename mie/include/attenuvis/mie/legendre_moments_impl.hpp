@@ -71,10 +71,11 @@ inline std::size_t binned_rule_order(std::size_t order) {
 // sizes in the order of the Kronrod abscissae, so consecutive spheres alternate
 // between bins, and with a single cached rule more than half of the time of
 // `attenuvis optics … --moments 64` went into rebuilding rules.  ~32 bins per
-// octave of order, each rule 16 bytes per node pair, is ~800·n_max bytes for
-// all orders up to n_max (1.6 MB at x = 1000, L = 2N); past kMaxCachedNodes
-// nodes the cache starts afresh, which changes only the time, never a result.
-inline constexpr std::size_t kMaxCachedNodes = std::size_t(1) << 22;
+// octave of order, a rule of order n holding 8n bytes in double, is ~800·n_max
+// bytes for all orders up to n_max (1.7 MB at x = 1000, L = 2N); past
+// kMaxCachedNodes summed orders (8 MB in double per thread) the cache starts
+// afresh, which changes only the time, never a result.
+inline constexpr std::size_t kMaxCachedNodes = std::size_t(1) << 20;
 
 template <class Real>
 const HalfGaussLegendre<Real>& cached_rule(std::size_t order) {
