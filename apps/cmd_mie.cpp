@@ -14,6 +14,7 @@
 #include "attenuvis/weather/units.hpp"
 #include "commands.hpp"
 #include "mie_output.hpp"
+#include "weather_options.hpp"
 
 namespace attenuvis::cli {
 namespace {
@@ -107,11 +108,14 @@ MieEcho resolve_sphere(const MieArgs& a, const CLI::App& cmd) {
   return e;
 }
 
+// The parser's own limit: the cost check below refuses what is too dear.
+constexpr std::size_t kMaxMieAngles = 1000000;
+
 MieResult compute(const MieArgs& a, const CLI::App& cmd, const MieEcho& e) {
   mie::Extras extras;
   std::vector<double> matrix_angles;
-  if (!a.angles.empty()) extras.angles_deg = mie::batch::parse_angles(a.angles);
-  if (!a.phase.empty()) matrix_angles = mie::batch::parse_angles(a.phase);
+  if (!a.angles.empty()) extras.angles_deg = angle_list("--angles", a.angles, kMaxMieAngles);
+  if (!a.phase.empty()) matrix_angles = angle_list("--phase", a.phase, kMaxMieAngles);
   require_affordable(e.x, static_cast<double>(extras.angles_deg.size() + matrix_angles.size()),
                      "amplitudes at " + std::to_string(extras.angles_deg.size() + matrix_angles.size()) + " angles",
                      "give --angles/--phase a coarser step");

@@ -109,8 +109,37 @@ std::string producer() {
 
 struct TableOptions {
   std::string conditions, wavelengths = "550nm", quantities = "sigma_ext", format = "csv", out;
+  std::string angles;  // empty: the default grid, when phase is asked for
   int threads = 0;
 };
+
+// The phase function's angles when --quantities holds phase and --angles is
+// not given: every degree, as `mie --phase 0:180:1`.  A fog's forward peak
+// (width ~ 1/x rad, a fraction of a degree at 550 nm) needs a finer grid
+// near 0: give one with --angles.
+constexpr const char* kDefaultTableAngles = "0:180:1";
+// Two CSV columns per angle: a bound that keeps a mistyped step from writing
+// a table no reader wants.
+constexpr std::size_t kMaxTableAngles = 10000;
+
+// The angle grid of a table: --angles, the default with phase, none without.
+std::vector<double> table_angles(const TableOptions& t, bool phase) {
+  if (!phase) {
+    if (!t.angles.empty())
+      throw std::invalid_argument("--angles '" + t.angles +
+                                  "' sets the phase function's angles: add phase to --quantities, e.g. "
+                                  "--quantities sigma_ext,phase");
+    return {};
+  }
+  const std::string text = t.angles.empty() ? kDefaultTableAngles : t.angles;
+  std::vector<double> angles = angle_list("--angles", text, kMaxTableAngles);
+  try {
+    w::check_table_angles(angles);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("--angles '" + text + "': " + e.what());
+  }
+  return angles;
+}
 
 void run_table(const TableOptions& t, const CommonOptions& o) {
   const w::Settings s = weather_settings(o.weather);
@@ -142,12 +171,17 @@ void run_table(const TableOptions& t, const CommonOptions& o) {
       throw std::invalid_argument(std::string("--wavelengths: ") + e.what());
     }
   }();
-  auto table = w::sigma_table(parsed, wavelengths_m, s, t.threads, request.quantities, request.max_moment);
+  const std::vector<double> angles = table_angles(t, request.phase);
+  auto table = w::sigma_table(parsed, wavelengths_m, s, t.threads, request.quantities, request.max_moment, angles);
   w::write_sigma_table(table, t.out, table_format, unit, {producer()});
-  std::cout << "wrote " << request.quantities.size() << " quantities"
-            << (request.max_moment >= 0 ? " and moments 0.." + std::to_string(request.max_moment) : std::string())
-            << " x " << table.wavelengths_m.size() << " wavelengths x "
-            << parsed.size() << " conditions to " << t.out;
+  std::vector<std::string> what;
+  if (!request.quantities.empty()) what.push_back(std::to_string(request.quantities.size()) + " quantities");
+  if (request.max_moment >= 0) what.push_back("moments 0.." + std::to_string(request.max_moment));
+  if (!angles.empty()) what.push_back("the phase function at " + std::to_string(angles.size()) + " angles");
+  std::cout << "wrote ";
+  for (std::size_t i = 0; i < what.size(); ++i) std::cout << (i == 0 ? "" : " and ") << what[i];
+  std::cout << " x " << table.wavelengths_m.size() << " wavelengths x " << parsed.size() << " conditions to "
+            << t.out;
   if (table_format == w::TableFormat::csv) std::cout << " (column descriptions in " << w::csv_sidecar_path(t.out) << ")";
   std::cout << "\n";
   // Say which conditions leave quantities missing, so an empty column is no surprise.
@@ -242,9 +276,14 @@ void register_weather(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--quantities", t->quantities,
                     "comma-separated: " + w::quantity_names() +
-                        ", moments:L (Legendre moments chi_0..chi_L of the phase function); all but sigma_ext need "
-                        "a Mie condition (else empty)")
+                        ", moments:L (Legendre moments chi_0..chi_L of the phase function), phase (the bulk phase "
+                        "function p at --angles, int p dOmega = 4 pi); all but sigma_ext need a Mie condition "
+                        "(else empty)")
         ->capture_default_str();
+    cmd->add_option("--angles", t->angles,
+                    std::string("scattering angles of phase, degrees: START:STOP:STEP or A,B,... increasing, in "
+                                "[0, 180] (default with phase: ") +
+                        kDefaultTableAngles + "; only with phase in --quantities)");
     cmd->add_option("--format", t->format, "csv, json or netcdf")->capture_default_str();
     cmd->add_option("--out", t->out, "output file")->required();
     cmd->add_option("--threads", t->threads, "worker threads (0: all cores); [0, 1024]")

@@ -3,6 +3,8 @@
 
 #include <stdexcept>
 
+#include "attenuvis/io/number_text.hpp"
+#include "attenuvis/mie/batch.hpp"
 #include "attenuvis/weather/domains.hpp"
 #include "attenuvis/weather/units.hpp"
 
@@ -56,6 +58,19 @@ weather::Settings weather_settings(const WeatherOptions& o) {
 
 double wavelength_m(const WeatherOptions& o) {
   return for_option("--wavelength", [&] { return w::parse_wavelength(o.wavelength); });
+}
+
+std::vector<double> angle_list(const std::string& option, const std::string& text, std::size_t max_count) {
+  std::vector<double> angles;
+  try {
+    angles = mie::batch::parse_angles(text);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(option + " '" + text + "': " + e.what());
+  }
+  if (angles.size() > max_count)
+    throw std::invalid_argument(option + " '" + text + "' gives " + std::to_string(angles.size()) +
+                                " angles, more than " + std::to_string(max_count) + "; give a coarser step");
+  return angles;
 }
 
 }  // namespace attenuvis::cli

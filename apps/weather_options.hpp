@@ -5,7 +5,9 @@
 // the valid range in the same words everywhere.
 #pragma once
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -34,5 +36,12 @@ void add_weather_options(CLI::App* cmd, WeatherOptions& o, WeatherOptionSet whic
 weather::Settings weather_settings(const WeatherOptions& o);
 // The --wavelength value in metres.
 double wavelength_m(const WeatherOptions& o);
+
+// Scattering angles (degrees) of an option such as --angles: the grammar of
+// mie::batch::parse_angles (START:STOP:STEP, STOP included when on the grid,
+// or A,B,...; each in [0, 180]; a grid's angles rounded to 12 significant
+// digits, so 0:1:0.1 gives 0.3).  Throws std::invalid_argument
+// "OPTION 'TEXT': ..." for a bad grid or more than max_count angles.
+std::vector<double> angle_list(const std::string& option, const std::string& text, std::size_t max_count);
 
 }  // namespace attenuvis::cli

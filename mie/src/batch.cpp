@@ -203,7 +203,10 @@ std::vector<double> parse_angles(const std::string& text) {
     if (!(step > 0) || b < a) throw std::invalid_argument("angles need step > 0 and stop >= start, got '" + text + "'");
     const double count = std::floor((b - a) / step + 1e-9);
     if (count > 1e6) throw std::invalid_argument("more than 1e6 angles in '" + text + "'");
-    for (double i = 0; i <= count; ++i) angles.push_back(a + i * step);
+    // Rounded to 12 significant digits, so that 0:1:0.1 names 0.3 and not
+    // a + 3 step = 0.30000000000000004: every command computes at the angles
+    // the grid's text names.
+    for (double i = 0; i <= count; ++i) angles.push_back(std::stod(io::significant(a + i * step, 12)));
   } else {
     for (const std::string& f : split_fields(text)) angles.push_back(parse_number(f, "angle"));
     if (angles.empty()) throw std::invalid_argument("no angle in '" + text + "'");

@@ -449,13 +449,23 @@ _OPTICS_QUANTITIES = {
 }
 
 
+# The phase function's angles when "phase" is asked for without ``angles``:
+# every degree, as the command line's table (a fog's forward peak needs a
+# finer grid near 0).
+DEFAULT_PHASE_ANGLES = tuple(float(a) for a in range(181))
+PHASE_NORMALISATION = "int p dOmega = 4 pi (isotropic p = 1; divide by 4 pi for 1/sr)"
+
+
 @dataclass
 class Table:
     """sigma over conditions x wavelengths: ``value`` and ``error`` are
     (conditions, wavelengths) arrays in 1/m; ``labels`` and ``models`` name
     the conditions; ``quantities`` holds any other quantity asked for
     (name -> (conditions, wavelengths) array; NaN where a condition has no
-    bulk optics, i.e. is not a Mie condition)."""
+    bulk optics, i.e. is not a Mie condition).  With "phase": ``angles``
+    (degrees) and quantities "phase" and "phase_error", (conditions,
+    wavelengths, angles) arrays of the bulk phase function, normalised
+    int p dOmega = 4 pi, and its error estimate."""
 
     labels: Sequence[str]
     wavelengths: np.ndarray
@@ -463,6 +473,7 @@ class Table:
     error: np.ndarray
     models: Sequence[str]
     quantities: Dict[str, np.ndarray] = field(default_factory=dict)
+    angles: Optional[np.ndarray] = None
 
     def to_xarray(self):
         """An xarray.Dataset (sigma, sigma_error over condition x wavelength);
@@ -470,13 +481,21 @@ class Table:
         import xarray as xr  # optional: the package imports without it
 
         coords = {"condition": list(self.labels), "wavelength": ("wavelength", self.wavelengths, {"units": "m"})}
+        phase = {}
+        if self.angles is not None:
+            coords["angle"] = ("angle", self.angles, {"units": "degree", "long_name": "scattering angle"})
+            dims = ("condition", "wavelength", "angle")
+            phase = {"phase": (dims, self.quantities["phase"], {"units": "1", "long_name": "bulk phase function, "
+                                                                 + PHASE_NORMALISATION}),
+                     "phase_error": (dims, self.quantities["phase_error"], {"units": "1"})}
         return xr.Dataset(
             {
                 "sigma": (("condition", "wavelength"), self.value, {"units": "1/m", "long_name": "extinction coefficient"}),
                 "sigma_error": (("condition", "wavelength"), self.error, {"units": "1/m"}),
                 "model": (("condition",), list(self.models)),
                 **{name: (("condition", "wavelength"), v, {"units": _OPTICS_QUANTITIES[name][0]})
-                   for name, v in self.quantities.items()},
+                   for name, v in self.quantities.items() if name in _OPTICS_QUANTITIES},
+                **phase,
             },
             coords=coords,
         )
@@ -484,16 +503,24 @@ class Table:
 
 def table(conditions, wavelengths, quantities: Sequence[str] = ("sigma",), *, convention: str = "itu",
           contrast_threshold: float = 0.02, rel_tolerance: float = 1e-9, water_table: str = "water",
-          threads: int = 0) -> Table:
+          threads: int = 0, angles=None) -> Table:
     """sigma for every condition (Condition objects or text; text may sweep,
     "rain:1..10") at every wavelength (m), computed in parallel without the
     GIL.  ``quantities`` may add bulk optics: "scattering", "absorption"
     (1/m), "albedo", "asymmetry" (computed cell by cell, Mie conditions
-    only).  Returns a Table; ``.to_xarray()`` gives an xarray Dataset."""
-    extra = [q for q in quantities if q != "sigma"]
+    only), and "phase": the bulk phase function (int p dOmega = 4 pi) with
+    its error at ``angles`` (degrees, increasing, in [0, 180]; default
+    DEFAULT_PHASE_ANGLES, every degree), computed with sigma in parallel.
+    Returns a Table; ``.to_xarray()`` gives an xarray Dataset."""
+    phase = "phase" in quantities
+    extra = [q for q in quantities if q not in ("sigma", "phase")]
     for q in extra:
         if q not in _OPTICS_QUANTITIES:
-            raise ValueError(f"unknown quantity {q!r}: sigma, {', '.join(_OPTICS_QUANTITIES)}")
+            raise ValueError(f"unknown quantity {q!r}: sigma, phase, {', '.join(_OPTICS_QUANTITIES)}")
+    if angles is not None and not phase:
+        raise ValueError("angles set the phase function's angles: add \"phase\" to quantities")
+    angle_list = [float(a) for a in np.asarray(DEFAULT_PHASE_ANGLES if angles is None else angles,
+                                               dtype=np.float64).reshape(-1)] if phase else []
     if isinstance(conditions, (str, Condition)):
         conditions = [conditions]
     pairs = []
@@ -506,8 +533,9 @@ def table(conditions, wavelengths, quantities: Sequence[str] = ("sigma",), *, co
                 raise TypeError("table(): a Fog(distribution=...) has no C++ condition; use sigma() per wavelength")
             pairs.append((c.text, c._cpp))
     w = np.asarray(wavelengths, dtype=np.float64).reshape(-1)
-    value, error, models = _core.table(pairs, list(w), *_settings(convention, contrast_threshold, rel_tolerance,
-                                                                   water_table), int(threads))
+    value, error, models, p, p_error = _core.table(pairs, list(w), *_settings(convention, contrast_threshold,
+                                                                              rel_tolerance, water_table),
+                                                   int(threads), angle_list)
     more = {q: np.full(value.shape, np.nan) for q in extra}
     for i, (label, cpp) in enumerate(pairs):
         if not extra or not _core.needs_mie(cpp):
@@ -516,7 +544,10 @@ def table(conditions, wavelengths, quantities: Sequence[str] = ("sigma",), *, co
             o = Optics(_core.condition_optics(cpp, float(lam), float(rel_tolerance), str(water_table)), float(lam))
             for q in extra:
                 more[q][i, j] = _OPTICS_QUANTITIES[q][1](o)
-    return Table([p[0] for p in pairs], w, value, error, models, more)
+    if phase:
+        more["phase"], more["phase_error"] = p, p_error
+    return Table([c[0] for c in pairs], w, value, error, models, more,
+                 np.asarray(angle_list, dtype=np.float64) if phase else None)
 
 
 def refractive_index(wavelength, table: str = "water"):

@@ -73,6 +73,9 @@ class Optics:
     def __getattr__(self, name: str) -> Any: ...
 
 @dataclass
+DEFAULT_PHASE_ANGLES: Tuple[float, ...]
+PHASE_NORMALISATION: str
+
 class Table:
     labels: Sequence[str]
     wavelengths: np.ndarray
@@ -80,6 +83,7 @@ class Table:
     error: np.ndarray
     models: Sequence[str]
     quantities: Dict[str, np.ndarray] = ...
+    angles: Optional[np.ndarray] = ...
     def to_xarray(self) -> Any: ...
 
 def sigma(condition: ConditionLike, wavelength: float = ..., *, convention: str = ..., contrast_threshold: float = ...,
@@ -89,5 +93,5 @@ def optics(condition: Union[ConditionLike, Distribution], wavelength: float = ..
 def table(conditions: Union[ConditionLike, Sequence[ConditionLike]], wavelengths: ArrayLike,
           quantities: Sequence[str] = ..., *, convention: str = ...,
           contrast_threshold: float = ..., rel_tolerance: float = ..., water_table: str = ...,
-          threads: int = ...) -> Table: ...
+          threads: int = ..., angles: Optional[ArrayLike] = ...) -> Table: ...
 def refractive_index(wavelength: ArrayLike, table: str = ...) -> np.ndarray: ...

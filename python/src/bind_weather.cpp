@@ -287,30 +287,39 @@ void bind_weather(py::module_ module) {
       "table",
       [](const std::vector<std::pair<std::string, w::Condition>>& conditions, const std::vector<double>& wavelengths,
          const std::string& convention, double contrast_threshold, double rel_tolerance,
-         const std::string& water_table, int threads) {
+         const std::string& water_table, int threads, const std::vector<double>& angles_deg) {
         std::vector<w::LabelledCondition> labelled;
         for (const auto& [label, c] : conditions) labelled.push_back({label, c});
         const w::Settings s = settings(convention, contrast_threshold, rel_tolerance, water_table);
         w::SigmaTable t;
         {
           py::gil_scoped_release release;
-          t = w::sigma_table(labelled, wavelengths, s, threads);
+          t = w::sigma_table(labelled, wavelengths, s, threads, {w::Quantity::sigma_ext}, -1, angles_deg);
         }
         const py::ssize_t W = static_cast<py::ssize_t>(wavelengths.size());
         const py::ssize_t C = static_cast<py::ssize_t>(labelled.size());
+        const py::ssize_t A = static_cast<py::ssize_t>(angles_deg.size());
         py::array_t<double> value({C, W}), error({C, W});
+        // The bulk phase function (int p dOmega = 4 pi) and its error; NaN where a cell has none.
+        py::array_t<double> phase({C, W, A}), phase_error({C, W, A});
         std::vector<std::string> models(static_cast<std::size_t>(C));
         for (py::ssize_t c = 0; c < C; ++c)
           for (py::ssize_t wl = 0; wl < W; ++wl) {
-            const w::Sigma& cell = t.at(static_cast<std::size_t>(wl), static_cast<std::size_t>(c)).sigma;
-            value.mutable_at(c, wl) = cell.per_m;
-            error.mutable_at(c, wl) = cell.error_per_m;
-            if (wl == 0) models[static_cast<std::size_t>(c)] = cell.model;
+            const w::TableCell& cell = t.at(static_cast<std::size_t>(wl), static_cast<std::size_t>(c));
+            value.mutable_at(c, wl) = cell.sigma.per_m;
+            error.mutable_at(c, wl) = cell.sigma.error_per_m;
+            if (wl == 0) models[static_cast<std::size_t>(c)] = cell.sigma.model;
+            for (py::ssize_t a = 0; a < A; ++a) {
+              const w::QuantityValue p = w::table_phase(cell, static_cast<std::size_t>(a));
+              phase.mutable_at(c, wl, a) = p.value;
+              phase_error.mutable_at(c, wl, a) = p.error;
+            }
           }
-        return py::make_tuple(value, error, models);
+        return py::make_tuple(value, error, models, phase, phase_error);
       },
       py::arg("conditions"), py::arg("wavelengths_m"), py::arg("convention"), py::arg("contrast_threshold"),
-      py::arg("rel_tolerance"), py::arg("water_table"), py::arg("threads"));
+      py::arg("rel_tolerance"), py::arg("water_table"), py::arg("threads"),
+      py::arg("angles_deg") = std::vector<double>{});
 }
 
 }  // namespace attenuvis::python

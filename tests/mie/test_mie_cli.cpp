@@ -100,7 +100,7 @@ TEST_CASE("mie --json --angles gives the values and S1, S2 arrays", "[mie][cli]"
   CHECK(j["s2"][180][1].get<double>() == s.s2[2].imag());
 }
 
-TEST_CASE("mie batch: CSV with 17 digits, comments, commas; bad lines reported, rest computed", "[mie][cli]") {
+TEST_CASE("mie batch: CSV with 17 digits, comments, commas, bad lines reported, rest computed", "[mie][cli]") {
   const std::string input =
       "# x m_re m_im\n"
       "100 1.33 1e-8\n"
@@ -137,7 +137,7 @@ TEST_CASE("mie batch: CSV with 17 digits, comments, commas; bad lines reported, 
   CHECK(lines(r.err).size() == 5);
 }
 
-TEST_CASE("mie batch: all good input exits 0; empty input gives just the header", "[mie][cli]") {
+TEST_CASE("mie batch: all good input exits 0, empty input gives just the header", "[mie][cli]") {
   const Run good = run_cli("mie", "2 1.5 0.01\n");
   CHECK(good.status == 0);
   CHECK(lines(good.out).size() == 2);
@@ -157,7 +157,7 @@ TEST_CASE("mie single mode: bad arguments give an error and non-zero exit", "[mi
   }
 }
 
-TEST_CASE("mie batch: error lines start with 'attenuvis: error:'; its own header is skipped", "[mie][cli]") {
+TEST_CASE("mie batch: error lines start with 'attenuvis: error:', its own header is skipped", "[mie][cli]") {
   const Run r = run_cli("mie", "x,m_re,m_im,qext,qsca,qabs,qback,g\n2 1.5 0.01\nabc 1 0\nx m_re m_im\n1 2 0\n");
   CHECK(r.status != 0);
   CHECK(lines(r.out).size() == 3);  // header + two rows

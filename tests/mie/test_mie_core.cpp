@@ -135,7 +135,7 @@ TEST_CASE("perfectly conducting sphere: no absorption, small-x limit Qsca = (10/
   }
 }
 
-TEST_CASE("term rules: converged goes beyond Wiscombe's N; wiscombe uses exactly N", "[mie][core]") {
+TEST_CASE("term rules: converged goes beyond Wiscombe's N, wiscombe uses exactly N", "[mie][core]") {
   for (double x : {0.01, 1.0, 10.0, 1000.0}) {
     const std::size_t nw = mie::wiscombe_terms(x);
     CHECK(nw == static_cast<std::size_t>(x + 4.05 * std::cbrt(x) + 2.0));

@@ -180,7 +180,7 @@ TEST_CASE("Qback within 1e-10 of itself for |m - 1| <= 1e-4 at x = 1e4 ... 1e5",
   check_qback_near_one({1e4, 3.3e4, 1e5}, "x = 1e4 ... 1e5");
 }
 
-TEST_CASE("purely imaginary index n = 0 is accepted and accurate; n < 0 and m = 0 are not", "[mie][referee]") {
+TEST_CASE("purely imaginary index n = 0 is accepted and accurate, n < 0 and m = 0 are not", "[mie][referee]") {
   // mie.hpp's contract: n >= 0, k >= 0, m != 0.  m = ik is the index of a
   // lossless Drude metal below its plasma frequency; k = sqrt(2) puts the dipole
   // surface resonance (m^2 + 2 = 0, B&H §12.1) exactly at m.

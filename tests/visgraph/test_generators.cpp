@@ -153,7 +153,7 @@ TEST_CASE("mt19937_64 is the standard's engine (the city's determinism rests on 
   CHECK(engine() == 9981545732273789042ull);
 }
 
-TEST_CASE("Synthetic city: same seed, same mesh; other seed, other mesh", "[visgraph][generators]") {
+TEST_CASE("Synthetic city: same seed, same mesh, other seed, other mesh", "[visgraph][generators]") {
   vg::CityOptions small;
   small.rings = 1;
   const vg::Mesh a = vg::synthetic_city(small), b = vg::synthetic_city(small);

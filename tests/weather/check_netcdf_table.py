@@ -4,11 +4,14 @@
 Runs `attenuvis table` twice on the same conditions and wavelengths (CSV and
 netCDF-4), then checks with Debian's python3-netcdf4 and python3-xarray that
   - the CSV reads as is with csv.DictReader and pandas (header line first),
-  - every value of every quantity, its error and the parameter coordinates is
+  - every value of every quantity, its error, the Legendre moments and the
+    parameter coordinates is
     the same double in both files (CSV numbers are shortest round-trip text),
     and a missing CSV cell is a NaN _FillValue in netCDF and back,
   - the CF layout: Conventions, units, long_name, standard_name,
-    ancillary_variables, coordinates, global attributes.
+    ancillary_variables, coordinates, global attributes;
+and, on a second pair of tables, that every value and error of the phase
+function on its angle dimension is the CSV's.
 Usage: check_netcdf_table.py ATTENUVIS_PROGRAM WORK_DIR
 """
 import csv
@@ -26,6 +29,11 @@ COEFFICIENTS = {"sigma_ext", "sigma_sca", "sigma_abs"}
 # Units in a --units km table (netCDF UDUNITS text) and the CSV column suffix.
 UNITS = {"backscatter": ("km-1 sr-1", "_per_km_sr"), "lidar_ratio": ("sr", "_sr")}
 MOMENTS = 3  # chi_0..chi_3 on the netCDF dimension "moment"
+# The phase function on the netCDF dimension "angle", on a table of its own: radiation fog in the infrared
+# (size parameters below ~50: a second or two) beside a power law, with moments to share the file.
+ANGLES = [0.0, 0.5, 45.0, 90.0, 135.0, 180.0]
+PHASE_CONDITIONS = "fog:radiation,rain:8"
+PHASE_WAVELENGTHS = "1550nm,10600nm"
 # Mie (fog preset), a swept power law, an empirical fog set by a visibility, a given sigma.
 CONDITIONS = "fog:advection:m=1.33+0.001i,rain:1..100/50,fog:kim:500m,sigma:2/km"
 WAVELENGTHS = "550nm,1550nm"
@@ -38,9 +46,10 @@ def check(ok, what):
         failures.append(what)
 
 
-def run_table(program, out, fmt):
-    args = [program, "table", "--conditions", CONDITIONS, "--wavelengths", WAVELENGTHS, "--quantities",
-            ",".join(QUANTITIES + ["moments:%d" % MOMENTS]), "--units", "km", "--format", fmt, "--out", out, "--threads", "2"]
+def run_table(program, out, fmt, conditions=CONDITIONS, wavelengths=WAVELENGTHS,
+              quantities=",".join(QUANTITIES + ["moments:%d" % MOMENTS]), extra=()):
+    args = [program, "table", "--conditions", conditions, "--wavelengths", wavelengths, "--quantities",
+            quantities, "--units", "km", "--format", fmt, "--out", out, "--threads", "2"] + list(extra)
     r = subprocess.run(args, capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit("attenuvis table failed (%s): %s %s" % (" ".join(args), r.stdout, r.stderr))
@@ -51,6 +60,54 @@ def same(csv_text, nc_value, what):
         check(math.isnan(nc_value), "%s: empty in CSV, %r in netCDF" % (what, nc_value))
     else:
         check(float(csv_text) == nc_value, "%s: CSV %s, netCDF %r" % (what, csv_text, nc_value))
+
+
+def check_phase_table(program, work):
+    """The phase function: CSV columns phase_<angle>deg and their errors against the netCDF variable
+    phase_function(wavelength, condition, angle) and phase_function_error, value by value."""
+    csv_path, nc_path = os.path.join(work, "phase.csv"), os.path.join(work, "phase.nc")
+    for p in (csv_path, csv_path + ".meta.json", nc_path):
+        if os.path.exists(p):
+            os.remove(p)
+    extra = ["--angles", ",".join("%g" % a for a in ANGLES)]
+    for path, fmt in ((csv_path, "csv"), (nc_path, "netcdf")):
+        run_table(program, path, fmt, PHASE_CONDITIONS, PHASE_WAVELENGTHS, "g,moments:2,phase", extra)
+    with open(csv_path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    check(len(rows) == 2 * 2, "phase CSV rows: %d, expected 4" % len(rows))
+    nc = netCDF4.Dataset(nc_path)
+    nc.set_auto_mask(False)
+    check(list(nc.dimensions) == ["wavelength", "condition", "moment", "angle"],
+          "phase table dimensions %s" % list(nc.dimensions))
+    # The phase function: a CF coordinate variable "angle" and the field with its error companion.
+    check(list(nc["angle"][:]) == ANGLES, "angle coordinate %s" % list(nc["angle"][:]))
+    check(nc["angle"].units == "degree" and nc["angle"].long_name == "scattering angle", "angle attributes")
+    p, pe = nc["phase_function"], nc["phase_function_error"]
+    check(p.dimensions == ("wavelength", "condition", "angle") and pe.dimensions == p.dimensions,
+          "phase_function dimensions %s" % (p.dimensions,))
+    check(p.units == "1" and pe.units == "1", "phase_function units")
+    check("int p dOmega = 4 pi" in p.long_name, "phase_function long_name names the normalisation: %s" % p.long_name)
+    check(p.ancillary_variables == "phase_function_error", "phase_function ancillary_variables")
+    check("condition_label" in p.coordinates and "rate" in p.coordinates, "phase_function coordinates")
+    check(math.isnan(p._FillValue) and math.isnan(pe._FillValue), "phase_function _FillValue NaN")
+    wavelengths, labels = list(nc["wavelength"][:]), list(nc["condition_label"][:])
+    compared = 0
+    for row in rows:
+        w, c = wavelengths.index(float(row["wavelength_nm"])), labels.index(row["condition"])
+        mie = row["condition"] == "fog:radiation"
+        for i, a in enumerate(ANGLES):
+            column = "phase_%sdeg" % ("%g" % a)
+            same(row[column], p[w, c, i], "%s %s %s" % (column, row["wavelength_nm"], row["condition"]))
+            same(row[column + "_error"], pe[w, c, i], "%s_error %s %s" % (column, row["wavelength_nm"], row["condition"]))
+            check((row[column] != "") == mie, "phase present only for the Mie condition: %s" % row["condition"])
+            compared += 2
+    nc.close()
+    ds = xarray.open_dataset(nc_path)  # angle as a coordinate: select by degrees
+    fog90 = [r for r in rows if r["wavelength_nm"] == "10600" and r["condition"] == "fog:radiation"][0]["phase_90deg"]
+    check(float(ds["phase_function"].sel(wavelength=10600.0, angle=90.0).isel(condition=0)) == float(fog90),
+          "xarray value of phase_function at 90 deg, 10.6 um")
+    ds.close()
+    return compared
 
 
 def main():
@@ -142,6 +199,8 @@ def main():
           float([r for r in rows if r["wavelength_nm"] == "550" and r["condition"].startswith("fog:adv")][0]["sigma_ext_per_km"]),
           "xarray value of sigma_ext at 550 nm")
     ds.close()
+
+    compared += check_phase_table(program, work)
 
     if failures:
         print("FAILED (%d):" % len(failures))

@@ -63,7 +63,7 @@ TEST_CASE("optics rejects bad input with a message naming it", "[weather][cli][o
   CHECK_THAT(r.output, Contains("condition 1") && Contains("not a size distribution"));
   r = run("optics fog:radiation --angles 0:200:10");
   CHECK(r.status != 0);
-  CHECK_THAT(r.output, Contains("--angles") && Contains("outside [0, 180]"));
+  CHECK_THAT(r.output, Contains("--angles '0:200:10'") && Contains("[0, 180]"));
   r = run("optics fog:radiation --angles 0:x:10");
   CHECK(r.status != 0);
   CHECK_THAT(r.output, Contains("--angles") && Contains("'x'"));

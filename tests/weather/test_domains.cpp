@@ -152,7 +152,7 @@ TEST_CASE("hostile input: the command line", "[weather][domains][cli]") {
   CHECK(r.output.size() < 300);
 }
 
-TEST_CASE("hostile input: no inf or NaN in outputs; sigma = 0 has an unbounded visibility", "[weather][domains][cli]") {
+TEST_CASE("hostile input: no inf or NaN in outputs, sigma = 0 has an unbounded visibility", "[weather][domains][cli]") {
   const std::string json = temp_path("zero.json"), csv = temp_path("zero.csv");
   std::remove(json.c_str());
   std::remove(csv.c_str());

@@ -169,7 +169,7 @@ TEST_CASE("table backscatter and lidar ratio: the bulk optics' values, per stera
   CHECK(column_suffix(info(Quantity::lidar_ratio).kind, SigmaUnit::per_km) == "_sr");
 }
 
-TEST_CASE("table moments:L: chi_0..chi_L of Mie cells, the bulk optics' values; parsing", "[weather][table]") {
+TEST_CASE("table moments:L: chi_0..chi_L of Mie cells, the bulk optics' values, parsing", "[weather][table]") {
   const QuantityRequest r = parse_quantity_request("g,moments:3");
   CHECK(r.quantities == std::vector<Quantity>{Quantity::g});
   CHECK(r.max_moment == 3);

@@ -16,6 +16,7 @@
 #include "attenuvis/mie/forward_amplitude.hpp"
 #include "analytic_density.hpp"
 #include "extinction_tail.hpp"
+#include "contour_panel.hpp"
 #include "gauss_kronrod_rule.hpp"
 #include "attenuvis/io/number_text.hpp"
 
@@ -52,14 +53,7 @@ double ripple_residual(Complex m, double h) {
   return std::exp(-2 * kPi * h / period);
 }
 
-struct PanelResult {
-  double a = 0, b = 0;      // in t = Re x
-  Complex kronrod{};        // integral over the panel
-  double error = 0;         // |Re(K - G)|
-  double rounding = 0;      // bound on the rounding error of the panel's integral
-  double q_max = 0;         // max |Q| sampled
-  std::size_t evaluations = 0;
-};
+using PanelResult = detail::PathPanel;
 
 class PathIntegrand {
  public:
@@ -74,21 +68,17 @@ class PathIntegrand {
     return {1.0, theta_ * c * c};
   }
 
-  // S(0) at the points x[0..n).
-  void amplitudes(const Complex* x, std::size_t n, mie::ForwardAmplitude* out) const {
-    mie::forward_amplitudes(x, n, m_, arithmetic_, out);
+  // The integrand is S(0) times 4/x^2 pi r^2 n(r) dr/dx.
+  Complex weight(Complex x) const {
+    const Complex r = x / k_;
+    return 4.0 / (x * x) * kPi * r * r * *analytic_density(d_, r) / k_;
   }
 
-  // 4 S(0)/x^2 pi r^2 n(r) dr/dx at complex x from S(0) there, its rounding
-  // bound (same units) and |Q| = |4 S(0)/x^2|.
-  Complex at(Complex x, const mie::ForwardAmplitude& fa, double& rounding, double& q_abs) const {
-    const Complex r = x / k_;
-    const Complex w = kPi * r * r * *analytic_density(d_, r) / k_;
-    const double inv_x2 = 1 / std::norm(x);
-    const Complex q = 4.0 * fa.s0 / (x * x);
-    q_abs = std::abs(q);
-    rounding = 4 * inv_x2 * fa.rounding_bound() * std::abs(w);
-    return q * w;
+  // Gauss-Kronrod on [a, b] in t along x = point(t).
+  template <class Point, class Jacobian>
+  PanelResult panel(const detail::Rule& rule, double a, double b, const Point& point, const Jacobian& jacobian) const {
+    return detail::evaluate_path_panel(
+        rule, a, b, point, jacobian, [&](Complex x) { return weight(x); }, m_, arithmetic_);
   }
 
  private:
@@ -98,49 +88,6 @@ class PathIntegrand {
   double h_, theta_;
   mie::Precision arithmetic_;
 };
-
-// Gauss-Kronrod on [a, b] of F(point(t)) * jacobian(t) dt.
-template <class Point, class Jacobian>
-PanelResult evaluate_panel(const PathIntegrand& f, const detail::Rule& rule, double a, double b, const Point& point,
-                           const Jacobian& jacobian) {
-  PanelResult p;
-  p.a = a;
-  p.b = b;
-  const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
-  // Nodes in increasing t, so that S(0) is batched over neighbouring |x|.
-  const std::size_t n = rule.abscissa.size();
-  const std::size_t count = 2 * n - 1;
-  std::vector<double> t(count), kronrod_w(count), gauss_w(count);
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t slot : {n - 1 - i, n - 1 + i}) {
-      t[slot] = mid + (slot < n - 1 ? -rule.abscissa[i] : rule.abscissa[i]) * half;
-      kronrod_w[slot] = rule.kronrod_weight[i];
-      gauss_w[slot] = rule.gauss_weight[i];
-    }
-  }
-  std::vector<Complex> x(count);
-  for (std::size_t j = 0; j < count; ++j) x[j] = point(t[j]);
-  std::vector<mie::ForwardAmplitude> fa(count);
-  f.amplitudes(x.data(), count, fa.data());
-  Complex k{}, g{};
-  double worst_rounding = 0;
-  for (std::size_t j = 0; j < count; ++j) {
-    double rounding = 0, q_abs = 0;
-    const Complex jac = jacobian(t[j]);
-    const Complex v = f.at(x[j], fa[j], rounding, q_abs) * jac;
-    ++p.evaluations;
-    k += kronrod_w[j] * v;
-    g += gauss_w[j] * v;
-    worst_rounding = std::max(worst_rounding, rounding * std::abs(jac));
-    p.q_max = std::max(p.q_max, q_abs);
-  }
-  p.kronrod = half * k;
-  // The modulus, not |Re(K - G)|: the real part of a complex difference can
-  // vanish by accident while the real part of the error does not.
-  p.error = half * std::abs(k - g);
-  p.rounding = (b - a) * worst_rounding;  // width x largest sampled bound
-  return p;
-}
 
 }  // namespace
 
@@ -165,7 +112,7 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
   const PathIntegrand f(d, wavelength_m, m, s.height, *angle, arithmetic);
   const auto on_path = [&](double t) { return f.x(t); };
   const auto path_jacobian = [&](double t) { return f.dxdt(t); };
-  const auto panel = [&](double a, double b) { return evaluate_panel(f, rule, a, b, on_path, path_jacobian); };
+  const auto panel = [&](double a, double b) { return f.panel(rule, a, b, on_path, path_jacobian); };
 
   // Initial panels.  At height H the integrand is smooth on the scale of the
   // interference period pi/(n - 1) (~9.4 in x for water), so a 61-point panel
@@ -198,8 +145,8 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
   // The weight there is ~tail_fraction of its peak: a 15-point rule suffices
   // (its |K - G| is charged like every panel's).
   const double top = f.x(x_max).imag();
-  const PanelResult down = evaluate_panel(
-      f, detail::rule_for(15), 0.0, top, [&](double v) { return Complex(x_max, v); },
+  const PanelResult down = f.panel(
+      detail::rule_for(15), 0.0, top, [&](double v) { return Complex(x_max, v); },
       [](double) { return Complex(0, -1); });
 
   std::size_t evaluations = down.evaluations;

@@ -14,6 +14,7 @@
 #include "attenuvis/weather/contour_extinction.hpp"
 #include "attenuvis/weather/distribution_file.hpp"
 #include "attenuvis/weather/refractive_index.hpp"
+#include "attenuvis/weather/segmented_contour.hpp"
 #include "attenuvis/weather/visibility.hpp"
 
 namespace attenuvis::weather {
@@ -75,15 +76,25 @@ Sigma mie_sigma(const MieCondition& c, double wavelength_m, const Settings& s) {
   // Analytic distributions within reach: integrate above the real axis,
   // where Q_ext's resonances are smooth (contour_extinction.hpp); else on
   // the real axis with the resonances as an error term (bulk_optics.hpp).
+  // Tables and power laws with bounds: the same path, with Cauchy applied
+  // piece by piece (segmented_contour.hpp).  Either declines beyond x = 5000
+  // (rain at optical wavelengths), where the real axis with its large-x
+  // expansion takes over.
   ContourSettings cs;
   cs.rel_tolerance = s.rel_tolerance;
-  if (const auto ce = contour_extinction(d, wavelength_m, m, cs)) {
+  SegmentedContourSettings ss;
+  ss.rel_tolerance = s.rel_tolerance;
+  std::optional<ContourExtinction> ce = contour_extinction(d, wavelength_m, m, cs);
+  if (!ce) ce = segmented_contour_extinction(d, wavelength_m, m, ss);
+  if (ce) {
     out.per_m = ce->extinction.value;
     out.error_per_m = ce->extinction.error();
     note << index_source << "; " << ce->method;
     out.error_terms = {{"quadrature", ce->extinction.quadrature_error},
                        {"tails", ce->extinction.tail_error},
                        {"rounding", ce->extinction.rounding_error}};
+    if (ce->extinction.resonance_error > 0)
+      out.error_terms.push_back({"near-axis resonances (bound)", ce->extinction.resonance_error});
   } else {
     const BulkOptics b = bulk_optics_of(c, wavelength_m, s, d, m);
     out.per_m = b.extinction.value;

@@ -57,7 +57,8 @@ std::vector<double> parse_wavelength_list(const std::string& text) {
 double wavelength_nm(double wavelength_m) { return std::stod(io::significant(wavelength_m * 1e9, 12)); }
 
 std::string missing_value_rule() {
-  return "sigma_sca, sigma_abs, ssa, g, backscatter and lidar_ratio exist only for Mie conditions (a size distribution): they are missing "
+  return "sigma_sca, sigma_abs, ssa, g, backscatter, lidar_ratio, the Legendre moments and the phase function "
+         "exist only for Mie conditions (a size distribution): they are missing "
          "for power laws, visibility models, clear air and a given sigma, and where the integral used the "
          "large-sphere expansion of Q_ext (rain drops beyond x = 2000), which gives no Q_sca; "
          "the Koschmieder visibility is missing where sigma_ext = 0 (unbounded)";
@@ -93,6 +94,35 @@ QuantityValue table_moment(const TableCell& cell, int l) {
   return {cell.optics->moments[static_cast<std::size_t>(l)], cell.optics->moments_error[static_cast<std::size_t>(l)]};
 }
 
+QuantityValue table_phase(const TableCell& cell, std::size_t i) {
+  constexpr double missing = std::numeric_limits<double>::quiet_NaN();
+  if (!cell.optics || !cell.optics->scattering_computed || i >= cell.optics->phase.size()) return {missing, missing};
+  return {cell.optics->phase[i], cell.optics->phase_error[i]};
+}
+
+std::string phase_function_normalisation() {
+  return "int p dOmega = 4 pi over the sphere (isotropic scattering: p = 1; divide by 4 pi for 1/sr; "
+         "(1/2) int p dmu = 1 over mu = cos theta in [-1, 1])";
+}
+
+std::string phase_column_name(double angle_deg) { return "phase_" + io::shortest(angle_deg) + "deg"; }
+
+// A table's angles are the netCDF coordinate of the angle dimension: each in
+// [0, 180] and strictly increasing (NUG and CF 1.8 sec. 1.3: a coordinate
+// variable is monotonic), which also keeps the CSV's column names unique.
+void check_table_angles(const std::vector<double>& angles) {
+  for (std::size_t i = 0; i < angles.size(); ++i) {
+    const double a = angles[i];
+    if (!(a >= 0 && a <= 180))
+      throw std::invalid_argument("scattering angle " + std::to_string(i + 1) + " (" + io::shortest(a) +
+                                  " deg) is outside [0, 180]");
+    if (i > 0 && !(a > angles[i - 1]))
+      throw std::invalid_argument("scattering angle " + std::to_string(i + 1) + " (" + io::shortest(a) +
+                                  " deg) does not increase on the one before (" + io::shortest(angles[i - 1]) +
+                                  " deg): a table's angles are a coordinate, each listed once, in increasing order");
+  }
+}
+
 std::vector<std::string> conditions_with_missing_values(const SigmaTable& t) {
   std::vector<std::string> out;
   for (std::size_t c = 0; c < t.conditions.size(); ++c) {
@@ -100,6 +130,7 @@ std::vector<std::string> conditions_with_missing_values(const SigmaTable& t) {
     for (std::size_t w = 0; w < t.wavelengths_m.size() && !missing; ++w) {
       for (Quantity q : t.quantities) missing = missing || std::isnan(table_value(t.at(w, c), q).value);
       if (t.max_moment >= 0) missing = missing || std::isnan(table_moment(t.at(w, c), 0).value);
+      if (!t.angles_deg.empty()) missing = missing || std::isnan(table_phase(t.at(w, c), 0).value);
     }
     if (missing) out.push_back(t.conditions[c].label);
   }
@@ -108,15 +139,19 @@ std::vector<std::string> conditions_with_missing_values(const SigmaTable& t) {
 
 SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const std::vector<double>& wavelengths,
                        const Settings& settings, int threads, const std::vector<Quantity>& quantities,
-                       int max_moment) {
+                       int max_moment, const std::vector<double>& angles_deg) {
+  check_table_angles(angles_deg);
   SigmaTable t;
   t.wavelengths_m = wavelengths;
   t.conditions = conditions;
   t.quantities = quantities;
   t.max_moment = max_moment;
+  t.angles_deg = angles_deg;
   t.settings = settings;
   t.cells.resize(wavelengths.size() * conditions.size());
-  const bool needs_optics = max_moment >= 0 || std::any_of(quantities.begin(), quantities.end(), [](Quantity q) {
+  // The angular quantities (moments, phase function) cost O(x^2) per drop: only when asked.
+  const bool needs_angular = max_moment >= 0 || !angles_deg.empty();
+  const bool needs_optics = needs_angular || std::any_of(quantities.begin(), quantities.end(), [](Quantity q) {
                                return info(q).needs_size_distribution;
                              });
   const bool needs_backscatter = std::any_of(quantities.begin(), quantities.end(), [](Quantity q) {
@@ -125,6 +160,7 @@ SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const s
   OpticsRequest request;
   request.backscatter = needs_backscatter;
   request.legendre_moments = max_moment;
+  request.angles_deg = angles_deg;
   std::mutex error_mutex;
   std::string first_error;
   auto work = [&] {
@@ -133,7 +169,7 @@ SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const s
       try {
         t.cells[i].sigma = sigma(conditions[c].condition, wavelengths[w], settings);
         if (const auto* mie = std::get_if<MieCondition>(&conditions[c].condition); mie && needs_optics)
-          t.cells[i].optics = needs_backscatter || max_moment >= 0
+          t.cells[i].optics = needs_backscatter || needs_angular
                                   ? condition_optics(*mie, wavelengths[w], settings, request).bulk
                                   : condition_bulk_optics(*mie, wavelengths[w], settings);
       } catch (const std::exception& e) {

@@ -17,6 +17,10 @@
 //   moment(moment)               coordinate: l = 0..L (only with moments:L)
 //   chi(wavelength, condition, moment), chi_error   Legendre moments of the
 //                                phase function (DISORT's PMOM), dimensionless
+//   angle(angle)                 coordinate: scattering angle in degree (only
+//                                with phase)
+//   phase_function(wavelength, condition, angle), phase_function_error
+//                                the bulk phase function, int p dOmega = 4 pi
 //   koschmieder_visibility(wavelength, condition), model(condition),
 //   sigma_ext_method(wavelength, condition)
 //
@@ -63,7 +67,8 @@ void set_global_attributes(io::NetcdfFile& f, const SigmaTable& t, const TablePr
   f.set_attribute(g, "method",
                   "sigma_ext: Lorenz-Mie over the size distribution, contour integral above the real axis for "
                   "analytic distributions, else adaptive Gauss-Kronrod on the real axis (per cell in "
-                  "sigma_ext_method); sigma_sca, sigma_abs, ssa, g: adaptive Gauss-Kronrod on the real axis; "
+                  "sigma_ext_method); sigma_sca, sigma_abs, ssa, g, backscatter, lidar_ratio, chi, "
+                  "phase_function: adaptive Gauss-Kronrod on the real axis; "
                   "closed-form models elsewhere (model)");
   f.set_attribute(g, "mie_rel_tolerance", t.settings.rel_tolerance);
   f.set_attribute(g, "contrast_threshold", t.settings.contrast_threshold);
@@ -137,6 +142,44 @@ std::vector<Field> define_fields(io::NetcdfFile& f, const SigmaTable& t, SigmaUn
   return fields;
 }
 
+// A (wavelength, condition, axis) field and its error companion, as the
+// moments and the phase function are laid out; values in C order.
+struct AxisField {
+  int coordinate = -1, variable = -1, error_variable = -1;
+  std::vector<double> axis, values, errors;
+};
+
+AxisField define_axis_field(io::NetcdfFile& f, const SigmaTable& t, int wdim, int cdim, const std::string& coordinates,
+                            const std::string& dimension, const std::string& name, const std::string& long_name,
+                            const std::vector<double>& axis,
+                            const std::function<QuantityValue(const TableCell&, std::size_t)>& value) {
+  AxisField out;
+  out.axis = axis;
+  const int dim = f.add_dimension(dimension, axis.size());
+  out.coordinate = f.add_double_variable(dimension, {dim});
+  out.variable = f.add_double_variable(name, {wdim, cdim, dim});
+  f.set_attribute(out.variable, "_FillValue", kMissing);
+  describe(f, out.variable, "1", long_name, "");
+  f.set_attribute(out.variable, "coordinates", coordinates);
+  f.set_attribute(out.variable, "ancillary_variables", name + "_error");
+  out.error_variable = f.add_double_variable(name + "_error", {wdim, cdim, dim});
+  f.set_attribute(out.error_variable, "_FillValue", kMissing);
+  describe(f, out.error_variable, "1", "error estimate of " + name, "");
+  for (const auto& cell : t.cells)
+    for (std::size_t i = 0; i < axis.size(); ++i) {
+      const QuantityValue v = value(cell, i);
+      out.values.push_back(v.value);
+      out.errors.push_back(v.error);
+    }
+  return out;
+}
+
+void write_axis_field(io::NetcdfFile& f, const AxisField& a) {
+  f.write(a.coordinate, a.axis);
+  f.write(a.variable, a.values);
+  f.write(a.error_variable, a.errors);
+}
+
 // One string per condition (from the first wavelength's cell) or per cell.
 std::vector<std::string> per_condition(const SigmaTable& t, const std::function<std::string(std::size_t c)>& text) {
   std::vector<std::string> out;
@@ -167,32 +210,27 @@ void write_sigma_table_netcdf(const SigmaTable& t, const std::string& path, Sigm
   std::vector<std::pair<int, std::vector<double>>> parameters;
   const std::string coordinates = define_condition_coordinates(f, t, cdim, unit, parameters);
   const std::vector<Field> fields = define_fields(f, t, unit, wdim, cdim, coordinates);
-  // Legendre moments on a dimension of their own.
-  int moment_var = -1, chi_var = -1, chi_error_var = -1;
-  std::vector<double> chi, chi_error, orders;
+  // Legendre moments and the phase function, each on a dimension of its own.
+  std::vector<AxisField> axis_fields;
   if (t.max_moment >= 0) {
-    const std::size_t L1 = static_cast<std::size_t>(t.max_moment) + 1;
-    const int mdim = f.add_dimension("moment", L1);
-    moment_var = f.add_double_variable("moment", {mdim});
-    describe(f, moment_var, "1", "order l of the Legendre moment", "");
-    chi_var = f.add_double_variable("chi", {wdim, cdim, mdim});
-    f.set_attribute(chi_var, "_FillValue", kMissing);
-    describe(f, chi_var, "1",
-             "Legendre moments chi_l of the phase function, p(mu) = sum (2l+1) chi_l P_l(mu), chi_0 = 1, chi_1 = g "
-             "(DISORT's PMOM)",
-             "");
-    f.set_attribute(chi_var, "coordinates", coordinates);
-    f.set_attribute(chi_var, "ancillary_variables", "chi_error");
-    chi_error_var = f.add_double_variable("chi_error", {wdim, cdim, mdim});
-    f.set_attribute(chi_error_var, "_FillValue", kMissing);
-    describe(f, chi_error_var, "1", "error estimate of chi", "");
-    for (std::size_t l = 0; l < L1; ++l) orders.push_back(static_cast<double>(l));
-    for (const auto& cell : t.cells)
-      for (std::size_t l = 0; l < L1; ++l) {
-        const QuantityValue v = table_moment(cell, static_cast<int>(l));
-        chi.push_back(v.value);
-        chi_error.push_back(v.error);
-      }
+    std::vector<double> orders;
+    for (int l = 0; l <= t.max_moment; ++l) orders.push_back(static_cast<double>(l));
+    axis_fields.push_back(define_axis_field(
+        f, t, wdim, cdim, coordinates, "moment", "chi",
+        "Legendre moments chi_l of the phase function, p(mu) = sum (2l+1) chi_l P_l(mu), chi_0 = 1, chi_1 = g "
+        "(DISORT's PMOM)",
+        orders, [](const TableCell& c, std::size_t l) { return table_moment(c, static_cast<int>(l)); }));
+    describe(f, axis_fields.back().coordinate, "1", "order l of the Legendre moment", "");
+  }
+  if (!t.angles_deg.empty()) {
+    axis_fields.push_back(define_axis_field(f, t, wdim, cdim, coordinates, "angle", "phase_function",
+                                            "bulk phase function, scattering-weighted, normalised " +
+                                                phase_function_normalisation(),
+                                            t.angles_deg, table_phase));
+    // No standard_name: the angle between incident and scattered directions is
+    // named by units and long_name only, as the CF conventions allow, rather
+    // than by a standard name this project cannot check against the table.
+    describe(f, axis_fields.back().coordinate, "degree", "scattering angle", "");
   }
   const int method_var = f.add_string_variable("sigma_ext_method", {wdim, cdim});
   describe(f, method_var, "", "how sigma_ext was computed: refractive index, integration method, warnings (empty: closed form)", "");
@@ -209,11 +247,7 @@ void write_sigma_table_netcdf(const SigmaTable& t, const std::string& path, Sigm
   f.write(method_var, methods);
   for (const auto& [var, values] : parameters) f.write(var, values);
   for (const auto& field : fields) f.write(field.variable, field.values);
-  if (t.max_moment >= 0) {
-    f.write(moment_var, orders);
-    f.write(chi_var, chi);
-    f.write(chi_error_var, chi_error);
-  }
+  for (const auto& a : axis_fields) write_axis_field(f, a);
   f.commit();
 }
 

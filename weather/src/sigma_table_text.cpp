@@ -24,7 +24,9 @@ struct Column {
 
 constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
 
-std::vector<Column> numeric_columns(const SigmaTable& t, SigmaUnit unit) {
+// The phase function as one column per angle (CSV) or, for the JSON document,
+// as per-row arrays over its "angle_deg" array (phase_columns false).
+std::vector<Column> numeric_columns(const SigmaTable& t, SigmaUnit unit, bool phase_columns = true) {
   std::vector<Column> out;
   out.push_back({"wavelength_nm", "nm", "wavelength in vacuum", "radiation_wavelength", "",
                  [&t](std::size_t w, std::size_t) { return wavelength_nm(t.wavelengths_m[w]); }});
@@ -67,6 +69,15 @@ std::vector<Column> numeric_columns(const SigmaTable& t, SigmaUnit unit) {
     out.push_back({name + "_error", "1", "error estimate of " + name, "", "",
                    [&t, l](std::size_t w, std::size_t c) { return table_moment(t.at(w, c), l).error; }});
   }
+  for (std::size_t i = 0; phase_columns && i < t.angles_deg.size(); ++i) {
+    const std::string name = phase_column_name(t.angles_deg[i]);
+    out.push_back({name, "1",
+                   "bulk phase function at scattering angle " + io::shortest(t.angles_deg[i]) +
+                       " deg, scattering-weighted, " + phase_function_normalisation(),
+                   "", "", [&t, i](std::size_t w, std::size_t c) { return table_phase(t.at(w, c), i).value; }});
+    out.push_back({name + "_error", "1", "error estimate of " + name, "", "",
+                   [&t, i](std::size_t w, std::size_t c) { return table_phase(t.at(w, c), i).error; }});
+  }
   const double threshold = t.settings.contrast_threshold;
   out.push_back({"koschmieder_visibility_m", "m",
                  "visibility from sigma_ext by Koschmieder at contrast threshold " + io::shortest(threshold),
@@ -97,6 +108,11 @@ nlohmann::ordered_json metadata(const SigmaTable& t, SigmaUnit unit, const Table
   m["mie_rel_tolerance"] = t.settings.rel_tolerance;
   m["water_table"] = t.settings.water_table;
   m["missing_values"] = missing_value_rule();
+  if (!t.angles_deg.empty())
+    m["phase_function"] = {{"normalisation", phase_function_normalisation()},
+                           {"weighting", "scattering-weighted: int p(theta; r) Q_sca pi r^2 n(r) dr / sigma_sca"},
+                           {"angle_units", "degree"},
+                           {"angle_deg", t.angles_deg}};
   json cols = json::array();
   cols.push_back({{"name", "condition"}, {"long_name", "condition as written in the condition grammar"}});
   for (const auto& c : columns) {
@@ -160,8 +176,20 @@ std::string format_sigma_table_sidecar(const SigmaTable& t, SigmaUnit unit, cons
 }
 
 std::string format_sigma_table_json(const SigmaTable& t, SigmaUnit unit, const TableProvenance& provenance) {
-  const auto columns = numeric_columns(t, unit);
+  const auto columns = numeric_columns(t, unit, /*phase_columns=*/false);
   nlohmann::ordered_json doc = metadata(t, unit, provenance, columns);
+  // The phase function: per row, arrays over the document's phase_function.angle_deg.
+  const bool phase = !t.angles_deg.empty();
+  if (phase) {
+    auto& cols = doc["columns"];
+    const auto convention = cols.back();  // keep "convention" last, as in the rows
+    cols.erase(cols.size() - 1);
+    cols.push_back({{"name", "phase"}, {"units", "1"}, {"dimension", "phase_function.angle_deg"},
+                    {"long_name", "bulk phase function, scattering-weighted, " + phase_function_normalisation()}});
+    cols.push_back({{"name", "phase_error"}, {"units", "1"}, {"dimension", "phase_function.angle_deg"},
+                    {"long_name", "error estimate of phase"}});
+    cols.push_back(convention);
+  }
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (std::size_t w = 0; w < t.wavelengths_m.size(); ++w)
     for (std::size_t c = 0; c < t.conditions.size(); ++c) {
@@ -170,6 +198,16 @@ std::string format_sigma_table_json(const SigmaTable& t, SigmaUnit unit, const T
       for (const auto& col : columns) {
         const double v = col.value(w, c);
         row[col.name] = std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);  // missing: null
+      }
+      if (phase) {
+        auto values = nlohmann::ordered_json::array(), errors = nlohmann::ordered_json::array();
+        for (std::size_t i = 0; i < t.angles_deg.size(); ++i) {
+          const QuantityValue p = table_phase(t.at(w, c), i);
+          values.push_back(std::isfinite(p.value) ? nlohmann::ordered_json(p.value) : nlohmann::ordered_json(nullptr));
+          errors.push_back(std::isfinite(p.error) ? nlohmann::ordered_json(p.error) : nlohmann::ordered_json(nullptr));
+        }
+        row["phase"] = values;
+        row["phase_error"] = errors;
       }
       row["convention"] = t.at(w, c).sigma.convention;
       rows.push_back(row);

@@ -76,6 +76,11 @@ QuantityRequest parse_quantity_request(const std::string& text) {
   std::stringstream in(text);
   std::string name;
   while (std::getline(in, name, ',')) {
+    if (name == "phase") {
+      if (out.phase) throw std::invalid_argument("'phase' is listed twice");
+      out.phase = true;
+      continue;
+    }
     if (name.rfind("moments:", 0) != 0) {
       rest += (rest.empty() ? "" : ",") + name;
       continue;
@@ -94,7 +99,16 @@ QuantityRequest parse_quantity_request(const std::string& text) {
                                   std::to_string(kMaxTableMoment) + "]");
     out.max_moment = value;
   }
-  if (!rest.empty() || out.max_moment < 0) out.quantities = parse_quantity_list(rest);
+  if (!rest.empty() || (out.max_moment < 0 && !out.phase)) {
+    try {
+      out.quantities = parse_quantity_list(rest);
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      if (what.rfind("quantity '", 0) == 0) throw;  // listed twice: the known names would not help
+      throw std::invalid_argument(what + "; besides them moments:L (Legendre moments chi_0..chi_L) and phase "
+                                         "(the phase function on an angle grid)");
+    }
+  }
   return out;
 }
 

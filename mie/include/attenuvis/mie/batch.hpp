@@ -44,7 +44,8 @@ std::size_t run(std::istream& in, std::ostream& out, std::ostream& err, const Op
 // syntax (attenuvis/io/number_text.hpp: split_index_text); throws
 // std::invalid_argument.
 std::complex<double> parse_refractive_index(const std::string& text);
-// "0:180:1" (start:stop:step, stop included when hit within 1e-9·step),
+// "0:180:1" (start:stop:step, stop included when hit within 1e-9·step; the
+// grid's angles rounded to 12 significant digits, so 0:1:0.1 gives 0.3),
 // "30" or "0,45,90" -> angles in degrees; throws std::invalid_argument.
 std::vector<double> parse_angles(const std::string& text);
 

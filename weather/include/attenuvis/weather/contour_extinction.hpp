@@ -4,8 +4,9 @@
 // sigma_ext = int_0^inf Q_ext(x) pi r^2 n(r) dr,  x = 2 pi r / lambda, and
 // Q_ext(x) = 4 Re S(0; x) / x^2 (optical theorem).  S(0; x) is analytic in
 // Im x >= 0 for a passive sphere (mie/forward_amplitude.hpp), and so is
-// pi r^2 n(r) for the analytic families (modified gamma, log-normal; not the
-// tabulated or power-law ones).  By Cauchy's theorem the integral over
+// pi r^2 n(r) for the analytic families (modified gamma, log-normal; tables
+// and bounded power laws are analytic only piece by piece, and take the
+// segmented route of segmented_contour.hpp).  By Cauchy's theorem the integral over
 // [0, x_max] equals the integral along any path from 0 to x_max that stays
 // above the real axis:
 //

@@ -5,7 +5,9 @@
 // contour integral, otherwise the real-axis quadrature.  The quantities that
 // need the whole single-scattering result (sigma_sca, sigma_abs, ssa, g) come
 // from condition_bulk_optics(), the real-axis quadrature, computed only when
-// one of them is asked for.  Only Mie conditions have a size distribution:
+// one of them is asked for; the Legendre moments and the phase function on
+// an angle grid come from condition_optics() (its second pass: per drop,
+// O(x^2) for the moments, O(x) per angle), only when asked for.  Only Mie conditions have a size distribution:
 // for every other condition (power laws, visibility models, clear air, a
 // given sigma) those quantities are missing — an empty CSV cell, JSON null,
 // the netCDF _FillValue — and so are they where the integral used the
@@ -41,6 +43,7 @@ struct SigmaTable {
   std::vector<LabelledCondition> conditions;  // labels: the "condition" column
   std::vector<Quantity> quantities;           // in the order asked for
   int max_moment = -1;                        // >= 0: Legendre moments chi_0..chi_L of Mie cells
+  std::vector<double> angles_deg;             // non-empty: the bulk phase function of Mie cells there
   std::vector<TableCell> cells;               // cells[w * conditions.size() + c]
   Settings settings;
   const TableCell& at(std::size_t w, std::size_t c) const { return cells[w * conditions.size() + c]; }
@@ -63,12 +66,28 @@ std::vector<double> parse_wavelength_list(const std::string& text);
 // Every cell is independent; TBB spreads them over the cores (threads: 0 = all).
 // Conditions that do not depend on wavelength are still reported per row (cheap).
 // Any failing cell makes the whole call throw, naming the cell.
+// angles_deg: the bulk phase function at these scattering angles (degrees,
+// strictly increasing, each in [0, 180]: the netCDF angle coordinate), as
+// condition_optics computes it; empty: none.  A bad grid throws
+// std::invalid_argument naming the angle before any work.
 SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const std::vector<double>& wavelengths_m,
                        const Settings& settings, int threads = 0,
-                       const std::vector<Quantity>& quantities = {Quantity::sigma_ext}, int max_moment = -1);
+                       const std::vector<Quantity>& quantities = {Quantity::sigma_ext}, int max_moment = -1,
+                       const std::vector<double>& angles_deg = {});
+// What sigma_table asks of angles_deg; throws std::invalid_argument naming the first bad angle.
+void check_table_angles(const std::vector<double>& angles_deg);
 // chi_l of a cell and its error; NaN where the cell has no moments (a
 // condition without drops, or rain's large-x expansion).
 QuantityValue table_moment(const TableCell& cell, int l);
+// p(theta_i) of a cell at the table's i-th angle and its error, normalised
+// as phase_function_normalisation() says; NaN where the cell has no phase
+// function (as table_moment).
+QuantityValue table_phase(const TableCell& cell, std::size_t angle_index);
+// "int p dOmega = 4 pi ...": the normalisation every output names.
+std::string phase_function_normalisation();
+// The CSV column of the phase function at an angle: "phase_10deg",
+// "phase_0.5deg" (the angle as the shortest text that reads back to it).
+std::string phase_column_name(double angle_deg);
 
 enum class TableFormat { csv, json, netcdf };
 TableFormat parse_table_format(const std::string& text);  // "csv" | "json" | "netcdf"

@@ -48,13 +48,16 @@ const QuantityInfo& info(Quantity q);
 // "sigma_ext,ssa,g": names from table_quantities(), each at most once.  Throws
 // std::invalid_argument naming the unknown or repeated name and listing the known ones.
 std::vector<Quantity> parse_quantity_list(const std::string& text);
-// What --quantities asks for: the named quantities, and the Legendre moments
+// What --quantities asks for: the named quantities, the Legendre moments
 // chi_0..chi_L of the phase function when the list holds "moments:L" (L in
-// [0, kMaxTableMoment]; -1: none).  "moments:L" alone is a valid list.
+// [0, kMaxTableMoment]; -1: none), and the bulk phase function on an angle
+// grid when it holds "phase" (the grid is the caller's: sigma_table's
+// angles_deg).  "moments:L" or "phase" alone is a valid list.
 constexpr int kMaxTableMoment = 1000;
 struct QuantityRequest {
   std::vector<Quantity> quantities;
   int max_moment = -1;
+  bool phase = false;
 };
 QuantityRequest parse_quantity_request(const std::string& text);
 // The names joined by ", " (help text, messages).

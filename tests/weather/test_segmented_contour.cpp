@@ -1,0 +1,204 @@
+// sigma_ext of tables and power laws by Cauchy on each piece (weather/segmented_contour.hpp).
+//
+// References, each named where it is used:
+//  - absorbing drops (m = 1.33 + 0.01i, no resonance floor): the real-axis
+//    rule of bulk_optics.hpp over the same piecewise density, at rel. tol.
+//    1e-11 (it resolves Q_ext there and reports no resonance error);
+//  - nearly lossless water (Hale & Querry 1973 via refractive_index_table):
+//    the real axis cannot resolve the resonances, so the reference is the
+//    same route along an independent path (height 6 instead of 4, slope 0.15
+//    instead of 0.25, so other legs and other path points), S(0) in long
+//    double, rel. tol. 1e-12, every panel verified by halving.  The real-axis
+//    value must lie within its own (resonance) error of it as well.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <string>
+#include <vector>
+
+#include "attenuvis/weather.hpp"
+
+using namespace attenuvis::weather;
+
+namespace {
+
+const std::complex<double> kAbsorbing(1.33, 0.01);
+constexpr double kPerCm3PerUm = 1e12;  // m^-4
+
+// A table through the given (radius um, density cm^-3 um^-1) points.
+SizeDistribution table_through(const std::vector<std::pair<double, double>>& points, const std::string& name) {
+  std::vector<TabulatedSegment> segments;
+  for (std::size_t i = 0; i + 1 < points.size(); ++i)
+    segments.push_back({points[i].first * 1e-6, points[i + 1].first * 1e-6, points[i].second * kPerCm3PerUm,
+                        points[i + 1].second * kPerCm3PerUm});
+  return SizeDistribution::tabulated(segments, name);
+}
+
+// 200 points log-spaced over the radii holding all but 1e-12 of the r^2
+// moment of the log-normal r_g = 5 um, sigma_g = 1.5, 100 cm^-3 (the table of
+// validation/bench/bulk_optics_speed.cpp).
+SizeDistribution log_normal_table(int points = 200) {
+  const auto analytic = SizeDistribution::log_normal(1e8, 5e-6, 1.5);
+  const auto support = analytic.support(2.0, 1e-12);
+  const double lo = std::log(support.breakpoints_m.front()), hi = std::log(support.breakpoints_m.back());
+  std::vector<TabulatedSegment> segments;
+  for (int i = 0; i + 1 < points; ++i) {
+    const double r0 = std::exp(lo + (hi - lo) * i / (points - 1));
+    const double r1 = std::exp(lo + (hi - lo) * (i + 1) / (points - 1));
+    segments.push_back({r0, r1, analytic.density(r0), analytic.density(r1)});
+  }
+  return SizeDistribution::tabulated(segments, std::to_string(points) + "-point log-normal");
+}
+
+// The shapes a file can have that a smooth distribution has not.
+std::vector<SizeDistribution> awkward_tables() {
+  return {
+      // A kink: a triangle, zero at both ends.
+      table_through({{1, 0}, {6, 10}, {20, 0}}, "triangle (kink at 6 um)"),
+      // Truncated at both ends: the density jumps from 0 to its value there.
+      table_through({{2, 3}, {4, 9}, {7, 6}, {12, 1.5}}, "truncated at 2 and 12 um"),
+      // A zero segment between two humps.
+      table_through({{1, 0.5}, {3, 2}, {5, 0}, {8, 0}, {10, 1}, {15, 0.3}}, "zero segment 5-8 um"),
+      // Bins with a gap: jumps at every edge.
+      SizeDistribution::tabulated({{1e-6, 2e-6, 4e12, 4e12}, {3e-6, 5e-6, 1e12, 1e12}, {5e-6, 9e-6, 2e11, 2e11}},
+                                  "bins with a gap"),
+  };
+}
+
+ContourExtinction route(const SizeDistribution& d, double wavelength, std::complex<double> m,
+                        const SegmentedContourSettings& s = {}) {
+  const auto c = segmented_contour_extinction(d, wavelength, m, s);
+  REQUIRE(c);
+  return *c;
+}
+
+// The independent-path reference for nearly lossless drops (see the head of this file).
+double independent_path_reference(const SizeDistribution& d, double wavelength, std::complex<double> m) {
+  SegmentedContourSettings r;
+  r.rel_tolerance = 1e-12;
+  r.height = 6;
+  r.angle = 0.15;
+  r.verify = true;
+  r.max_evaluations = 2000000;
+  return route(d, wavelength, m, r).extinction.value;
+}
+
+}  // namespace
+
+TEST_CASE("segmented contour: 200-point log-normal table in water, reported error bounds the actual one",
+          "[weather][segmented]") {
+  for (double wavelength : {550e-9, 1.55e-6}) {
+    const auto table = log_normal_table();
+    const auto m = refractive_index_table("water").at(wavelength);
+    const auto c = route(table, wavelength, m);
+    const double reference = independent_path_reference(table, wavelength, m);
+    const double actual = std::abs(c.extinction.value - reference);
+    // The real-axis rule over the same table: its value must lie within its
+    // own error (at 550 nm mostly the unresolved-resonance term) of the reference.
+    const BulkOptics axis = bulk_optics(table, wavelength, m);
+    const auto analytic = contour_extinction(SizeDistribution::log_normal(1e8, 5e-6, 1.5), wavelength, m);
+    REQUIRE(analytic);
+    INFO(std::setprecision(13) << wavelength << " m: segmented " << c.extinction.value << " +- "
+                               << c.extinction.error() << " (" << c.evaluations << " evaluations), reference "
+                               << reference << ", actual error " << actual << "; real axis " << axis.extinction.value
+                               << " +- " << axis.extinction.error() << " (" << axis.evaluations << ")");
+    CHECK(actual <= c.extinction.error());
+    CHECK(c.extinction.error() <= 1.1e-9 * c.extinction.value);
+    CHECK(std::abs(axis.extinction.value - reference) <= axis.extinction.error());
+    CHECK(c.method.find("segmented contour") != std::string::npos);
+    WARN(std::setprecision(10) << "200-point log-normal table at " << wavelength * 1e9 << " nm: segmented contour "
+                               << c.extinction.value << " +- " << std::setprecision(2) << c.extinction.error()
+                               << " 1/m, actual error " << actual << ", " << c.evaluations
+                               << " evaluations; real axis " << axis.evaluations << "; the analytic log-normal "
+                               << std::setprecision(10) << analytic->extinction.value << " by "
+                               << analytic->evaluations << " (it differs by the table's interpolation)");
+  }
+}
+
+TEST_CASE("segmented contour: the error bound holds at every tolerance and path height", "[weather][segmented]") {
+  // Loose tolerances leave the fewest panels (one per piece and per leg):
+  // the reported error must still bound the actual one, against the
+  // independent-path reference (head of this file).
+  const auto table = log_normal_table();
+  const auto m = refractive_index_table("water").at(550e-9);
+  const double reference = independent_path_reference(table, 550e-9, m);
+  for (double height : {2.0, 4.0})
+    for (double tol : {1e-4, 1e-6, 1e-8}) {
+      SegmentedContourSettings s;
+      s.height = height;
+      s.rel_tolerance = tol;
+      const auto c = route(table, 550e-9, m, s);
+      const double actual = std::abs(c.extinction.value - reference);
+      INFO(std::setprecision(13) << "h " << height << ", tol " << tol << ": " << c.extinction.value << " +- "
+                                 << c.extinction.error() << " (" << c.evaluations << " evaluations), reference "
+                                 << reference << ", actual error " << actual);
+      CHECK(actual <= c.extinction.error());
+      CHECK(c.extinction.error() <= 1.1 * tol * reference);
+    }
+}
+
+TEST_CASE("segmented contour agrees with the real axis for absorbing drops", "[weather][segmented]") {
+  // Reference: the real-axis rule at 1e-11 over the same density (head of this file).
+  std::vector<SizeDistribution> cases = awkward_tables();
+  cases.push_back(log_normal_table(40));
+  cases.push_back(SizeDistribution::power_law(1e4, 3.5, 0.1e-6, 10e-6));  // Junge, n = C r^-3.5
+  for (const auto& d : cases) {
+    const auto c = route(d, 550e-9, kAbsorbing);
+    QuadratureSettings q;
+    q.rel_tolerance = 1e-11;
+    const BulkOptics axis = bulk_optics(d, 550e-9, kAbsorbing, q);
+    INFO(std::setprecision(13) << d.describe() << ": segmented " << c.extinction.value << " +- "
+                               << c.extinction.error() << " (" << c.evaluations << " evaluations); real axis "
+                               << axis.extinction.value << " +- " << axis.extinction.error());
+    CHECK(axis.extinction.resonance_error == 0);
+    CHECK(std::abs(c.extinction.value - axis.extinction.value) <= c.extinction.error() + axis.extinction.error());
+    CHECK(c.extinction.error() <= 1.1e-9 * c.extinction.value);
+  }
+}
+
+TEST_CASE("segmented contour: kinks, truncated ends, zero segments, bins and a power law in water", "[weather][segmented]") {
+  // Reference: the independent path (head of this file); the real axis within its resonance error.
+  const auto m = refractive_index_table("water").at(550e-9);
+  std::vector<SizeDistribution> cases = awkward_tables();
+  cases.push_back(SizeDistribution::power_law(1e4, 3.5, 0.1e-6, 10e-6));  // Junge, n = C r^-3.5
+  for (const auto& d : cases) {
+    const auto c = route(d, 550e-9, m);
+    const double reference = independent_path_reference(d, 550e-9, m);
+    const double actual = std::abs(c.extinction.value - reference);
+    QuadratureSettings q;
+    q.rel_tolerance = 1e-7;
+    const BulkOptics axis = bulk_optics(d, 550e-9, m, q);
+    INFO(std::setprecision(13) << d.describe() << ": segmented " << c.extinction.value << " +- "
+                               << c.extinction.error() << " (" << c.evaluations << " evaluations), reference "
+                               << reference << ", actual error " << actual << "; real axis " << axis.extinction.value
+                               << " +- " << axis.extinction.error());
+    CHECK(actual <= c.extinction.error());
+    CHECK(c.extinction.error() <= 1.1e-9 * c.extinction.value);
+    CHECK(std::abs(axis.extinction.value - reference) <= axis.extinction.error());
+  }
+}
+
+TEST_CASE("sigma() of a distribution file takes the segmented contour and says so", "[weather][segmented]") {
+  const std::string path = "segmented_contour_test_table.csv";
+  {
+    std::ofstream out(path);
+    out << "radius_um,dNdr_per_cm3_per_um\n1,0\n3,8\n6,5\n10,1\n15,0\n";
+  }
+  const Sigma s = sigma(parse_condition("fog:file=" + path), 550e-9, Settings{});
+  std::remove(path.c_str());
+  INFO(s.note);
+  CHECK(s.note.find("segmented contour") != std::string::npos);
+  CHECK(s.error_per_m <= 1.1e-9 * s.per_m);
+  double sum = 0;
+  for (const auto& term : s.error_terms) sum += term.per_m;
+  CHECK(sum == Approx(s.error_per_m).epsilon(1e-12));
+}
+
+TEST_CASE("segmented contour declines what is not a table or reaches too far", "[weather][segmented]") {
+  CHECK_FALSE(segmented_contour_extinction(preset_distribution("advection"), 550e-9, kAbsorbing));
+  // A table of rain drops up to 3 mm reaches x ~ 3.4e4 at 550 nm, beyond max_x (cost ~ x^2).
+  CHECK_FALSE(segmented_contour_extinction(table_through({{100, 1e-3}, {3000, 1e-6}}, "rain"), 550e-9, kAbsorbing));
+}

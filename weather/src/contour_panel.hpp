@@ -1,0 +1,73 @@
+// One Gauss-Kronrod panel of an integral of S(0; x) w(x) along a path in the
+// complex size-parameter plane: the building block shared by the contour
+// rule of analytic distributions (contour_extinction.cpp) and of tabulated
+// ones (segmented_contour.cpp).
+#pragma once
+
+#include <algorithm>
+#include <complex>
+#include <cstddef>
+#include <vector>
+
+#include "attenuvis/mie/forward_amplitude.hpp"
+#include "gauss_kronrod_rule.hpp"
+
+namespace attenuvis::weather::detail {
+
+struct PathPanel {
+  double a = 0, b = 0;            // parameter interval of the path
+  std::complex<double> kronrod{}; // integral over the panel
+  double error = 0;               // |K - G| (the modulus: see evaluate_path_panel)
+  double rounding = 0;            // bound on the rounding error of the panel's integral
+  double q_max = 0;               // max |4 S(0) / x^2| sampled
+  double magnitude_max = 0;       // max ForwardAmplitude::magnitude sampled
+  std::size_t evaluations = 0;
+};
+
+// Gauss-Kronrod on [a, b] of S(0; x(t)) w(x(t)) x'(t) dt, x(t) = point(t),
+// x'(t) = jacobian(t), w = weight(x) (complex).  The nodes are visited in
+// increasing t, so S(0) is batched over neighbouring |x|.
+template <class Point, class Jacobian, class Weight>
+PathPanel evaluate_path_panel(const Rule& rule, double a, double b, const Point& point, const Jacobian& jacobian,
+                              const Weight& weight, std::complex<double> m, mie::Precision arithmetic) {
+  using Complex = std::complex<double>;
+  PathPanel p;
+  p.a = a;
+  p.b = b;
+  const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+  const std::size_t n = rule.abscissa.size();
+  const std::size_t count = 2 * n - 1;
+  std::vector<double> t(count), kronrod_w(count), gauss_w(count);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t slot : {n - 1 - i, n - 1 + i}) {
+      t[slot] = mid + (slot < n - 1 ? -rule.abscissa[i] : rule.abscissa[i]) * half;
+      kronrod_w[slot] = rule.kronrod_weight[i];
+      gauss_w[slot] = rule.gauss_weight[i];
+    }
+  }
+  std::vector<Complex> x(count);
+  for (std::size_t j = 0; j < count; ++j) x[j] = point(t[j]);
+  std::vector<mie::ForwardAmplitude> fa(count);
+  mie::forward_amplitudes(x.data(), count, m, arithmetic, fa.data());
+  Complex k{}, g{};
+  double worst_rounding = 0;
+  for (std::size_t j = 0; j < count; ++j) {
+    const Complex jac = jacobian(t[j]);
+    const Complex w = weight(x[j]) * jac;
+    const Complex v = fa[j].s0 * w;
+    k += kronrod_w[j] * v;
+    g += gauss_w[j] * v;
+    worst_rounding = std::max(worst_rounding, fa[j].rounding_bound() * std::abs(w));
+    p.q_max = std::max(p.q_max, 4 * std::abs(fa[j].s0) / std::norm(x[j]));
+    p.magnitude_max = std::max(p.magnitude_max, fa[j].magnitude);
+  }
+  p.evaluations = count;
+  p.kronrod = half * k;
+  // The modulus, not |Re(K - G)|: the real part of a complex difference can
+  // vanish by accident while the real part of the error does not.
+  p.error = half * std::abs(k - g);
+  p.rounding = (b - a) * worst_rounding;  // width x largest sampled bound
+  return p;
+}
+
+}  // namespace attenuvis::weather::detail

@@ -1,0 +1,412 @@
+// sigma_ext of a table or a power law by Cauchy's theorem on each of its
+// pieces: see segmented_contour.hpp.
+#include "attenuvis/weather/segmented_contour.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+#include <variant>
+#include <vector>
+
+#include <boost/math/constants/constants.hpp>
+
+#include <tbb/parallel_for.h>
+
+#include "attenuvis/io/number_text.hpp"
+#include "contour_panel.hpp"
+#include "gauss_kronrod_rule.hpp"
+
+namespace attenuvis::weather {
+using io::significant;
+namespace {
+
+constexpr double kPi = boost::math::constants::pi<double>();
+using Complex = std::complex<double>;
+
+// The density between two breakpoints, continued to complex r: a straight
+// line n0 + slope (r - r0) (a table's segment, or zero in a gap between bins)
+// or c r^-nu (a power law, principal branch).
+struct Piece {
+  double r0 = 0, r1 = 0;
+  double n0 = 0, slope = 0, n1 = 0;  // straight line, and its end value as tabulated
+  bool power = false;
+  double c = 0, nu = 0;              // power law
+  bool zero() const { return !power && n0 == 0 && slope == 0; }
+  Complex at(Complex r) const { return power ? c * std::exp(-nu * std::log(r)) : n0 + slope * (r - r0); }
+  double value_at(double r) const { return power ? c * std::pow(r, -nu) : n0 + slope * (r - r0); }
+  double slope_at(double r) const { return power ? -nu * c * std::pow(r, -nu - 1) : slope; }
+};
+
+// The pieces in increasing r, gaps filled with zero pieces; nothing for the
+// distributions that have an analytic continuation of their own.
+std::optional<std::vector<Piece>> pieces_of(const SizeDistribution& d) {
+  std::vector<Piece> out;
+  if (const auto* p = std::get_if<PowerLaw>(&d.form())) {
+    Piece piece;
+    piece.r0 = p->r_min_m;
+    piece.r1 = p->r_max_m;
+    piece.power = true;
+    piece.c = p->c;
+    piece.nu = p->nu;
+    out.push_back(piece);
+    return out;
+  }
+  const auto* t = std::get_if<Tabulated>(&d.form());
+  if (!t) return std::nullopt;
+  for (const auto& s : t->segments) {
+    if (!(s.r1 > s.r0)) continue;  // a zero-width segment holds no particles
+    if (!out.empty() && s.r0 < out.back().r1)
+      throw std::invalid_argument("tabulated distribution " + d.describe() + ": segments overlap or are not in order");
+    if (!out.empty() && s.r0 > out.back().r1) out.push_back({out.back().r1, s.r0, 0, 0, 0});
+    out.push_back({s.r0, s.r1, s.n0, (s.n1 - s.n0) / (s.r1 - s.r0), s.n1});
+  }
+  if (out.empty()) return std::nullopt;
+  return out;
+}
+
+// Where a panel lies: on the path over piece `index`, or on the leg up from
+// breakpoint `index`.
+enum class Where { path, leg };
+
+struct Panel {
+  Where where = Where::path;
+  std::size_t index = 0;
+  detail::PathPanel quad;
+  double near_axis = 0;  // bound on what the rule cannot see below its lowest node (legs touching the axis)
+  double charged() const { return quad.error + near_axis; }
+};
+
+// |S(0)| on the real axis: <= 1/2 sum (2n+1)(|a_n| + |b_n|) <= (N + 1)^2, the
+// series cut where Wiscombe's (1980) criterion ends it.
+double forward_amplitude_bound(double x) {
+  const double terms = x + 4.05 * std::cbrt(x) + 2;
+  return (terms + 1) * (terms + 1);
+}
+
+class Integrand {
+ public:
+  Integrand(std::vector<Piece> pieces, double wavelength, Complex m, const SegmentedContourSettings& s,
+            mie::Precision arithmetic)
+      : pieces_(std::move(pieces)),
+        k_(2 * kPi / wavelength),
+        scale_(4 * kPi / (k_ * k_ * k_)),
+        m_(m),
+        s_(s),
+        rule_(detail::rule_for(s.kronrod_points)),
+        arithmetic_(arithmetic) {}
+
+  std::size_t breakpoints() const { return pieces_.size() + 1; }
+  double x_at(std::size_t k) const { return k_ * (k < pieces_.size() ? pieces_[k].r0 : pieces_.back().r1); }
+  bool zero_piece(std::size_t i) const { return pieces_[i].zero(); }
+  double height(double t) const { return s_.height * std::tanh(s_.angle * t / s_.height); }
+
+  // The jump and the change of slope (both in SI, the slope per metre) of
+  // the density at breakpoint k, right minus left.
+  void difference_at(std::size_t k, double& jump, double& slope_change) const {
+    const double r = x_at(k) / k_;
+    const Piece* right = k < pieces_.size() ? &pieces_[k] : nullptr;
+    const Piece* left = k > 0 ? &pieces_[k - 1] : nullptr;
+    // Between two straight pieces of a table the jump is exact (n1 of the
+    // left segment against n0 of the right one) rather than a difference of
+    // two rounded evaluations.
+    const double left_value = left ? (left->power ? left->value_at(r) : left->n1) : 0.0;
+    const double right_value = right ? right->value_at(r) : 0.0;
+    jump = right_value - left_value;
+    slope_change = (right ? right->slope_at(r) : 0.0) - (left ? left->slope_at(r) : 0.0);
+  }
+  bool power_at(std::size_t k) const {
+    return (k < pieces_.size() && pieces_[k].power) || (k > 0 && pieces_[k - 1].power);
+  }
+  bool leg_vanishes(std::size_t k) const {
+    double jump = 0, slope_change = 0;
+    difference_at(k, jump, slope_change);
+    return !power_at(k) && jump == 0 && slope_change == 0;
+  }
+
+  Panel path_panel(std::size_t i, double a, double b) const {
+    const Piece& piece = pieces_[i];
+    const double H = s_.height, theta = s_.angle;
+    Panel p;
+    p.where = Where::path;
+    p.index = i;
+    p.quad = detail::evaluate_path_panel(
+        rule_, a, b, [&](double t) { return Complex(t, height(t)); },
+        [&](double t) {
+          const double c = 1 / std::cosh(theta * t / H);
+          return Complex(1.0, theta * c * c);
+        },
+        [&](Complex x) { return scale_ * piece.at(x / k_); }, m_, arithmetic_);
+    return p;
+  }
+
+  // The leg up from breakpoint k over y in [a, b]: i int D_k(x_k + i y) dy.
+  Panel leg_panel(std::size_t k, double a, double b) const {
+    const double xk = x_at(k), rk = xk / k_;
+    const Piece* right = k < pieces_.size() ? &pieces_[k] : nullptr;
+    const Piece* left = k > 0 ? &pieces_[k - 1] : nullptr;
+    double jump = 0, slope_change = 0;
+    difference_at(k, jump, slope_change);
+    const bool straight = !(right && right->power) && !(left && left->power);
+    // Straight pieces: the difference written as jump + slope change x (r - r_k),
+    // which is exactly 0 on the axis of a continuous table.
+    const auto difference = [&](Complex r) -> Complex {
+      if (straight) return jump + slope_change * (r - rk);
+      return (right ? right->at(r) : Complex{}) - (left ? left->at(r) : Complex{});
+    };
+    Panel p;
+    p.where = Where::leg;
+    p.index = k;
+    p.quad = detail::evaluate_path_panel(
+        rule_, a, b, [&](double y) { return Complex(xk, y); }, [](double) { return Complex(0, 1); },
+        [&](Complex x) { return scale_ * difference(x / k_); }, m_, arithmetic_);
+    if (a == 0) p.near_axis = near_axis_bound(k, lowest_node(b));
+    return p;
+  }
+
+  // Below the lowest node y_1 of a leg's panel on the axis the rule sees
+  // nothing of a resonance lying closer to the axis; that part is bounded
+  // (segmented_contour.hpp).  A power law's slope varies along the leg: twice
+  // the slope at r_k covers it for y_1 << x_k.
+  double lowest_node(double height) const { return 0.5 * height * (1 - rule_.abscissa.back()); }
+  double near_axis_bound(std::size_t k, double y1) const {
+    double jump = 0, slope_change = 0;
+    difference_at(k, jump, slope_change);
+    const double s_max = forward_amplitude_bound(x_at(k)) * std::exp(2 * y1);
+    const double slope = (power_at(k) ? 2.0 : 1.0) * std::abs(slope_change);
+    return 2 * scale_ * s_max * (std::abs(jump) * y1 + slope * y1 * y1 / (2 * k_));
+  }
+  // Where to cut a leg's panel [0, b] on the axis so that the lower part's
+  // bound is about `allowed`: between b/4096 and `largest` (the upper part is
+  // split again at its middle if its |K - G| asks).
+  double axis_cut(std::size_t k, double b, double allowed, double largest) const {
+    double lo = b / 4096, hi = largest;
+    if (near_axis_bound(k, lowest_node(hi)) <= allowed) return hi;
+    for (int i = 0; i < 40; ++i) {  // bisection in log: the bound grows with the height
+      const double mid = std::sqrt(lo * hi);
+      (near_axis_bound(k, lowest_node(mid)) <= allowed ? lo : hi) = mid;
+    }
+    return lo;
+  }
+
+  Panel evaluate(Where where, std::size_t index, double a, double b) const {
+    return where == Where::path ? path_panel(index, a, b) : leg_panel(index, a, b);
+  }
+
+ private:
+  std::vector<Piece> pieces_;
+  double k_, scale_;
+  Complex m_;
+  const SegmentedContourSettings& s_;
+  detail::Rule rule_;
+  mie::Precision arithmetic_;
+};
+
+// Relative amplitude left of the resonance ripple at height h (Chylek 1976;
+// contour_extinction.cpp).
+double ripple_residual(Complex m, double h) {
+  const double n = m.real();
+  const double root = n > 1 ? std::sqrt(n * n - 1) : 0.0;
+  const double period = root > 1e-8 ? std::atan(root) / root : 1.0;
+  return std::exp(-2 * kPi * h / period);
+}
+
+// Where a panel is split: at the middle, or, for a leg's panel on the axis,
+// low enough that the new near-axis bound is about `allowed` (it falls like
+// y_1 or y_1^2).
+double split_point(const Integrand& f, const Panel& p, double allowed) {
+  if (p.where == Where::leg && p.quad.a == 0) return f.axis_cut(p.index, p.quad.b, allowed, p.quad.b / 8);
+  return 0.5 * (p.quad.a + p.quad.b);
+}
+
+}  // namespace
+
+std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribution& d, double wavelength_m,
+                                                              Complex m, const SegmentedContourSettings& s) {
+  auto pieces = pieces_of(d);
+  if (!pieces) return std::nullopt;
+  const double k = 2 * kPi / wavelength_m;
+  const double x_min = k * pieces->front().r0, x_max = k * pieces->back().r1;
+  if (!(x_max <= s.max_x) || !(x_min > 0) || pieces->size() > s.max_pieces) return std::nullopt;
+  const mie::Precision arithmetic = s.rel_tolerance >= 1e-9 && s.height <= 4 ? mie::Precision::double_precision
+                                                                               : mie::Precision::extended;
+  const Integrand f(std::move(*pieces), wavelength_m, m, s, arithmetic);
+  const std::size_t n_pieces = f.breakpoints() - 1;
+
+  // Initial panels.  The path over each piece: edges at the breakpoints, and
+  // inside a piece every panel_width, graded towards x = 0 up to the rise
+  // length 2H/theta as contour_extinction.cpp does (resonance poles sit at
+  // ~theta x from the low path there).  The legs follow, once the path has
+  // given the scale of sigma_ext.
+  struct Task {
+    Where where;
+    std::size_t index;
+    double a, b;
+  };
+  std::vector<Task> tasks;
+  std::vector<double> grid;
+  for (double g = s.height / s.angle / 4; g < 2 * s.height / s.angle; g *= 2) grid.push_back(g);
+  for (std::size_t i = 0; i < n_pieces; ++i) {
+    if (f.zero_piece(i)) continue;
+    const double a = f.x_at(i), b = f.x_at(i + 1);
+    std::vector<double> edges{a};
+    for (double g : grid)
+      if (g > a && g < b) edges.push_back(g);
+    const double from = edges.back();
+    const int n = std::max(1, static_cast<int>(std::ceil((b - from) / s.panel_width)));
+    for (int j = 1; j <= n; ++j) edges.push_back(j == n ? b : from + (b - from) * j / n);
+    for (std::size_t j = 0; j + 1 < edges.size(); ++j) tasks.push_back({Where::path, i, edges[j], edges[j + 1]});
+  }
+  const auto evaluate_all = [&](const std::vector<Task>& ts) {
+    std::vector<Panel> out(ts.size());
+    tbb::parallel_for(std::size_t(0), ts.size(),
+                      [&](std::size_t i) { out[i] = f.evaluate(ts[i].where, ts[i].index, ts[i].a, ts[i].b); });
+    return out;
+  };
+  std::vector<Panel> panels = evaluate_all(tasks);
+  // The legs add ~h^2 / w^2 of sigma_ext (w the width of the distribution in
+  // x), so the path alone sizes their near-axis budget: each leg starts as
+  // panels [0, c], [c, 16c], [16c, 256c], ..., h, c set so that the bound below
+  // its lowest node is a quarter of the leg's share of the tolerance.
+  std::size_t legs = 0;
+  for (std::size_t kb = 0; kb < f.breakpoints(); ++kb) legs += !f.leg_vanishes(kb);
+  Complex path_total{};
+  for (const auto& p : panels) path_total += p.quad.kronrod;
+  const double leg_allowed = 0.25 * s.rel_tolerance * std::abs(path_total.real()) / std::max<std::size_t>(legs, 1);
+  std::vector<Task> leg_tasks;
+  for (std::size_t kb = 0; kb < f.breakpoints(); ++kb) {
+    if (f.leg_vanishes(kb)) continue;
+    const double h = f.height(f.x_at(kb));
+    double c = f.axis_cut(kb, h, leg_allowed, h);
+    leg_tasks.push_back({Where::leg, kb, 0.0, c});
+    for (; c < h; c *= 16) leg_tasks.push_back({Where::leg, kb, c, std::min(16 * c, h)});
+  }
+  for (Panel& p : evaluate_all(leg_tasks)) panels.push_back(std::move(p));
+
+  std::size_t evaluations = 0;
+  for (const auto& p : panels) evaluations += p.quad.evaluations;
+  struct Sums {
+    Complex total;
+    double error = 0, near_axis = 0, rounding = 0;
+  };
+  const auto sums = [](const std::vector<Panel>& ps) {
+    Sums out;
+    for (const auto& p : ps) {
+      out.total += p.quad.kronrod;
+      out.error += p.quad.error;
+      out.near_axis += p.near_axis;
+      out.rounding += p.quad.rounding;
+    }
+    return out;
+  };
+  const auto halves_of = [&](const std::vector<Panel>& ps, const std::vector<std::size_t>& which, double allowed) {
+    std::vector<Panel> halves(2 * which.size());
+    tbb::parallel_for(std::size_t(0), halves.size(), [&](std::size_t j) {
+      const Panel& p = ps[which[j / 2]];
+      const double cut = split_point(f, p, allowed > 0 ? allowed : p.near_axis / 8);
+      halves[j] = j % 2 == 0 ? f.evaluate(p.where, p.index, p.quad.a, cut) : f.evaluate(p.where, p.index, cut, p.quad.b);
+    });
+    for (const auto& h : halves) evaluations += h.quad.evaluations;
+    return halves;
+  };
+  const auto require_finite = [&](const Sums& sum) {
+    if (!std::isfinite(sum.total.real()) || !std::isfinite(sum.error) || !std::isfinite(sum.near_axis))
+      throw std::runtime_error("sigma_ext by segmented contour over " + d.describe() +
+                               ": the integral is not finite in double precision (sum " +
+                               significant(sum.total.real(), 3) + "); the distribution's number density is out of range");
+  };
+  const auto check_budget = [&](const char* what, double error, const Sums& sum) {
+    if (evaluations > s.max_evaluations)
+      throw std::runtime_error(std::string("sigma_ext by segmented contour: ") + what + " " +
+                               significant(error / std::abs(sum.total.real()), 3) +
+                               " (relative) still above the tolerance " + significant(s.rel_tolerance, 3) + " after " +
+                               std::to_string(evaluations) + " Mie evaluations");
+  };
+  // Adaptive: split panels until |K - G| plus the near-axis bounds meet the target.
+  const auto refine = [&](std::vector<Panel>& ps) {
+    for (;;) {
+      const Sums sum = sums(ps);
+      require_finite(sum);
+      const double target = s.rel_tolerance * std::abs(sum.total.real());
+      if (sum.error + sum.near_axis <= target) return;
+      check_budget("quadrature error", sum.error + sum.near_axis, sum);
+      // The largest charges first, until they cover the excess over half
+      // the target (the halves keep some of it); at least the worst, so every
+      // round spends evaluations and the budget ends the loop.  Which ones
+      // depends on the values alone, not on the thread count.
+      const double share = target / static_cast<double>(ps.size());
+      std::vector<std::size_t> order(ps.size());
+      std::iota(order.begin(), order.end(), std::size_t(0));
+      std::stable_sort(order.begin(), order.end(),
+                       [&](std::size_t i, std::size_t j) { return ps[i].charged() > ps[j].charged(); });
+      const double excess = sum.error + sum.near_axis - 0.5 * target;
+      std::vector<std::size_t> split;
+      double taken = 0;
+      for (std::size_t i : order) {
+        if (!split.empty() && taken >= excess) break;
+        split.push_back(i);
+        taken += ps[i].charged();
+      }
+      std::sort(split.begin(), split.end());
+      const std::vector<Panel> halves = halves_of(ps, split, 0.5 * share);
+      std::vector<Panel> next;
+      next.reserve(ps.size() + split.size());
+      for (std::size_t i = 0, h = 0; i < ps.size(); ++i) {
+        if (h < split.size() && split[h] == i) {
+          next.push_back(halves[2 * h]);
+          next.push_back(halves[2 * h + 1]);
+          ++h;
+        } else {
+          next.push_back(ps[i]);
+        }
+      }
+      ps.swap(next);
+    }
+  };
+  // Verification by halving, as contour_extinction.cpp: |K - G| stalls where
+  // the ripple left at height H is not far below the tolerance.
+  const bool verify = s.verify || ripple_residual(m, s.height * std::tanh(s.angle * x_max / s.height)) >
+                                      1e-2 * s.rel_tolerance;
+  Sums fine;
+  for (;;) {
+    refine(panels);
+    if (!verify) {
+      fine = sums(panels);
+      break;
+    }
+    const Complex coarse = sums(panels).total;
+    std::vector<std::size_t> all(panels.size());
+    std::iota(all.begin(), all.end(), std::size_t(0));
+    std::vector<Panel> halves = halves_of(panels, all, 0.0);
+    fine = sums(halves);
+    fine.error += std::abs((fine.total - coarse).real());
+    require_finite(fine);
+    if (fine.error + fine.near_axis <= s.rel_tolerance * std::abs(fine.total.real())) break;
+    check_budget("verified quadrature error", fine.error + fine.near_axis, fine);
+    panels.swap(halves);
+  }
+
+  ContourExtinction out;
+  out.extinction.value = fine.total.real();
+  out.extinction.quadrature_error = fine.error;
+  out.extinction.resonance_error = fine.near_axis;
+  out.extinction.rounding_error = fine.rounding;
+  out.evaluations = evaluations;
+  out.max_size_parameter = x_max;
+  out.height = s.height;
+  out.angle = s.angle;
+  out.verified = verify;
+  std::ostringstream method;
+  method << "segmented contour: Cauchy on each of " << n_pieces << " pieces of the "
+         << (std::holds_alternative<PowerLaw>(d.form()) ? "power law" : "table")
+         << ", path x = t + i h(t), h <= " << significant(s.height, 3) << ", with " << legs
+         << " legs down to the breakpoints, near-axis parts bounded (segmented_contour.hpp), Gauss-Kronrod "
+         << s.kronrod_points << " (Boost.Math)" << (verify ? ", verified by halving" : "") << ", S(0) in "
+         << (arithmetic == mie::Precision::double_precision ? "double" : "long double") << ", rel. tol "
+         << significant(s.rel_tolerance, 3) << ", " << evaluations << " evaluations, x <= " << significant(x_max, 3);
+  out.method = method.str();
+  return out;
+}
+
+}  // namespace attenuvis::weather
