@@ -380,6 +380,41 @@ TEST_CASE("Legendre moments: bad input", "[mie][moments]") {
   CHECK_THROWS_AS(mie::phase_function_from_moments({1.0}, {181.0}), std::invalid_argument);
 }
 
+// The node loops of the moments and the expansion run in clones per instruction set
+// (mie/src/legendre_moments_double.cpp, AVX-512 / AVX2 / baseline, chosen at run
+// time); all must give the bits of the same kernels compiled here for baseline
+// x86-64.  Without fused multiply-adds in this translation unit (-march with
+// FMA would let the compiler contract a*b+c here) the comparison is exact.
+TEST_CASE("Legendre moments and expansion: the per-instruction-set kernels give the bits of the portable build",
+          "[mie][moments]") {
+#if defined(__FMA__)
+  WARN("not compared: this translation unit may contract multiply-adds, the bit comparison needs separate "
+       "roundings");
+#else
+  for (const double x : {0.3, 7.0, 60.0, 700.0})
+    for (const cd m : kIndices) {
+      const auto s = with_coefficients(x, m);
+      for (const std::size_t L : {std::size_t(16), mie::all_orders}) {
+        const std::vector<double> fast = mie::phase_function_moments(s, L);
+        const std::vector<double> portable = mie::detail::legendre_moments<double, false>(s.a, s.b, L);
+        INFO("x = " << x << ", m = " << m << ", L = " << (L == mie::all_orders ? 2 * s.a.size() : L));
+        REQUIRE(fast.size() == portable.size());
+        std::size_t differing = 0;
+        for (std::size_t l = 0; l < fast.size(); ++l) differing += fast[l] != portable[l] ? 1 : 0;
+        CHECK(differing == 0);
+        const auto fast_gsf = mie::scattering_matrix_expansion(s, L);
+        const auto portable_gsf = mie::detail::gsf_coefficients<double, false>(s.a, s.b, L);
+        CHECK(fast_gsf.alpha1 == portable_gsf.alpha1);
+        CHECK(fast_gsf.alpha2 == portable_gsf.alpha2);
+        CHECK(fast_gsf.alpha3 == portable_gsf.alpha3);
+        CHECK(fast_gsf.alpha4 == portable_gsf.alpha4);
+        CHECK(fast_gsf.beta1 == portable_gsf.beta1);
+        CHECK(fast_gsf.beta2 == portable_gsf.beta2);
+      }
+    }
+#endif
+}
+
 TEST_CASE("Legendre moments against the 50-digit referee, x <= 100", "[mie][moments][referee]") {
   for (const double x : {1e-3, 0.1, 1.0, 10.0, 100.0}) check_referee_at(x);
 }

@@ -216,6 +216,15 @@ TEST_CASE("bulk Legendre moment errors cover the resonances: radiation fog, 550 
   check_against_brute_force(preset_distribution("radiation"), 1.55e-6, {180.0}, 8);
 }
 
+TEST_CASE("bulk Legendre moment errors cover the resonances: advection fog, 1.55 um, L = 64",
+          "[weather][bulk][backscatter][brute][advection][slow]") {
+  // Advection fog (x < 580 at 1.55 um) with the moments of the optics command's
+  // L = 64: pass B's quadrature stops at a hundredth of the moments' resonance
+  // target (mie_bulk_optics), and the reported error of every chi_l must still
+  // cover the brute-force sums (2 x ~0.6 M spheres with moments).
+  check_against_brute_force(preset_distribution("advection"), 1.55e-6, {}, 64);
+}
+
 TEST_CASE("bulk scattering-matrix expansion: identities of de Rooij & van der Stap (Mie)",
           "[weather][bulk][polarised]") {
   // Radiation fog at 1.55 um (P.1817-1 / seed; water from Hale & Querry 1973).  Each sphere's

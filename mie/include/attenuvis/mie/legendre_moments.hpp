@@ -47,20 +47,29 @@
 //
 // Accuracy (tests/mie/test_legendre_moments.cpp), max over l = 0..2N of the
 // absolute error of χ_l and of α_l/(2l+1), β_l/(2l+1), for m in {1.33 + 1e-8i,
-// 1.5 + 0.1i, 10 + 10i}: against the 50-digit referee <= 2.3e-16 for x <= 1,
-// <= 8e-16 at x = 100, <= 6.1e-15 at x = 1000; at x = 1e4 (N ≈ 10180), against
+// 1.5 + 0.1i, 10 + 10i}: against the 50-digit referee <= 4.5e-16 for x <= 10,
+// <= 1.7e-15 at x = 100, <= 3.8e-15 at x = 1000; at x = 1e4 (N ≈ 10180), against
 // the same algorithm in extended precision on the referee's coefficients (that
-// rung agrees with the 50-digit referee to 2.2e-18 for x <= 1000), <= 1.2e-14.
+// rung agrees with the 50-digit referee to 1.2e-18 for x <= 1000), <= 1.9e-14
+// (χ_l alone <= 1.6e-14, also against the 50-digit referee itself).
 //
-// Cost: at x = 1000 (N ≈ 1085) the moments take ~5.7 ms and the full expansion
-// ~21 ms against ~0.1 ms for the efficiencies: 56-60x and ~200x (one core of the
-// shared development machine, validation/bench/mie_moments_speed.cpp), not the
-// 2x one might hope for.  The efficiencies are O(N) sums, whereas 2N+1 moments
-// that each depend on all N coefficient pairs cost O(N²) even by this quadrature
-// (2N+1 nodes × N terms), and more by Dave's double sums (O(N²) per moment); only
-// a fast Legendre transform (O(N log² N)) could close the gap — not done.
-// Building the rule of 2N+1 nodes adds ~35 ms once per order; it is cached per
-// thread and reused for any sphere whose N is within ~6%.
+// Cost: at x = 1000 (N ≈ 1085) the moments take ~0.8 ms and the full expansion
+// ~2.0 ms; with the Mie coefficients, 41-45x and 97-108x the efficiencies
+// (~20 µs) measured in the same run (one core of the shared AMD EPYC development
+// machine, validation/bench/mie_moments_speed.cpp, which also prints the error).
+// The node loops run in clones per instruction set (mie/src/legendre_moments_
+// double.cpp): AVX-512 3.0x faster than the baseline x86-64 build of the same
+// loops at x = 1000, same bits.  The 2x one might hope for is out of reach of
+// any direct method: the efficiencies are O(N) sums, whereas the 2N+1 moments
+// each depend on all N coefficient pairs.  This quadrature does N(N+1) ≈ 1.2e6
+// node-term updates of ~25 flops (S1, S2 at N+1 nodes) and (2N+1)(N+1) ≈ 2.4e6
+// Legendre steps of ~7 (no fused multiply-adds: -ffp-contract=off), ~46 Mflop
+// in 0.8 ms, ~55 Gflop/s, about the 16 flop/cycle one Zen 4 core does without
+// FMA.  2x the efficiencies (~40 µs) would need ~1 Tflop/s; only a fast
+// Legendre transform (O(N log² N)) could change the count — not done.  Dave's
+// double sums (O(N²) per moment) cost more.  Building the rule of 2N+1 nodes
+// adds ~22 ms once per order bin; rules are cached per thread for every bin met
+// (orders within ~3-6% share one).
 //
 // Example (DISORT input for one water droplet, x = 50, m = 1.33 + 1e-8i):
 //     namespace mie = attenuvis::mie;

@@ -19,7 +19,10 @@
 // Cost O(N·n_q + L·n_q) = O(N²).  Both loops use the parity of the angular
 // functions (πₙ(−μ) = (−1)^{n−1} πₙ(μ), τₙ(−μ) = (−1)ⁿ τₙ(μ), P_l(−μ) = (−1)^l P_l,
 // d^l_{22}(−μ) = (−1)^l d^l_{2,−2}(μ), d^l_{02}(−μ) = (−1)^l d^l_{02}(μ)), so only
-// the nodes with μ >= 0 are visited.
+// the nodes with μ >= 0 are visited.  They run chunk by chunk of nodes: S1, S2
+// at kChunk nodes, their products, then every degree l for those nodes, so that
+// all of it stays in L1 and the nodes of a chunk form the vector lanes (in
+// double, one clone per instruction set: mie/src/legendre_moments_double.cpp).
 //
 // Accuracy near θ = 0 (the forward peak, which carries half of the scattering of
 // a large sphere in a cone Δθ ≈ 1/x):
@@ -37,7 +40,9 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <map>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "attenuvis/mie.hpp"
@@ -60,27 +65,32 @@ inline std::size_t binned_rule_order(std::size_t order) {
   return (order + q - 1) / q * q + 1;
 }
 
+//
+// Every binned order a thread meets is kept (a map, whose entries stay put), not
+// only the last one: the nodes of a size-distribution quadrature panel visit
+// sizes in the order of the Kronrod abscissae, so consecutive spheres alternate
+// between bins, and with a single cached rule more than half of the time of
+// `attenuvis optics … --moments 64` went into rebuilding rules.  ~32 bins per
+// octave of order, a rule of order n holding 8n bytes in double, is ~800·n_max
+// bytes for all orders up to n_max (1.7 MB at x = 1000, L = 2N); past
+// kMaxCachedNodes summed orders (8 MB in double per thread) the cache starts
+// afresh, which changes only the time, never a result.
+inline constexpr std::size_t kMaxCachedNodes = std::size_t(1) << 20;
+
 template <class Real>
 const HalfGaussLegendre<Real>& cached_rule(std::size_t order) {
-  thread_local HalfGaussLegendre<Real> rule;
+  thread_local std::map<std::size_t, HalfGaussLegendre<Real>> rules;
+  thread_local std::size_t cached_nodes = 0;
   const std::size_t binned = binned_rule_order(order);
-  if (rule.order != binned) rule = half_gauss_legendre<Real>(binned);
-  return rule;
+  const auto found = rules.find(binned);
+  if (found != rules.end()) return found->second;
+  if (cached_nodes + binned > kMaxCachedNodes) {
+    rules.clear();
+    cached_nodes = 0;
+  }
+  cached_nodes += binned;
+  return rules.emplace(binned, half_gauss_legendre<Real>(binned)).first->second;
 }
-
-// Products of the amplitude functions at ±μ of each half-rule node, divided by
-// W = Σ (2n+1)(|aₙ|² + |bₙ|²) = x² Qsca / 2 (then a1 = (|S1|²+|S2|²)/W is the
-// phase function with ½∫a1 dμ = 1), and multiplied by the node's weight.
-template <class Real>
-struct WeightedProducts {
-  // index [0] at +μ, [1] at −μ
-  std::array<std::vector<Real>, 2> a1;      // (|S1|² + |S2|²)/W   = p
-  std::array<std::vector<Real>, 2> a3;      // 2 Re(S2 S1*)/W      (= a4 for spheres)
-  std::array<std::vector<Real>, 2> sum;     // |S1 + S2|²/W = a2 + a3
-  std::array<std::vector<Real>, 2> diff;    // |S1 − S2|²/W = a2 − a3
-  std::array<std::vector<Real>, 2> b1;      // (|S2|² − |S1|²)/W
-  std::array<std::vector<Real>, 2> b2;      // −2 Im(S2 S1*)/W  (sign: see legendre_moments.hpp)
-};
 
 template <class Real>
 Real scattering_norm(const std::vector<Complex<Real>>& a, const std::vector<Complex<Real>>& b) {
@@ -122,9 +132,25 @@ struct AmplitudeSeries {
   }
 };
 
+// The node loops run on blocks of kLanes nodes: the state of one block (four
+// recurrence values and eight partial sums per node) then fits the vector
+// registers of AVX-512 (12 of 32) and nearly those of AVX2, instead of going
+// through memory for every term.  The moments are accumulated over chunks of
+// kChunk nodes (moments_chunk).  Neither size changes any result of a node,
+// and the chunk sums are formed in an order fixed by kLanes and kChunk alone,
+// so the results do not depend on the instruction set either.
+inline constexpr std::size_t kLanes = 8;
 inline constexpr std::size_t kChunk = 32;
 
-// S1, S2 (even and odd parts) at `len` <= kChunk consecutive nodes, added to out[k][j0 + j].
+// The kernels are inlined into their per-instruction-set callers
+// (mie/src/legendre_moments_double.cpp), which is what compiles them for each set.
+#if defined(__GNUC__)
+#define ATTENUVIS_MIE_KERNEL __attribute__((always_inline)) inline
+#else
+#define ATTENUVIS_MIE_KERNEL inline
+#endif
+
+// S1, S2 (even and odd parts) at kLanes nodes, one series term at a time.
 // The angular functions are carried normalised to 1 at μ = 1:
 //   uₙ = πₙ/cₙ,  tₙ = τₙ/cₙ,  cₙ = n(n+1)/2 = πₙ(1) = τₙ(1).  From B&H 4.47:
 //   (n+2) uₙ₊₁ = (2n+1) μ uₙ − (n−1) uₙ₋₁,      tₙ = n μ uₙ − (n−1) uₙ₋₁.
@@ -135,25 +161,30 @@ inline constexpr std::size_t kChunk = 32;
 //   Eₙ₊₁ = ((n−1) Eₙ − 2s (2n+1) uₙ)/(n+2),  uₙ₊₁ = uₙ + Eₙ₊₁,
 //   tₙ = uₙ₋₁ + n (Eₙ − 2s uₙ),
 // obtained by subtracting the μ = 1 identity (n+2) = (2n+1) − (n−1).
-template <class Real, bool NearForward>
-void amplitude_chunk(const AmplitudeSeries<Real>& c, const Real* two_s, std::size_t len, Real* const out[8],
-                     std::size_t j0) {
-  Real ts[kChunk], u0[kChunk], u1[kChunk], e[kChunk];
-  Real s1e_r[kChunk], s1e_i[kChunk], s1o_r[kChunk], s1o_i[kChunk];
-  Real s2e_r[kChunk], s2e_i[kChunk], s2o_r[kChunk], s2o_i[kChunk];
-  for (std::size_t j = 0; j < kChunk; ++j) {
-    ts[j] = j < len ? two_s[j] : Real(0);
-    u0[j] = 1;  // u₀ is arbitrary (its coefficient is zero); 1 makes E₁ = 0
-    u1[j] = 1;
-    e[j] = 0;
-    s1e_r[j] = s1e_i[j] = s1o_r[j] = s1o_i[j] = s2e_r[j] = s2e_i[j] = s2o_r[j] = s2o_i[j] = Real(0);
+template <class Real>
+struct AmplitudeBlock {
+  Real ts[kLanes], u0[kLanes], u1[kLanes], e[kLanes];
+  Real s1e_r[kLanes], s1e_i[kLanes], s1o_r[kLanes], s1o_i[kLanes];
+  Real s2e_r[kLanes], s2e_i[kLanes], s2o_r[kLanes], s2o_i[kLanes];
+
+  AmplitudeBlock(const Real* two_s, std::size_t len) {
+    for (std::size_t j = 0; j < kLanes; ++j) {
+      ts[j] = j < len ? two_s[j] : Real(0);
+      u0[j] = 1;  // u₀ is arbitrary (its coefficient is zero); 1 makes E₁ = 0
+      u1[j] = 1;
+      e[j] = 0;
+      s1e_r[j] = s1e_i[j] = s1o_r[j] = s1o_i[j] = s2e_r[j] = s2e_i[j] = s2o_r[j] = s2o_i[j] = Real(0);
+    }
   }
-  const std::size_t nt = c.pr.size();
-  for (std::size_t i = 0; i < nt; ++i) {
-    const bool odd = i % 2 == 0;  // n = i+1
+
+  // Term n = i + 1 (OddN: n odd, see AmplitudeSeries for the even/odd split);
+  // odd and even n are separate instances so that the loop over the nodes has
+  // no selection in it.
+  template <bool NearForward, bool OddN>
+  ATTENUVIS_MIE_KERNEL void term(const AmplitudeSeries<Real>& c, std::size_t i) {
     const Real pr = c.pr[i], pi = c.pi[i], qr = c.qr[i], qi = c.qi[i];
     const Real rn = Real(i + 1), rn1 = Real(i), kp = c.k_prev[i], kc = c.k_cur[i];
-    for (std::size_t j = 0; j < kChunk; ++j) {
+    for (std::size_t j = 0; j < kLanes; ++j) {
       const Real u = u1[j];
       Real t;
       if constexpr (NearForward) {
@@ -167,7 +198,7 @@ void amplitude_chunk(const AmplitudeSeries<Real>& c, const Real* two_s, std::siz
         u1[j] = kc * mu_u - kp * u0[j];
         u0[j] = u;
       }
-      const Real ev = odd ? u : t, od = odd ? t : u;
+      const Real ev = OddN ? u : t, od = OddN ? t : u;
       s1e_r[j] += pr * ev;
       s1e_i[j] += pi * ev;
       s1o_r[j] += qr * od;
@@ -178,73 +209,148 @@ void amplitude_chunk(const AmplitudeSeries<Real>& c, const Real* two_s, std::siz
       s2o_i[j] += pi * od;
     }
   }
-  for (std::size_t j = 0; j < len; ++j) {
-    out[0][j0 + j] = s1e_r[j];
-    out[1][j0 + j] = s1e_i[j];
-    out[2][j0 + j] = s1o_r[j];
-    out[3][j0 + j] = s1o_i[j];
-    out[4][j0 + j] = s2e_r[j];
-    out[5][j0 + j] = s2e_i[j];
-    out[6][j0 + j] = s2o_r[j];
-    out[7][j0 + j] = s2o_i[j];
+
+  template <bool NearForward>
+  ATTENUVIS_MIE_KERNEL void sum(const AmplitudeSeries<Real>& c) {
+    const std::size_t nt = c.pr.size();
+    std::size_t i = 0;
+    for (; i + 1 < nt; i += 2) {
+      term<NearForward, true>(c, i);
+      term<NearForward, false>(c, i + 1);
+    }
+    if (i < nt) term<NearForward, true>(c, i);
+  }
+};
+
+// S1, S2 (even and odd parts) at `count` consecutive nodes 2s = two_s[j], all on
+// one side of s = ¼ (`near`: s <= ¼), stored to out[k][j].
+template <class Real>
+ATTENUVIS_MIE_KERNEL void amplitudes(const AmplitudeSeries<Real>& c, const Real* two_s, std::size_t count,
+                                     bool near, Real* const out[8]) {
+  for (std::size_t j0 = 0; j0 < count; j0 += kLanes) {
+    const std::size_t len = std::min(kLanes, count - j0);
+    AmplitudeBlock<Real> b(two_s + j0, len);
+    if (near)
+      b.template sum<true>(c);
+    else
+      b.template sum<false>(c);
+    for (std::size_t j = 0; j < len; ++j) {
+      out[0][j0 + j] = b.s1e_r[j];
+      out[1][j0 + j] = b.s1e_i[j];
+      out[2][j0 + j] = b.s1o_r[j];
+      out[3][j0 + j] = b.s1o_i[j];
+      out[4][j0 + j] = b.s2e_r[j];
+      out[5][j0 + j] = b.s2e_i[j];
+      out[6][j0 + j] = b.s2o_r[j];
+      out[7][j0 + j] = b.s2o_i[j];
+    }
   }
 }
 
+// Bonnet's recurrence (l+2)P_{l+2} = (2l+3)μP_{l+1} − (l+1)P_l as
+// P_{l+2} = k1[l] μP_{l+1} − k2[l] P_l, for l = 0..lmax.
 template <class Real>
-WeightedProducts<Real> weighted_products(const std::vector<Complex<Real>>& a,
-                                         const std::vector<Complex<Real>>& b,
-                                         const HalfGaussLegendre<Real>& rule, bool full_matrix) {
-  const std::size_t m = rule.s.size();
-  AmplitudeSeries<Real> c(a, b);
-  std::vector<Real> e1r(m), e1i(m), o1r(m), o1i(m), e2r(m), e2i(m), o2r(m), o2i(m), two_s(m);
-  std::size_t split = 0;  // nodes [0, split) have s <= 1/4 (ascending s)
-  for (std::size_t j = 0; j < m; ++j) {
-    two_s[j] = 2 * rule.s[j];
-    if (rule.s[j] <= Real(0.25)) split = j + 1;
-  }
-  // Chunks of nodes small enough for the per-node state to stay in L1 (and, for
-  // double, to let the compiler vectorise across nodes without aliasing doubts).
-  Real* const parts[8] = {e1r.data(), e1i.data(), o1r.data(), o1i.data(),
-                          e2r.data(), e2i.data(), o2r.data(), o2i.data()};
-  for (std::size_t j0 = 0; j0 < m;) {
-    const bool near = j0 < split;
-    const std::size_t len = std::min(kChunk, (near ? split : m) - j0);
-    if (near)
-      amplitude_chunk<Real, true>(c, two_s.data() + j0, len, parts, j0);
-    else
-      amplitude_chunk<Real, false>(c, two_s.data() + j0, len, parts, j0);
-    j0 += len;
-  }
-  const Real inv_w = 1 / scattering_norm<Real>(a, b);
-  WeightedProducts<Real> out;
-  for (int side = 0; side < 2; ++side) {
-    out.a1[side].resize(m);
-    if (full_matrix) {
-      out.a3[side].resize(m);
-      out.sum[side].resize(m);
-      out.diff[side].resize(m);
-      out.b1[side].resize(m);
-      out.b2[side].resize(m);
+struct BonnetCoefficients {
+  std::vector<Real> k1, k2;
+  explicit BonnetCoefficients(std::size_t lmax) : k1(lmax + 1), k2(lmax + 1) {
+    for (std::size_t l = 0; l <= lmax; ++l) {
+      k1[l] = Real(2 * l + 3) / Real(l + 2);
+      k2[l] = Real(l + 1) / Real(l + 2);
     }
   }
-  for (std::size_t j = 0; j < m; ++j) {
-    const Real ww = rule.w[j] * inv_w;
-    for (int side = 0; side < 2; ++side) {
-      const Real sg = side == 0 ? Real(1) : Real(-1);
-      const Real s1r = e1r[j] + sg * o1r[j], s1i = e1i[j] + sg * o1i[j];
-      const Real s2r = e2r[j] + sg * o2r[j], s2i = e2i[j] + sg * o2i[j];
-      const Real i1 = s1r * s1r + s1i * s1i, i2 = s2r * s2r + s2i * s2i;
-      out.a1[side][j] = ww * (i1 + i2);
-      if (!full_matrix) continue;
-      const Real re = s2r * s1r + s2i * s1i, im = s2i * s1r - s2r * s1i;
-      out.a3[side][j] = ww * 2 * re;
-      out.sum[side][j] = ww * ((s1r + s2r) * (s1r + s2r) + (s1i + s2i) * (s1i + s2i));
-      out.diff[side][j] = ww * ((s1r - s2r) * (s1r - s2r) + (s1i - s2i) * (s1i - s2i));
-      out.b1[side][j] = ww * (i2 - i1);
-      out.b2[side][j] = ww * (-2 * im);
+};
+
+// acc[k] += Σ_q f[q·kLanes + k] g[q·kLanes + k] over one chunk: kLanes running
+// sums per moment, added up at the end (lane_total) — the same additions in the
+// same order whatever the vector width, and no reduction across lanes per chunk.
+template <class Real>
+ATTENUVIS_MIE_KERNEL void accumulate_chunk(const Real* f, const Real* g, Real* acc) {
+  for (std::size_t q = 0; q < kChunk; q += kLanes)
+    for (std::size_t k = 0; k < kLanes; ++k) acc[k] += f[q + k] * g[q + k];
+}
+
+// acc[k] += Σ_q f[q·kLanes + k], in the same order.
+template <class Real>
+ATTENUVIS_MIE_KERNEL void accumulate_chunk_sum(const Real* f, Real* acc) {
+  for (std::size_t q = 0; q < kChunk; q += kLanes)
+    for (std::size_t k = 0; k < kLanes; ++k) acc[k] += f[q + k];
+}
+
+template <class Real>
+Real lane_total(const Real* acc) {
+  static_assert(kLanes == 8, "lane_total adds eight running sums");
+  return ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+}
+
+// Adds to acc[l·kLanes + k] (l = 0..lmax) the share ½ Σ w p(±μ) P_l(±μ) of `len` <= kChunk nodes,
+// all on one side of s = ¼ (NearForward: s <= ¼), with weight[j] = w_j / W.
+// The phase function at ±μ is split into its even and odd parts, which P_l of
+// even and odd l pick out; P_l runs by Bonnet's recurrence, for s <= ¼ in the
+// difference form Dₗ₊₁ = (l Dₗ − 2s(2l+1) Pₗ)/(l+1), Pₗ₊₁ = Pₗ + Dₗ₊₁ (see
+// gauss_legendre.hpp for why).  All of it stays in L1 for one chunk.
+template <class Real, bool NearForward>
+ATTENUVIS_MIE_KERNEL void moments_chunk(const AmplitudeSeries<Real>& c, const BonnetCoefficients<Real>& k,
+                                        const Real* two_s, const Real* weight, std::size_t len, std::size_t lmax,
+                                        Real* acc) {
+  Real e1r[kChunk], e1i[kChunk], o1r[kChunk], o1i[kChunk], e2r[kChunk], e2i[kChunk], o2r[kChunk], o2i[kChunk];
+  Real* const parts[8] = {e1r, e1i, o1r, o1i, e2r, e2i, o2r, o2i};
+  amplitudes(c, two_s, len, NearForward, parts);
+  Real even[kChunk], odd[kChunk], ts[kChunk], p0[kChunk], p1[kChunk], d[kChunk];
+  for (std::size_t j = 0; j < kChunk; ++j) {
+    even[j] = odd[j] = ts[j] = Real(0);  // the unused nodes weigh nothing
+    if (j < len) {
+      const Real ww = weight[j];
+      ts[j] = two_s[j];
+      Real at[2];
+      for (int side = 0; side < 2; ++side) {
+        const Real s1r = side == 0 ? e1r[j] + o1r[j] : e1r[j] - o1r[j];
+        const Real s1i = side == 0 ? e1i[j] + o1i[j] : e1i[j] - o1i[j];
+        const Real s2r = side == 0 ? e2r[j] + o2r[j] : e2r[j] - o2r[j];
+        const Real s2i = side == 0 ? e2i[j] + o2i[j] : e2i[j] - o2i[j];
+        at[side] = ww * ((s1r * s1r + s1i * s1i) + (s2r * s2r + s2i * s2i));
+      }
+      even[j] = (at[0] + at[1]) / 2;
+      odd[j] = (at[0] - at[1]) / 2;
+    }
+    p0[j] = 1;
+    p1[j] = 1 - ts[j];
+    d[j] = -ts[j];
+  }
+  for (std::size_t l = 0; l <= lmax; ++l) {
+    accumulate_chunk(l % 2 == 0 ? even : odd, p0, acc + l * kLanes);
+    const Real k1 = k.k1[l], k2 = k.k2[l];
+    for (std::size_t j = 0; j < kChunk; ++j) {
+      if constexpr (NearForward) {
+        const Real nd = k2 * d[j] - k1 * ts[j] * p1[j];
+        p0[j] = p1[j];
+        p1[j] += nd;
+        d[j] = nd;
+      } else {
+        const Real next = k1 * (p1[j] - ts[j] * p1[j]) - k2 * p0[j];
+        p0[j] = p1[j];
+        p1[j] = next;
+      }
     }
   }
-  return out;
+}
+
+// The double instance, compiled once per instruction set with run-time choice
+// (mie/src/legendre_moments_double.cpp).
+void moments_chunk_double(const AmplitudeSeries<double>& c, const BonnetCoefficients<double>& k,
+                          const double* two_s, const double* weight, std::size_t len, bool near, std::size_t lmax,
+                          double* acc);
+
+// PerIsa: for double, the per-instruction-set instance (the same operations);
+// otherwise, and for wider types, the kernel as compiled here.
+template <class Real, bool PerIsa>
+void moments_chunk_any(const AmplitudeSeries<Real>& c, const BonnetCoefficients<Real>& k, const Real* two_s,
+                       const Real* weight, std::size_t len, bool near, std::size_t lmax, Real* acc) {
+  if constexpr (PerIsa && std::is_same_v<Real, double>)
+    moments_chunk_double(c, k, two_s, weight, len, near, lmax, acc);
+  else if (near)
+    moments_chunk<Real, true>(c, k, two_s, weight, len, lmax, acc);
+  else
+    moments_chunk<Real, false>(c, k, two_s, weight, len, lmax, acc);
 }
 
 // Length of the result: up to 2N, or to max_l when the caller asked for more
@@ -256,54 +362,10 @@ inline std::size_t output_length(std::size_t terms, std::size_t max_l) {
 // Number of nodes needed for exact coefficients up to l = max_l with N terms.
 inline std::size_t exact_order(std::size_t terms, std::size_t max_l) { return terms + (max_l + 2) / 2; }
 
-// Σ_j f[j]·g[j] with four partial sums (independent additions vectorise).
-template <class Real>
-Real dot4(const std::vector<Real>& f, const std::vector<Real>& g) {
-  std::array<Real, 4> acc{Real(0), Real(0), Real(0), Real(0)};
-  const std::size_t m = f.size();
-  std::size_t j = 0;
-  for (; j + 4 <= m; j += 4)
-    for (std::size_t q = 0; q < 4; ++q) acc[q] += f[j + q] * g[j + q];
-  for (; j < m; ++j) acc[0] += f[j] * g[j];
-  return (acc[0] + acc[1]) + (acc[2] + acc[3]);
-}
-
-// P_l at every node of a half rule, one degree at a time: Bonnet's recurrence,
-// for s <= ¼ in the difference form Dₗ₊₁ = (l Dₗ − 2s(2l+1) Pₗ)/(l+1),
-// Pₗ₊₁ = Pₗ + Dₗ₊₁ (see weighted_products and gauss_legendre.hpp for why).
-template <class Real>
-struct LegendreSweep {
-  std::vector<Real> p0, p1, d, two_s;  // P_l, P_{l+1}, P_{l+1} − P_l
-  std::size_t split = 0;               // nodes [0, split) have s <= ¼
-
-  explicit LegendreSweep(const HalfGaussLegendre<Real>& rule)
-      : p0(rule.s.size(), Real(1)), p1(rule.s.size()), d(rule.s.size()), two_s(rule.s.size()) {
-    for (std::size_t j = 0; j < rule.s.size(); ++j) {
-      two_s[j] = 2 * rule.s[j];
-      p1[j] = 1 - two_s[j];
-      d[j] = -two_s[j];
-      if (rule.s[j] <= Real(0.25)) split = j + 1;
-    }
-  }
-  // On entry p0 = P_l; on exit p0 = P_{l+1}.
-  void advance(std::size_t l) {
-    const Real k1 = Real(2 * l + 3) / Real(l + 2), k2 = Real(l + 1) / Real(l + 2);
-    for (std::size_t j = 0; j < split; ++j) {
-      const Real nd = k2 * d[j] - k1 * two_s[j] * p1[j];
-      p0[j] = p1[j];
-      p1[j] += nd;
-      d[j] = nd;
-    }
-    for (std::size_t j = split; j < p0.size(); ++j) {
-      const Real next = k1 * (p1[j] - two_s[j] * p1[j]) - k2 * p0[j];
-      p0[j] = p1[j];
-      p1[j] = next;
-    }
-  }
-};
-
-// χ_l = ½ ∫ p P_l dμ for l = 0..max_l (entries above 2N are exactly zero).
-template <class Real>
+// χ_l = ½ ∫ p P_l dμ for l = 0..max_l (entries above 2N are exactly zero),
+// chunk by chunk of nodes (moments_chunk).  PerIsa as for moments_chunk_any (false:
+// the kernel as compiled in the caller, which the tests compare bit for bit).
+template <class Real, bool PerIsa = true>
 std::vector<Real> legendre_moments(const std::vector<Complex<Real>>& a, const std::vector<Complex<Real>>& b,
                                    std::size_t max_l) {
   if (a.empty() || a.size() != b.size())
@@ -311,19 +373,26 @@ std::vector<Real> legendre_moments(const std::vector<Complex<Real>>& a, const st
         "Legendre moments need the Mie coefficients: call scatter() with extras.coefficients = true");
   const std::size_t nt = a.size(), lmax = std::min(max_l, 2 * nt);
   const HalfGaussLegendre<Real>& rule = cached_rule<Real>(exact_order(nt, lmax));
-  const WeightedProducts<Real> f = weighted_products<Real>(a, b, rule, false);
   const std::size_t m = rule.s.size();
-  std::vector<Real> even(m), odd(m);
+  const AmplitudeSeries<Real> c(a, b);
+  const BonnetCoefficients<Real> k(lmax);
+  const Real inv_w = 1 / scattering_norm<Real>(a, b);
+  std::vector<Real> two_s(m), weight(m);
+  std::size_t split = 0;  // nodes [0, split) have s <= ¼ (ascending s)
   for (std::size_t j = 0; j < m; ++j) {
-    even[j] = (f.a1[0][j] + f.a1[1][j]) / 2;
-    odd[j] = (f.a1[0][j] - f.a1[1][j]) / 2;
+    two_s[j] = 2 * rule.s[j];
+    weight[j] = rule.w[j] * inv_w;
+    if (rule.s[j] <= Real(0.25)) split = j + 1;
+  }
+  std::vector<Real> acc((lmax + 1) * kLanes, Real(0));
+  for (std::size_t j0 = 0; j0 < m;) {
+    const bool near = j0 < split;
+    const std::size_t len = std::min(kChunk, (near ? split : m) - j0);
+    moments_chunk_any<Real, PerIsa>(c, k, two_s.data() + j0, weight.data() + j0, len, near, lmax, acc.data());
+    j0 += len;
   }
   std::vector<Real> chi(output_length(nt, max_l), Real(0));
-  LegendreSweep<Real> p(rule);
-  for (std::size_t l = 0; l <= lmax; ++l) {
-    chi[l] = dot4(l % 2 == 0 ? even : odd, p.p0);
-    p.advance(l);
-  }
+  for (std::size_t l = 0; l <= lmax; ++l) chi[l] = lane_total(acc.data() + l * kLanes);
   return chi;
 }
 

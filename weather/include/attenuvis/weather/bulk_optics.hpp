@@ -156,7 +156,10 @@ EfficiencyFunction mie_efficiencies(std::complex<double> m, const QuadratureSett
 // 550 nm) are not needed to bring the moments' resonance error below
 // angular_resonance_tolerance.  So pass A integrates everything else with cheap
 // evaluations, pass B the moments and phase function, refining resonance
-// panels for their targets alone; `evaluations` counts both.
+// panels for their targets alone; `evaluations` counts both.  For nearly
+// lossless drops (Im m < resonance_free_k()) pass B's quadrature target is
+// max(rel_tolerance, angular_resonance_tolerance / 100): the resonance error it
+// reports is of order angular_resonance_tolerance whatever the quadrature does.
 BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
                            const QuadratureSettings& s = {});
 
