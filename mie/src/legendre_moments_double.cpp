@@ -6,16 +6,11 @@
 // (mie/CMakeLists.txt) every node sees the same IEEE operations in the same
 // order on every machine, so the results are the same bits.
 #include "attenuvis/mie/legendre_moments_impl.hpp"
+#include "instruction_set_clones.hpp"
 
 namespace attenuvis::mie::detail {
 
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define ATTENUVIS_MOMENTS_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define ATTENUVIS_MOMENTS_CLONES
-#endif
-
-ATTENUVIS_MOMENTS_CLONES
+ATTENUVIS_MIE_CLONES
 void moments_chunk_double(const AmplitudeSeries<double>& c, const BonnetCoefficients<double>& k,
                           const double* two_s, const double* weight, std::size_t len, bool near, std::size_t lmax,
                           double* acc) {
@@ -25,7 +20,7 @@ void moments_chunk_double(const AmplitudeSeries<double>& c, const BonnetCoeffici
     moments_chunk<double, false>(c, k, two_s, weight, len, lmax, acc);
 }
 
-ATTENUVIS_MOMENTS_CLONES
+ATTENUVIS_MIE_CLONES
 void gsf_chunk_double(const AmplitudeSeries<double>& c, const BonnetCoefficients<double>& kp,
                       const WignerCoefficients<double>& kw, const double* two_s, const double* weight,
                       std::size_t len, bool near, std::size_t lmax, double* acc) {

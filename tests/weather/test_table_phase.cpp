@@ -75,7 +75,7 @@ TEST_CASE("table phase: parsing of the request and of the angle grid", "[weather
   CHECK_THROWS_AS(sigma_table(fog, {10.6e-6}, Settings{}, 1, {}, -1, {0, 200}), std::invalid_argument);
 }
 
-TEST_CASE("table phase: the bulk optics' phase function and error at the table's angles; power laws missing",
+TEST_CASE("table phase: the bulk optics' phase function and error at the table's angles, power laws missing",
           "[weather][table][phase]") {
   // Radiation fog at 10.6 um (strongly absorbing, x < ~15: a few hundred Mie evaluations) and a power law.
   std::vector<LabelledCondition> conditions = expand_conditions("fog:radiation");
@@ -192,7 +192,7 @@ TEST_CASE("table phase: p(theta) = sum (2l+1) chi_l P_l(cos theta) with the tabl
   }
 }
 
-TEST_CASE("table --quantities ...,phase: the values of optics --angles; CSV and JSON agree",
+TEST_CASE("table --quantities ...,phase: the values of optics --angles, CSV and JSON agree",
           "[weather][cli][table][phase]") {
   const std::string csv = "weather_table_phase_test.csv", json = "weather_table_phase_test.json";
   for (const auto& f : {csv, csv + ".meta.json", json}) std::remove(f.c_str());
@@ -232,7 +232,7 @@ TEST_CASE("table --quantities ...,phase: the values of optics --angles; CSV and 
   for (const auto& f : {csv, csv + ".meta.json", json}) std::remove(f.c_str());
 }
 
-TEST_CASE("table: phase without --angles takes every degree; bad angle grids are refused, no file left",
+TEST_CASE("table: phase without --angles takes every degree, bad angle grids are refused, no file left",
           "[weather][cli][table][phase]") {
   const std::string out = "weather_table_phase_default.csv";
   for (const auto& f : {out, out + ".meta.json"}) std::remove(f.c_str());
