@@ -26,8 +26,8 @@ bool is_rain(const MieCondition& c) { return std::holds_alternative<MarshallPalm
 
 // The real-axis quadrature of a Mie condition, over a distribution and index
 // the caller already has (sigma() needs them for the contour first).
-BulkOptics bulk_optics_of(const MieCondition& c, double wavelength_m, const Settings& s, const SizeDistribution& d,
-                          std::complex<double> m) {
+BulkOptics real_axis_optics(const MieCondition& c, double wavelength_m, const Settings& s, const SizeDistribution& d,
+                            std::complex<double> m) {
   QuadratureSettings q;
   q.rel_tolerance = s.rel_tolerance;
   if (is_rain(c)) {
@@ -62,6 +62,41 @@ std::optional<MieKey> cache_key(const MieCondition& c, double wavelength_m, cons
   if (const auto* v = std::get_if<LiquidWaterContent>(&c.rescaling)) scale = v->g_per_m3;
   return MieKey{c.drops.index(), rate, preset, c.index.index(), n, k, table, c.rescaling.index(), scale,
                 wavelength_m, s.rel_tolerance, s.water_table, s.rain_asymptotic_x};
+}
+
+// Mie integrals of near-lossless drops take seconds; a process asking for
+// the same condition twice (an app, a table with repeated rows, a table cell
+// that wants sigma and then the real-axis optics of the same drops) reuses
+// the result.  Conditions without a key are computed every time.
+template <class Value>
+class MieMemo {
+ public:
+  template <class Compute>
+  Value get(const std::optional<MieKey>& key, Compute compute) {
+    if (key) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (auto it = values_.find(*key); it != values_.end()) return it->second;
+    }
+    Value v = compute();
+    if (key) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      values_.emplace(*key, v);
+    }
+    return v;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<MieKey, Value> values_;
+};
+
+// sigma() falls back to the real axis where no contour applies (rain at
+// optical wavelengths); a table cell then asks condition_bulk_optics() for
+// the same integral: it is computed once.
+BulkOptics bulk_optics_of(const MieCondition& c, double wavelength_m, const Settings& s, const SizeDistribution& d,
+                          std::complex<double> m) {
+  static MieMemo<BulkOptics> memo;
+  return memo.get(cache_key(c, wavelength_m, s), [&] { return real_axis_optics(c, wavelength_m, s, d, m); });
 }
 
 Sigma mie_sigma(const MieCondition& c, double wavelength_m, const Settings& s) {
@@ -109,22 +144,9 @@ Sigma mie_sigma(const MieCondition& c, double wavelength_m, const Settings& s) {
   return out;
 }
 
-// Mie integrals of near-lossless drops take seconds; a process asking for
-// the same condition twice (an app, a table with repeated rows) reuses it.
 Sigma cached_mie_sigma(const MieCondition& c, double wavelength_m, const Settings& s) {
-  static std::mutex cache_mutex;
-  static std::map<MieKey, Sigma> cache;
-  const auto key = cache_key(c, wavelength_m, s);
-  if (key) {
-    std::lock_guard<std::mutex> lock(cache_mutex);
-    if (auto it = cache.find(*key); it != cache.end()) return it->second;
-  }
-  Sigma out = mie_sigma(c, wavelength_m, s);
-  if (key) {
-    std::lock_guard<std::mutex> lock(cache_mutex);
-    cache[*key] = out;
-  }
-  return out;
+  static MieMemo<Sigma> memo;
+  return memo.get(cache_key(c, wavelength_m, s), [&] { return mie_sigma(c, wavelength_m, s); });
 }
 
 std::string koschmieder_words(double visibility_m, const Settings& s) {
