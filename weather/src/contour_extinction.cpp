@@ -212,19 +212,7 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
         if (ps[i].error > ps[worst].error) worst = i;
       }
       if (split.empty()) split.push_back(worst);
-      const std::vector<PanelResult> halves = halves_of(ps, split);
-      std::vector<PanelResult> next;
-      next.reserve(ps.size() + split.size());
-      for (std::size_t i = 0, h = 0; i < ps.size(); ++i) {
-        if (h < split.size() && split[h] == i) {
-          next.push_back(halves[2 * h]);
-          next.push_back(halves[2 * h + 1]);
-          ++h;
-        } else {
-          next.push_back(ps[i]);
-        }
-      }
-      ps.swap(next);
+      ps = detail::with_halves(ps, split, halves_of(ps, split));
     }
   };
 

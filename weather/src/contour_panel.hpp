@@ -70,4 +70,25 @@ PathPanel evaluate_path_panel(const Rule& rule, double a, double b, const Point&
   return p;
 }
 
+// The panels with each panel listed in `split` (increasing indices) replaced,
+// in place, by its two halves (halves[2h], halves[2h + 1] for split[h]):
+// the refinement step of both contour rules, which keeps the panels in path
+// order so that sums do not depend on how they were refined.
+template <class Panel>
+std::vector<Panel> with_halves(const std::vector<Panel>& panels, const std::vector<std::size_t>& split,
+                               const std::vector<Panel>& halves) {
+  std::vector<Panel> next;
+  next.reserve(panels.size() + split.size());
+  for (std::size_t i = 0, h = 0; i < panels.size(); ++i) {
+    if (h < split.size() && split[h] == i) {
+      next.push_back(halves[2 * h]);
+      next.push_back(halves[2 * h + 1]);
+      ++h;
+    } else {
+      next.push_back(panels[i]);
+    }
+  }
+  return next;
+}
+
 }  // namespace attenuvis::weather::detail

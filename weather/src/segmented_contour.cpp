@@ -349,19 +349,7 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
         taken += ps[i].charged();
       }
       std::sort(split.begin(), split.end());
-      const std::vector<Panel> halves = halves_of(ps, split, 0.5 * share);
-      std::vector<Panel> next;
-      next.reserve(ps.size() + split.size());
-      for (std::size_t i = 0, h = 0; i < ps.size(); ++i) {
-        if (h < split.size() && split[h] == i) {
-          next.push_back(halves[2 * h]);
-          next.push_back(halves[2 * h + 1]);
-          ++h;
-        } else {
-          next.push_back(ps[i]);
-        }
-      }
-      ps.swap(next);
+      ps = detail::with_halves(ps, split, halves_of(ps, split, 0.5 * share));
     }
   };
   // Verification by halving, as contour_extinction.cpp: |K - G| stalls where
