@@ -1,12 +1,9 @@
 // attenuvis._attenuvis.visgraph: scenes, node grids and the visibility pass
 // over NumPy arrays.
 //
-// A visibility pass runs on a worker thread with the GIL released; the
-// calling thread wakes every 0.1 s, takes the GIL, checks for signals (Ctrl-C
-// -> KeyboardInterrupt) and calls the user's progress callback.  An exception
-// from either sets the pass's cancel flag; the pass stops after the rows in
-// flight, the worker is joined and the exception goes on to Python, so nothing
-// is left running and no partial result is returned.
+// A visibility pass runs through watched_call (watched_call.hpp): Ctrl-C or
+// an exception from the user's progress callback sets the pass's cancel flag,
+// the pass stops after the rows in flight and the exception goes on to Python.
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -14,13 +11,9 @@
 
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
 #include <cstdint>
-#include <exception>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "attenuvis/visgraph/layouts.hpp"
@@ -31,6 +24,7 @@
 #include "attenuvis/visgraph/scene_spec.hpp"
 #include "attenuvis/visgraph/visibility.hpp"
 #include "bindings.hpp"
+#include "watched_call.hpp"
 
 namespace py = pybind11;
 namespace vg = attenuvis::visgraph;
@@ -139,63 +133,22 @@ Doubles node_grid(const PyScene& s, double spacing, py::object walkable, double 
   return to_array(set.eyes);
 }
 
-// Runs `pass` on a worker thread; see the comment at the top of the file.
+// Runs `pass` through watched_call (watched_call.hpp), reporting the pairs
+// done to `progress` every 0.5 s and once at the end.
 template <class Pass>
 vg::VisibilityResult watched(Pass pass, vg::VisibilityOptions& options, py::object progress) {
   std::atomic<std::uint64_t> done{0};
   std::atomic<bool> cancel{false};
   options.pairs_done = &done;
   options.cancel = &cancel;
-  vg::VisibilityResult result;
-  std::exception_ptr failure;
-  std::mutex mutex;
-  std::condition_variable finished_cv;
-  bool finished = false;
-  std::thread worker;
-  {
-    py::gil_scoped_release release;
-    worker = std::thread([&] {
-      try {
-        result = pass(options);
-      } catch (...) {
-        failure = std::current_exception();
-      }
-      std::lock_guard<std::mutex> lock(mutex);
-      finished = true;
-      finished_cv.notify_all();
-    });
-  }
-  auto stop = [&] {
-    cancel = true;
-    py::gil_scoped_release release;
-    worker.join();
-  };
-  try {
-    auto last_report = std::chrono::steady_clock::now();
-    for (;;) {
-      bool is_finished;
-      {
-        py::gil_scoped_release release;
-        std::unique_lock<std::mutex> lock(mutex);
-        is_finished = finished_cv.wait_for(lock, std::chrono::milliseconds(100), [&] { return finished; });
-      }
-      if (is_finished) break;
-      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-      const auto now = std::chrono::steady_clock::now();
-      if (!progress.is_none() && now - last_report > std::chrono::milliseconds(500)) {
-        last_report = now;
-        progress(done.load());
-      }
+  auto last_report = std::chrono::steady_clock::now();
+  vg::VisibilityResult result = watched_call([&] { return pass(options); }, cancel, [&] {
+    const auto now = std::chrono::steady_clock::now();
+    if (!progress.is_none() && now - last_report > std::chrono::milliseconds(500)) {
+      last_report = now;
+      progress(done.load());
     }
-  } catch (...) {
-    stop();
-    throw;
-  }
-  {
-    py::gil_scoped_release release;
-    worker.join();
-  }
-  if (failure) std::rethrow_exception(failure);
+  });
   if (!progress.is_none()) progress(done.load());
   return result;
 }

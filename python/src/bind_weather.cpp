@@ -3,6 +3,10 @@
 // pybind11 in both directions; sigma, bulk optics, sigma tables and size
 // distributions.
 //
+// sigma, bulk optics and tables run through watched_call (watched_call.hpp):
+// Ctrl-C sets Settings::cancel, the quadrature stops at its next panel and
+// KeyboardInterrupt reaches Python.
+//
 // Bulk optics are returned as a dict of named fields (optics_fields below), so
 // that a field added to BulkOptics needs one line here and none in the
 // Python layer, which shows whatever the dict holds.
@@ -11,6 +15,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -22,6 +27,7 @@
 #include "attenuvis/weather/sigma_table.hpp"
 #include "attenuvis/weather/size_distribution.hpp"
 #include "bindings.hpp"
+#include "watched_call.hpp"
 
 namespace py = pybind11;
 namespace w = attenuvis::weather;
@@ -234,13 +240,10 @@ void bind_weather(py::module_ module) {
       "sigma",
       [](const w::Condition& c, double wavelength_m, const std::string& convention, double contrast_threshold,
          double rel_tolerance, const std::string& water_table) {
-        const w::Settings s = settings(convention, contrast_threshold, rel_tolerance, water_table);
-        w::Sigma result;
-        {
-          py::gil_scoped_release release;
-          result = w::sigma(c, wavelength_m, s);
-        }
-        return sigma_fields(result);
+        w::Settings s = settings(convention, contrast_threshold, rel_tolerance, water_table);
+        std::atomic<bool> cancel{false};
+        s.cancel = &cancel;
+        return sigma_fields(watched_call([&] { return w::sigma(c, wavelength_m, s); }, cancel));
       },
       py::arg("condition"), py::arg("wavelength_m"), py::arg("convention"), py::arg("contrast_threshold"),
       py::arg("rel_tolerance"), py::arg("water_table"));
@@ -252,12 +255,9 @@ void bind_weather(py::module_ module) {
         s.water_table = water_table;
         std::string source;
         const std::complex<double> m = w::condition_refractive_index(c, wavelength_m, s, &source);
-        w::BulkOptics b;
-        {
-          py::gil_scoped_release release;
-          b = w::condition_bulk_optics(c, wavelength_m, s);
-        }
-        py::dict d = optics_fields(b);
+        std::atomic<bool> cancel{false};
+        s.cancel = &cancel;
+        py::dict d = optics_fields(watched_call([&] { return w::condition_bulk_optics(c, wavelength_m, s); }, cancel));
         d["m"] = m;
         d["index_source"] = source;
         return d;
@@ -268,12 +268,9 @@ void bind_weather(py::module_ module) {
       [](const w::SizeDistribution& d, double wavelength_m, std::complex<double> m, double rel_tolerance) {
         w::QuadratureSettings q;
         q.rel_tolerance = rel_tolerance;
-        w::BulkOptics b;
-        {
-          py::gil_scoped_release release;
-          b = w::bulk_optics(d, wavelength_m, m, q);
-        }
-        py::dict out = optics_fields(b);
+        std::atomic<bool> cancel{false};
+        q.cancel = &cancel;
+        py::dict out = optics_fields(watched_call([&] { return w::bulk_optics(d, wavelength_m, m, q); }, cancel));
         out["m"] = m;
         return out;
       },
@@ -290,12 +287,12 @@ void bind_weather(py::module_ module) {
          const std::string& water_table, int threads, const std::vector<double>& angles_deg) {
         std::vector<w::LabelledCondition> labelled;
         for (const auto& [label, c] : conditions) labelled.push_back({label, c});
-        const w::Settings s = settings(convention, contrast_threshold, rel_tolerance, water_table);
-        w::SigmaTable t;
-        {
-          py::gil_scoped_release release;
-          t = w::sigma_table(labelled, wavelengths, s, threads, {w::Quantity::sigma_ext}, -1, angles_deg);
-        }
+        w::Settings s = settings(convention, contrast_threshold, rel_tolerance, water_table);
+        std::atomic<bool> cancel{false};
+        s.cancel = &cancel;
+        const w::SigmaTable t = watched_call(
+            [&] { return w::sigma_table(labelled, wavelengths, s, threads, {w::Quantity::sigma_ext}, -1, angles_deg); },
+            cancel);
         const py::ssize_t W = static_cast<py::ssize_t>(wavelengths.size());
         const py::ssize_t C = static_cast<py::ssize_t>(labelled.size());
         const py::ssize_t A = static_cast<py::ssize_t>(angles_deg.size());

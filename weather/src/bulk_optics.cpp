@@ -13,6 +13,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "attenuvis/weather/cancel.hpp"
 #include "attenuvis/weather/resonance.hpp"
 #include "bulk_components.hpp"
 #include "extinction_tail.hpp"
@@ -95,6 +96,7 @@ class Integrator {
   }
 
   Panel evaluate(double a, double b) const {
+    throw_if_cancelled(s_.cancel);  // once per panel: a few dozen Mie evaluations
     Panel p;
     p.a = a;
     p.b = b;

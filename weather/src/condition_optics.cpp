@@ -25,6 +25,7 @@ ConditionOptics condition_optics(const MieCondition& c, double wavelength_m, con
   out.distribution = d.describe();
   QuadratureSettings q;
   q.rel_tolerance = s.rel_tolerance;
+  q.cancel = s.cancel;
   q.backscatter = request.backscatter;
   q.legendre_moments = request.legendre_moments;
   q.angles_deg = request.angles_deg;

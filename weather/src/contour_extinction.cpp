@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "attenuvis/mie/forward_amplitude.hpp"
+#include "attenuvis/weather/cancel.hpp"
 #include "analytic_density.hpp"
 #include "extinction_tail.hpp"
 #include "contour_panel.hpp"
@@ -112,7 +113,10 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
   const PathIntegrand f(d, wavelength_m, m, s.height, *angle, arithmetic);
   const auto on_path = [&](double t) { return f.x(t); };
   const auto path_jacobian = [&](double t) { return f.dxdt(t); };
-  const auto panel = [&](double a, double b) { return f.panel(rule, a, b, on_path, path_jacobian); };
+  const auto panel = [&](double a, double b) {
+    throw_if_cancelled(s.cancel);  // once per panel: kronrod_points Mie evaluations
+    return f.panel(rule, a, b, on_path, path_jacobian);
+  };
 
   // Initial panels.  At height H the integrand is smooth on the scale of the
   // interference period pi/(n - 1) (~9.4 in x for water), so a 61-point panel

@@ -15,6 +15,7 @@
 #include <tbb/parallel_for.h>
 
 #include "attenuvis/io/number_text.hpp"
+#include "attenuvis/weather/cancel.hpp"
 #include "contour_panel.hpp"
 #include "gauss_kronrod_rule.hpp"
 
@@ -191,6 +192,7 @@ class Integrand {
   }
 
   Panel evaluate(Where where, std::size_t index, double a, double b) const {
+    throw_if_cancelled(s_.cancel);  // once per panel: kronrod_points Mie evaluations
     return where == Where::path ? path_panel(index, a, b) : leg_panel(index, a, b);
   }
 

@@ -30,6 +30,7 @@ BulkOptics real_axis_optics(const MieCondition& c, double wavelength_m, const Se
                             std::complex<double> m) {
   QuadratureSettings q;
   q.rel_tolerance = s.rel_tolerance;
+  q.cancel = s.cancel;
   if (is_rain(c)) {
     // Rain's error is dominated by the large-x bound (~5e-3 relative), so the
     // resonances need not be refined below 1e-3 of sigma.
@@ -117,8 +118,10 @@ Sigma mie_sigma(const MieCondition& c, double wavelength_m, const Settings& s) {
   // expansion takes over.
   ContourSettings cs;
   cs.rel_tolerance = s.rel_tolerance;
+  cs.cancel = s.cancel;
   SegmentedContourSettings ss;
   ss.rel_tolerance = s.rel_tolerance;
+  ss.cancel = s.cancel;
   std::optional<ContourExtinction> ce = contour_extinction(d, wavelength_m, m, cs);
   if (!ce) ce = segmented_contour_extinction(d, wavelength_m, m, ss);
   if (ce) {

@@ -1,9 +1,11 @@
 // Parallel tables of optical quantities; the choice of output format.
 #include "attenuvis/weather/sigma_table.hpp"
 
+#include "attenuvis/weather/cancel.hpp"
 #include "attenuvis/weather/condition_optics.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -148,6 +150,7 @@ SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const s
   t.max_moment = max_moment;
   t.angles_deg = angles_deg;
   t.settings = settings;
+  t.settings.cancel = nullptr;  // the flag belongs to this call; the table outlives it
   t.cells.resize(wavelengths.size() * conditions.size());
   // The angular quantities (moments, phase function) cost O(x^2) per drop: only when asked.
   const bool needs_angular = max_moment >= 0 || !angles_deg.empty();
@@ -163,15 +166,19 @@ SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const s
   request.angles_deg = angles_deg;
   std::mutex error_mutex;
   std::string first_error;
+  std::atomic<bool> cancelled{false};
   auto work = [&] {
     tbb::parallel_for(std::size_t(0), t.cells.size(), [&](std::size_t i) {
       std::size_t w = i / conditions.size(), c = i % conditions.size();
       try {
+        throw_if_cancelled(settings.cancel);  // once per cell: cells without Mie work never look otherwise
         t.cells[i].sigma = sigma(conditions[c].condition, wavelengths[w], settings);
         if (const auto* mie = std::get_if<MieCondition>(&conditions[c].condition); mie && needs_optics)
           t.cells[i].optics = needs_backscatter || needs_angular
                                   ? condition_optics(*mie, wavelengths[w], settings, request).bulk
                                   : condition_bulk_optics(*mie, wavelengths[w], settings);
+      } catch (const Cancelled&) {
+        cancelled = true;  // a requested stop, reported as such below (not as a failing cell)
       } catch (const std::exception& e) {
         std::lock_guard<std::mutex> lock(error_mutex);
         std::ostringstream msg;
@@ -187,6 +194,7 @@ SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const s
   } else {
     work();
   }
+  if (cancelled) throw Cancelled();
   if (!first_error.empty()) throw std::runtime_error(first_error);
   return t;
 }

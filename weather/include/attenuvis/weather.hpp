@@ -8,6 +8,7 @@
 #pragma once
 
 #include "attenuvis/weather/bulk_optics.hpp"
+#include "attenuvis/weather/cancel.hpp"
 #include "attenuvis/weather/condition.hpp"
 #include "attenuvis/weather/condition_grammar.hpp"
 #include "attenuvis/weather/condition_optics.hpp"

@@ -48,6 +48,7 @@
 // std::runtime_error naming the integral and the reason.
 #pragma once
 
+#include <atomic>
 #include <complex>
 #include <cstddef>
 #include <functional>
@@ -101,6 +102,7 @@ struct QuadratureSettings {
   // resonance_tolerance on them would take millions of evaluations; what is
   // left is reported as their resonance error.
   double angular_resonance_tolerance = 1e-3;
+  const std::atomic<bool>* cancel = nullptr;  // checked once per panel: Cancelled when set (cancel.hpp)
 };
 
 struct IntegralEstimate {

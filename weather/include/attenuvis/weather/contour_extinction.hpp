@@ -55,6 +55,7 @@ struct ContourSettings {
   bool verify = false;  // always split every converged panel once and charge the change too (done anyway
                         // when the resonance ripple left at height H is not far below the tolerance)
   std::size_t max_evaluations = 400000;
+  const std::atomic<bool>* cancel = nullptr;  // checked once per panel: Cancelled when set (cancel.hpp)
 
   double effective_tail_fraction() const { return tail_fraction > 0 ? tail_fraction : 2e-2 * rel_tolerance; }
 };

@@ -70,6 +70,7 @@ struct SegmentedContourSettings {
   int kronrod_points = 15;      // Gauss-Kronrod order of every panel (15, 21, 31, 41, 51, 61)
   bool verify = false;          // split every converged panel once and charge the change
   std::size_t max_evaluations = 400000;
+  const std::atomic<bool>* cancel = nullptr;  // checked once per panel: Cancelled when set (cancel.hpp)
 };
 
 // Nothing (no throw) when the route does not apply: the distribution is not a

@@ -2,6 +2,7 @@
 // (both arguments of sigma(), sigma.hpp).
 #pragma once
 
+#include <atomic>
 #include <string>
 
 #include "attenuvis/weather/units.hpp"
@@ -18,6 +19,9 @@ struct Settings {
   // Mie over rain drops: beyond this size parameter Q_ext's large-x expansion
   // (with its error bound, bulk_optics.hpp) replaces Mie.
   double rain_asymptotic_x = 2000;
+  // Set by another thread to stop the computation: sigma(), condition_optics()
+  // and sigma_table() then throw Cancelled (cancel.hpp).  Never read for results.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 }  // namespace attenuvis::weather
