@@ -227,9 +227,10 @@ void downward_ratios(const ScaledInverse<Real>& over_x_in, const ScaledInverseCo
     if (with_delta) d = cmul(C(c * k + d), yz) * yx;
   };
   if (miller > 0) {
-    // The loop below without its stores, from zeros at index N + miller.
+    // The loop below without its stores, from zeros at index N + miller
+    // (δ only where the slot holds it, as below).
     yx = Real(0), yz = C(Real(0)), d = C(Real(0));
-    for (std::size_t n = N + miller; n > N; --n) step_down(n, true);
+    for (std::size_t n = N + miller; n > N; --n) step_down(n, slot == Slot::difference);
   } else {
     yx = Real(1) / riccati_psi_ratio<Real, Real>(N + 1, over_x);  // ψ_{N+1}/ψ_N
     yz = recip(riccati_psi_ratio<C, Real>(N + 1, over_z));
