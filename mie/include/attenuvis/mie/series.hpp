@@ -77,8 +77,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdint>
-#include <cstring>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -90,6 +88,7 @@
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/log_derivative.hpp"
 #include "attenuvis/mie/scratch.hpp"
+#include "attenuvis/mie/term_count.hpp"
 #include "attenuvis/mie/term_block.hpp"
 
 namespace attenuvis::mie::detail {
@@ -105,109 +104,6 @@ struct KahanSum {
   }
   Real value() const { return sum - carry; }
 };
-
-// −ln of the relative size of the last term kept: the series stops once a
-// term is below 1e-4·ε of the sums.  Computed once per type (a log per call
-// was measurable at x ~ 0.1).
-template <class Real>
-double tail_log_tolerance() {
-  static const double L = -std::log(static_cast<double>(std::numeric_limits<Real>::epsilon())) + 9.3;
-  return L;
-}
-
-// Coefficient c of the Airy tail n − x = c x^{1/3} below; 20% margin.
-template <class Real>
-double airy_tail_coefficient() {
-  static const double c = 1.2 * std::pow(0.75 * tail_log_tolerance<Real>(), 2.0 / 3.0) / std::cbrt(2.0);
-  return c;
-}
-
-// x^{1/3} for the table lengths below.  They are floor()s of bounds with a
-// 20% margin, so a few ulps are more than enough, and std::cbrt (which goes
-// through frexp and ldexp) was 130 instructions of a 4,700-instruction call at
-// x = 0.1.  Start: the exponent divided by 3 in the bit pattern (within ~3%),
-// then three steps of Halley's iteration y ← y (y³ + 2x)/(2y³ + x), cubically
-// convergent (3e-2 → 1e-5 → 1e-15 → rounding): measured within 4 ulps of
-// std::cbrt over x = 1e-8 ... 3e7.  Outside the positive normal doubles
-// (not reached through the checked entry points) std::cbrt itself.
-inline double bound_cbrt(double x) {
-  if (!(x >= 1e-300 && x <= 1e300)) return std::cbrt(x);
-  std::uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  bits = bits / 3 + 0x2A9F7893782DA1CEull;  // Kahan's constant for 64-bit doubles
-  double y;
-  std::memcpy(&y, &bits, sizeof y);
-  for (int i = 0; i < 3; ++i) {
-    const double t = y * y * y;
-    y = y * (t + 2 * x) / (2 * t + x);
-  }
-  return y;
-}
-
-// Upper bound on the number of terms the converged rule may need.  Beyond
-// n ≈ x the terms fall like the square of an Airy function,
-// exp(−(4/3) s^{3/2}) with s = (n−x)(2/x)^{1/3}; solving for a term ratio
-// e^{−L} gives n − x = (3L/4)^{2/3} (x/2)^{1/3}.  We allow 20% more, plus
-// L/2 terms for x ≲ 1 where the asymptotics do not yet hold.
-template <class Real>
-std::size_t max_terms(double x, double cbrt_x) {
-  return static_cast<std::size_t>(x + airy_tail_coefficient<Real>() * cbrt_x + 0.5 * tail_log_tolerance<Real>()) +
-         1;
-}
-
-// The small-x bound of first_terms: ⌊3 + L/(2 ln(2/x))⌋ + 1 for x < 1.
-// Instead of a logarithm per call, the thresholds where the floor steps:
-// ⌊3 + L/(2 ln(2/x))⌋ >= j  ⇔  x >= t_j = 2 exp(−L/(2(j − 3))), j > 3,
-// computed once per type.  (At x < 1, ln(2/x) > ln 2, so the floor lies
-// between 3 and 3 + L/(2 ln 2) < kSmallXMaxJ.)  The search starts from the
-// floor at the bottom of x's binary octave [2^e, 2^{e+1}), e = −kOctaves..−1,
-// so it takes one or two steps instead of up to 30.  (Only within rounding
-// of a threshold can this and the logarithm disagree, by one order; either
-// is the same heuristic bound, and spheres() takes its lengths from here too.
-// Measured: no difference over 5e6 random x in [1e-12, 1).)
-template <class Real>
-std::size_t small_x_terms(double x) {
-  constexpr int kSmallXMaxJ = 64, kOctaves = 64;
-  struct Thresholds {
-    double t[kSmallXMaxJ + 1];
-    int octave_start[kOctaves + 1];  // index −e: the floor at x = 2^e
-    Thresholds() {
-      const double L = tail_log_tolerance<Real>();
-      for (int j = 0; j <= kSmallXMaxJ; ++j) t[j] = j <= 3 ? 0.0 : 2.0 * std::exp(-L / (2.0 * (j - 3)));
-      for (int e = 0; e <= kOctaves; ++e) octave_start[e] = floor_at(std::ldexp(1.0, -e));
-    }
-    int floor_at(double v, int j = 3) const {  // the floor is at least 3
-      while (j < kSmallXMaxJ && v >= t[j + 1]) ++j;
-      return j;
-    }
-  };
-  static const Thresholds thresholds;
-  std::uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  const int e = static_cast<int>((bits >> 52) & 0x7ff) - 1023;  // x = 2^e · 1.f (x > 0 normal)
-  const int j = e < 0 && e >= -kOctaves ? thresholds.floor_at(x, thresholds.octave_start[-e]) : thresholds.floor_at(x);
-  return static_cast<std::size_t>(j) + 1;
-}
-
-// First table length tried by the converged rule: the same Airy bound with 6
-// instead of L/2 spare terms, and for x < 1 the small-x bound below.  For
-// x ≲ 1 the series needs far fewer terms than max_terms (9 instead of 28 at
-// x = 0.1 in double), and the downward pass over the unused ones cost as much
-// as the series.  Lentz's start is exact at any index, so a table that turns
-// out too short is simply redone at max_terms.
-// Small x: successive terms fall by about (x/2)², so a term ratio e^{−L} is
-// reached 1 + L/(2 ln(2/x)) orders in; two spare orders.
-template <class Real>
-std::size_t first_terms(double x, double cbrt_x) {
-  const std::size_t airy = static_cast<std::size_t>(x + airy_tail_coefficient<Real>() * cbrt_x + 6.0) + 1;
-  std::size_t n = std::min(max_terms<Real>(x, cbrt_x), airy);
-  if (x < 1) n = std::min(n, small_x_terms<Real>(x));
-  return n;
-}
-
-inline std::size_t wiscombe_term_count(double x) {
-  return static_cast<std::size_t>(x + 4.05 * std::cbrt(x) + 2.0);
-}
 
 // Storage of the per-term complex slot of the downward pass.  The double
 // product runs in long double (see sphere_double.cpp) but keeps this array in
