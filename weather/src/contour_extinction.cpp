@@ -234,24 +234,19 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
   // h is the path's top height, below H where theta x_max / H is small (a
   // narrow log-normal's path stays near the axis).
   const bool verify = s.verify || ripple_residual(m, top) > 1e-2 * s.rel_tolerance;
-  Sums fine;
-  for (;;) {
-    refine(panels);
-    if (!verify) {
-      fine = sums(panels);
-      break;
-    }
-    const Complex coarse = sums(panels).total;
-    std::vector<std::size_t> all(panels.size());
-    std::iota(all.begin(), all.end(), std::size_t(0));
-    std::vector<PanelResult> halves = halves_of(panels, all);
-    fine = sums(halves);
-    fine.error += std::abs((fine.total - coarse).real());
-    require_finite(fine);
-    if (fine.error <= s.rel_tolerance * std::abs(fine.total.real())) break;
-    check_budget("verified quadrature error", fine);
-    panels.swap(halves);
-  }
+  const Sums fine = detail::refined_sums(
+      panels, verify, refine, sums,
+      [&](const std::vector<PanelResult>& ps) {
+        std::vector<std::size_t> all(ps.size());
+        std::iota(all.begin(), all.end(), std::size_t(0));
+        return halves_of(ps, all);
+      },
+      [&](const Sums& fine) {
+        require_finite(fine);
+        if (fine.error <= s.rel_tolerance * std::abs(fine.total.real())) return true;
+        check_budget("verified quadrature error", fine);
+        return false;
+      });
   ContourExtinction out;
   out.extinction.value = fine.total.real();
   out.extinction.quadrature_error = fine.error;

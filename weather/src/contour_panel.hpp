@@ -91,4 +91,28 @@ std::vector<Panel> with_halves(const std::vector<Panel>& panels, const std::vect
   return next;
 }
 
+// Adaptive refinement with verification by halving, the loop both contour
+// rules run.  refine(panels) splits until the panels' own estimate meets the
+// target.  Without `verify` that is the answer.  With it, every panel is
+// halved once (halve_all) and the change of the sum is charged on top of the
+// fine sum's own estimate: |K - G| stalls where the integrand carries
+// structure no panel resolves, so the coarse error is measured, not guessed.
+// accept(fine) says whether the verified sum meets the target (and throws
+// when it cannot: non-finite sums, the evaluation budget); if not, the fine
+// panels are refined again.
+template <class Panel, class Refine, class SumsOf, class HalveAll, class Accept>
+auto refined_sums(std::vector<Panel>& panels, bool verify, Refine refine, SumsOf sums, HalveAll halve_all,
+                  Accept accept) {
+  for (;;) {
+    refine(panels);
+    if (!verify) return sums(panels);
+    const auto coarse = sums(panels).total;
+    std::vector<Panel> halves = halve_all(panels);
+    auto fine = sums(halves);
+    fine.error += std::abs((fine.total - coarse).real());
+    if (accept(fine)) return fine;
+    panels.swap(halves);
+  }
+}
+
 }  // namespace attenuvis::weather::detail

@@ -358,24 +358,19 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
   // the ripple left at height H is not far below the tolerance.
   const bool verify = s.verify || ripple_residual(m, s.height * std::tanh(s.angle * x_max / s.height)) >
                                       1e-2 * s.rel_tolerance;
-  Sums fine;
-  for (;;) {
-    refine(panels);
-    if (!verify) {
-      fine = sums(panels);
-      break;
-    }
-    const Complex coarse = sums(panels).total;
-    std::vector<std::size_t> all(panels.size());
-    std::iota(all.begin(), all.end(), std::size_t(0));
-    std::vector<Panel> halves = halves_of(panels, all, 0.0);
-    fine = sums(halves);
-    fine.error += std::abs((fine.total - coarse).real());
-    require_finite(fine);
-    if (fine.error + fine.near_axis <= s.rel_tolerance * std::abs(fine.total.real())) break;
-    check_budget("verified quadrature error", fine.error + fine.near_axis, fine);
-    panels.swap(halves);
-  }
+  const Sums fine = detail::refined_sums(
+      panels, verify, refine, sums,
+      [&](const std::vector<Panel>& ps) {
+        std::vector<std::size_t> all(ps.size());
+        std::iota(all.begin(), all.end(), std::size_t(0));
+        return halves_of(ps, all, 0.0);
+      },
+      [&](const Sums& fine) {
+        require_finite(fine);
+        if (fine.error + fine.near_axis <= s.rel_tolerance * std::abs(fine.total.real())) return true;
+        check_budget("verified quadrature error", fine.error + fine.near_axis, fine);
+        return false;
+      });
 
   ContourExtinction out;
   out.extinction.value = fine.total.real();
