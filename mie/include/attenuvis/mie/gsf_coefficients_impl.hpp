@@ -165,19 +165,7 @@ ATTENUVIS_MIE_KERNEL void gsf_chunk(const AmplitudeSeries<Real>& c, const Bonnet
     Real* const at = acc + l * kGsfSums * kLanes;
     accumulate_chunk(even ? f.a1e : f.a1o, p0, at);
     accumulate_chunk(even ? f.a4e : f.a4o, p0, at + kLanes);
-    const Real k1 = kp.k1[l], k2 = kp.k2[l];
-    for (std::size_t j = 0; j < kChunk; ++j) {
-      if constexpr (NearForward) {
-        const Real nd = k2 * dp[j] - k1 * ts[j] * p1[j];
-        p0[j] = p1[j];
-        p1[j] += nd;
-        dp[j] = nd;
-      } else {
-        const Real next = k1 * (p1[j] - ts[j] * p1[j]) - k2 * p0[j];
-        p0[j] = p1[j];
-        p1[j] = next;
-      }
-    }
+    bonnet_step<Real, NearForward>(kp.k1[l], kp.k2[l], ts, p0, p1, dp);
     if (l < 2) continue;
     const Real sign = even ? Real(1) : Real(-1);
     for (std::size_t j = 0; j < kChunk; ++j) {

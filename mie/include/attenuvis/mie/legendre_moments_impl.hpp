@@ -260,6 +260,27 @@ struct BonnetCoefficients {
   }
 };
 
+// One step of Bonnet's recurrence at a chunk's nodes: (p0, p1) = (P_l, P_{l+1})
+// becomes (P_{l+1}, P_{l+2}), μ·v formed as v − 2s·v (ts = 2s).  NearForward
+// (s <= ¼): on the differences d = P_{l+1} − P_l instead (Reinsch), whose
+// rounding does not grow like l·ε near μ = 1: subtracting the μ = 1 identity
+// k1 − k2 = 1 gives d_{l+2} = k2 d_{l+1} − k1 2s P_{l+1}.
+template <class Real, bool NearForward>
+ATTENUVIS_MIE_KERNEL void bonnet_step(Real k1, Real k2, const Real* ts, Real* p0, Real* p1, Real* d) {
+  for (std::size_t j = 0; j < kChunk; ++j) {
+    if constexpr (NearForward) {
+      const Real nd = k2 * d[j] - k1 * ts[j] * p1[j];
+      p0[j] = p1[j];
+      p1[j] += nd;
+      d[j] = nd;
+    } else {
+      const Real next = k1 * (p1[j] - ts[j] * p1[j]) - k2 * p0[j];
+      p0[j] = p1[j];
+      p1[j] = next;
+    }
+  }
+}
+
 // acc[k] += Σ_q f[q·kLanes + k] g[q·kLanes + k] over one chunk: kLanes running
 // sums per moment, added up at the end (lane_total) — the same additions in the
 // same order whatever the vector width, and no reduction across lanes per chunk.
@@ -318,19 +339,7 @@ ATTENUVIS_MIE_KERNEL void moments_chunk(const AmplitudeSeries<Real>& c, const Bo
   }
   for (std::size_t l = 0; l <= lmax; ++l) {
     accumulate_chunk(l % 2 == 0 ? even : odd, p0, acc + l * kLanes);
-    const Real k1 = k.k1[l], k2 = k.k2[l];
-    for (std::size_t j = 0; j < kChunk; ++j) {
-      if constexpr (NearForward) {
-        const Real nd = k2 * d[j] - k1 * ts[j] * p1[j];
-        p0[j] = p1[j];
-        p1[j] += nd;
-        d[j] = nd;
-      } else {
-        const Real next = k1 * (p1[j] - ts[j] * p1[j]) - k2 * p0[j];
-        p0[j] = p1[j];
-        p1[j] = next;
-      }
-    }
+    bonnet_step<Real, NearForward>(k.k1[l], k.k2[l], ts, p0, p1, d);
   }
 }
 
