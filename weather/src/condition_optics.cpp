@@ -9,15 +9,19 @@
 
 namespace attenuvis::weather {
 
+void check_scattering_angles(const std::vector<double>& angles_deg) {
+  for (std::size_t i = 0; i < angles_deg.size(); ++i) {
+    const double a = angles_deg[i];
+    if (!(a >= 0 && a <= 180))
+      throw std::invalid_argument("scattering angle " + std::to_string(i + 1) + " (" + io::shortest(a) +
+                                  " deg) is outside [0, 180]");
+  }
+}
+
 ConditionOptics condition_optics(const MieCondition& c, double wavelength_m, const Settings& s,
                                  const OpticsRequest& request) {
   if (request.legendre_moments < -1) throw std::invalid_argument("Legendre moments: L must be >= 0");
-  for (std::size_t i = 0; i < request.angles_deg.size(); ++i) {
-    const double a = request.angles_deg[i];
-    if (!(a >= 0 && a <= 180))
-      throw std::invalid_argument("scattering angle " + std::to_string(i + 1) + " (" + io::significant(a, 6) +
-                                  " deg) is outside [0, 180]");
-  }
+  check_scattering_angles(request.angles_deg);
   ConditionOptics out;
   out.wavelength_m = wavelength_m;
   const std::complex<double> m = condition_refractive_index(c, wavelength_m, s, &out.index_source);

@@ -113,12 +113,10 @@ std::string phase_column_name(double angle_deg) { return "phase_" + io::shortest
 // [0, 180] and strictly increasing (NUG and CF 1.8 sec. 1.3: a coordinate
 // variable is monotonic), which also keeps the CSV's column names unique.
 void check_table_angles(const std::vector<double>& angles) {
-  for (std::size_t i = 0; i < angles.size(); ++i) {
+  check_scattering_angles(angles);
+  for (std::size_t i = 1; i < angles.size(); ++i) {
     const double a = angles[i];
-    if (!(a >= 0 && a <= 180))
-      throw std::invalid_argument("scattering angle " + std::to_string(i + 1) + " (" + io::shortest(a) +
-                                  " deg) is outside [0, 180]");
-    if (i > 0 && !(a > angles[i - 1]))
+    if (!(a > angles[i - 1]))
       throw std::invalid_argument("scattering angle " + std::to_string(i + 1) + " (" + io::shortest(a) +
                                   " deg) does not increase on the one before (" + io::shortest(angles[i - 1]) +
                                   " deg): a table's angles are a coordinate, each listed once, in increasing order");

@@ -27,6 +27,10 @@ struct ConditionOptics {
   std::string distribution;   // the size distribution, in the units it was given
 };
 
+// Throws std::invalid_argument naming the first angle (1-based) outside
+// [0, 180] degrees; NaN is outside.
+void check_scattering_angles(const std::vector<double>& angles_deg);
+
 // Real-axis quadrature (the contour rule gives sigma_ext only).  Throws
 // std::invalid_argument for an angle outside [0, 180] or L < -1, and what
 // integrate_bulk_optics throws.
