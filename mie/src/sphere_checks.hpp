@@ -56,10 +56,12 @@ inline bool index_in_domain(std::complex<double> m) {
          n * n + k * k >= 1.000001 * kMinAbsIndex * kMinAbsIndex;
 }
 
-// Options that select the default series (automatic precision, converged terms).
-inline bool default_options(const Options& o) {
-  return o.terms == TermRule::converged && !o.precision && o.extended_above == 0;
-}
+// Options under which sphere() runs the lanes' series wherever the default
+// rule of use_extended() (below) chooses double: converged terms, automatic
+// precision.  extended_above only moves more spheres to double, where they
+// are evaluated as by the default rule's double path (same bits), so it does
+// not exclude the lanes; the spheres it moves go through sphere() itself.
+inline bool lane_options(const Options& o) { return o.terms == TermRule::converged && !o.precision; }
 
 // Where the recurrences need extended precision (Options::precision unset).
 // Double is enough, to well within 1e-10 of the 50-digit referee, except:

@@ -26,7 +26,7 @@ Efficiencies<double> not_a_number() {
   return q;
 }
 
-using detail::default_options;
+using detail::lane_options;
 
 // The work: groups of kLanes lane-eligible spheres, ordered by table length
 // (so that a group's lanes run nearly the same number of orders), then the
@@ -61,7 +61,7 @@ void order_by_terms(std::vector<std::size_t>& lanes, std::vector<std::uint32_t>&
 // Groups first .. first + count − 1 (count <= detail::kMaxGroups) in one call.
 template <class IndexOf>
 void evaluate_groups(const Plan& plan, std::size_t first, int count, const double* x, const IndexOf& m_of,
-                     Efficiencies<double>* out) {
+                     const Options& options, Efficiencies<double>* out) {
   detail::LaneProblems in[detail::kMaxGroups];
   detail::LaneResults res[detail::kMaxGroups];
   for (int g = 0; g < count; ++g)
@@ -79,7 +79,7 @@ void evaluate_groups(const Plan& plan, std::size_t first, int count, const doubl
       if (slot >= plan.lane_count) break;  // padding repeats the last sphere
       const std::size_t i = plan.lanes[slot];
       // A lane whose first table was too short: sphere() redoes it with the longer one.
-      out[i] = res[g].converged[j] ? res[g].q[j] : sphere(x[i], m_of(i));
+      out[i] = res[g].converged[j] ? res[g].q[j] : sphere(x[i], m_of(i), options);
     }
 }
 
@@ -92,7 +92,7 @@ std::vector<SphereError> run(const double* x, const IndexOf& m_of, std::size_t c
   if (plan.kernel < 0)
     throw std::invalid_argument("mie: spheres(): instruction set '" + options.instruction_set +
                                 "' is not available on this CPU");
-  const bool lanes_allowed = default_options(options.options);
+  const bool lanes_allowed = lane_options(options.options);
   std::vector<std::uint32_t>& terms = plan.terms;
   for (std::size_t i = 0; i < count; ++i) {
     const std::complex<double> m = m_of(i);
@@ -141,7 +141,7 @@ std::vector<SphereError> run(const double* x, const IndexOf& m_of, std::size_t c
       for (std::size_t k; (k = next.fetch_add(1)) < items;) {
         if (k >= singles) {
           const std::size_t pair = pairs - 1 - (k - singles);
-          evaluate_groups(plan, 2 * pair, 2 * pair + 1 < groups ? 2 : 1, x, m_of, out);
+          evaluate_groups(plan, 2 * pair, 2 * pair + 1 < groups ? 2 : 1, x, m_of, options.options, out);
         } else {
           const std::size_t i = plan.single[k];
           out[i] = sphere(x[i], m_of(i), options.options);

@@ -94,6 +94,21 @@ TEST_CASE("spheres(): non-default options go through sphere() with those options
   for (std::size_t i = 0; i < x.size(); ++i) check_equal(out[i], mie::sphere(x[i], cd(1.33, 1e-8), o.options));
 }
 
+TEST_CASE("spheres(): extended_above keeps the vector path and equals sphere() with it, bit for bit", "[mie][spheres]") {
+  // The bulk integrals ask for double recurrences up to x = 3e4 (weather's
+  // mie_efficiencies); x from 1e-3 to 3e4 crosses the series domain, the
+  // lanes, and the range (1e4, 3e4] that extended_above moves to double.
+  const auto x = random_x(600, 1e-3, 3e4, 11);
+  mie::SpheresOptions o;
+  o.options.extended_above = 3e4;
+  o.threads = 1;
+  for (const cd m : {cd(1.33, 1e-8), cd(1.0001, 0), cd(1.5, 0.1)}) {
+    std::vector<mie::Efficiencies<double>> out(x.size());
+    CHECK(mie::spheres(x.data(), m, x.size(), out.data(), o).empty());
+    for (std::size_t i = 0; i < x.size(); ++i) check_equal(out[i], mie::sphere(x[i], m, o.options));
+  }
+}
+
 TEST_CASE("spheres(): bad elements are reported by index, the others computed", "[mie][spheres]") {
   std::vector<double> x = {1.0, 0.0, 2.0, NAN, 3.0, -1.0, 4.0, 5.0, 3e7, 6.0, 7.0};
   std::vector<cd> m(x.size(), cd(1.33, 1e-8));

@@ -54,29 +54,40 @@ using detail::rule_for;
 
 class Integrator {
  public:
-  Integrator(const SizeDistribution& d, double wavelength, const EfficiencyFunction& q, const QuadratureSettings& s,
+  Integrator(const SizeDistribution& d, double wavelength, const EfficiencyBatch& q, const QuadratureSettings& s,
              std::complex<double> m)
       : d_(d), k_(2 * kPi / wavelength), q_(q), s_(s), layout_(s), rule_(rule_for(s.kronrod_points)),
         resolved_x_span_(0.6 * s.kronrod_points), m_(m) {}
 
   const Layout& layout() const { return layout_; }
 
-  // Integrand in u = ln r:  r n(r) pi r^2 {Q_ext, Q_sca, Q_abs, g Q_sca, bound}.
-  // Const and free of shared state, so panels can be evaluated concurrently.
-  Vec integrand(double u, double& qext, Panel& p) const {
-    double r = std::exp(u), x = k_ * r;
-    double w = r * d_.density(r) * kPi * r * r;
+  // A node of a panel at u = ln r: its size parameter and the weight
+  // r n(r) pi r^2 of the integrand in u.
+  struct Node {
+    double x = 0, w = 0;
+    bool asymptotic = false;  // beyond asymptotic_x: Q_ext's large-x expansion, no Mie
+  };
+  Node node(double u, Panel& p) const {
+    const double r = std::exp(u);
+    Node nd{k_ * r, r * d_.density(r) * kPi * r * r, false};
+    p.max_x = std::max(p.max_x, nd.x);
+    nd.asymptotic = s_.asymptotic_x > 0 && nd.x > s_.asymptotic_x;
+    if (nd.asymptotic) p.used_asymptotic = true;
+    return nd;
+  }
+
+  // Integrand at a node:  w {Q_ext, Q_sca, Q_abs, g Q_sca, bound, ...}, from
+  // the node's efficiencies e (unused for an asymptotic node).
+  Vec integrand(const Node& nd, const Efficiency& e, double& qext) const {
+    const double x = nd.x, w = nd.w;
     Vec f(layout_.size(), 0.0);
-    p.max_x = std::max(p.max_x, x);
-    if (s_.asymptotic_x > 0 && x > s_.asymptotic_x) {
-      p.used_asymptotic = true;
+    if (nd.asymptotic) {
       qext = qext_asymptotic(x);
       f[kExt] = w * qext;
       f[kAsym] = w * qext_asymptotic_bound(x, m_);
       f[kWeight] = w;
       return f;
     }
-    Efficiency e = q_(x);
     qext = e.qext;
     f[kExt] = w * e.qext;
     f[kSca] = w * e.qsca;
@@ -95,6 +106,8 @@ class Integrator {
     return f;
   }
 
+  // The panel's nodes in the rule's order (the centre, then each abscissa at
+  // +xi and -xi), their efficiencies in one batch call.
   Panel evaluate(double a, double b) const {
     throw_if_cancelled(s_.cancel);  // once per panel: a few dozen Mie evaluations
     Panel p;
@@ -107,12 +120,23 @@ class Integrator {
     p.kronrod.assign(n, 0.0);
     p.error.assign(n, 0.0);
     p.difference.assign(n, 0.0);
+    std::vector<Node> nodes;
+    std::vector<double> xs;
+    for (std::size_t i = 0; i < rule_.abscissa.size(); ++i)
+      for (int sgn = 0; sgn < (i == 0 ? 1 : 2); ++sgn) {
+        nodes.push_back(node(mid + (sgn ? -rule_.abscissa[i] : rule_.abscissa[i]) * half, p));
+        if (!nodes.back().asymptotic) xs.push_back(nodes.back().x);
+      }
+    std::vector<Efficiency> eff(xs.size());
+    if (!xs.empty()) q_(xs.data(), xs.size(), eff.data());
+    std::size_t j = 0, e = 0;
+    const Efficiency none;
     for (std::size_t i = 0; i < rule_.abscissa.size(); ++i) {
-      double xi = rule_.abscissa[i];
       int copies = (i == 0) ? 1 : 2;
       for (int sgn = 0; sgn < copies; ++sgn) {
         double qext = 0;
-        Vec f = integrand(mid + (sgn ? -xi : xi) * half, qext, p);
+        const Node& nd = nodes[j++];
+        Vec f = integrand(nd, nd.asymptotic ? none : eff[e++], qext);
         ++p.evaluations;
         p.qext_max = std::max(p.qext_max, std::abs(qext));
         for (int c = 0; c < n; ++c) {
@@ -165,7 +189,7 @@ class Integrator {
  private:
   const SizeDistribution& d_;
   double k_;
-  const EfficiencyFunction& q_;
+  const EfficiencyBatch& q_;
   QuadratureSettings s_;
   Layout layout_;
   Rule rule_;
@@ -516,7 +540,7 @@ BulkOptics bulk_optics_result(const Refinement& r, const Support& support, const
   return out;
 }
 
-BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double wavelength, const EfficiencyFunction& q,
+BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double wavelength, const EfficiencyBatch& q,
                                       const QuadratureSettings& s, std::complex<double> m) {
   if (!(wavelength > 0)) throw std::invalid_argument("wavelength must be > 0");
   if (!(s.rel_tolerance > 0 && s.rel_tolerance < 1)) throw std::invalid_argument("rel_tolerance must lie in (0, 1)");
@@ -536,11 +560,19 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
 
 }  // namespace
 
-BulkOptics integrate_bulk_optics(const SizeDistribution& d, double wavelength_m, const EfficiencyFunction& q,
+BulkOptics integrate_bulk_optics(const SizeDistribution& d, double wavelength_m, const EfficiencyBatch& q,
                                  const QuadratureSettings& s, std::complex<double> m) {
   QuadratureSettings t = s;
   if (m.imag() >= resonance_free_k()) t.estimate_resonances = false;
   return integrate_bulk_optics_impl(d, wavelength_m, q, t, m);
+}
+
+BulkOptics integrate_bulk_optics(const SizeDistribution& d, double wavelength_m, const EfficiencyFunction& q,
+                                 const QuadratureSettings& s, std::complex<double> m) {
+  const EfficiencyBatch one_by_one = [&q](const double* x, std::size_t n, Efficiency* out) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = q(x[i]);
+  };
+  return integrate_bulk_optics(d, wavelength_m, one_by_one, s, m);
 }
 
 }  // namespace attenuvis::weather

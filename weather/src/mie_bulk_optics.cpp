@@ -1,30 +1,57 @@
 // The bridge from attenuvis::mie to the bulk integrals (bulk_optics.hpp):
 // Lorenz-Mie efficiencies as an EfficiencyFunction, and bulk_optics() with them.
 #include <algorithm>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/legendre_moments.hpp"
 #include "attenuvis/mie/scattering_matrix.hpp"
+#include "attenuvis/mie/spheres.hpp"
 #include "attenuvis/weather/bulk_optics.hpp"
 #include "attenuvis/weather/resonance.hpp"
 
 namespace attenuvis::weather {
 
-EfficiencyFunction mie_efficiencies(std::complex<double> m) {
+namespace {
+
+// The working precision of the bulk integrals (bulk_optics.hpp: mie_efficiencies).
+mie::Options bulk_options(std::complex<double> m) {
   mie::Options options;
   if (std::abs(m - 1.0) >= 0.01) options.extended_above = 3e4;  // automatic precision: double-only up to there
-  return [m, options](double x) {
-    auto e = mie::sphere(x, m, options);
-    return Efficiency{e.qext, e.qsca, e.qabs, e.g, e.qback, {}, {}, {}};
+  return options;
+}
+
+Efficiency from_mie(const mie::Efficiencies<double>& e) { return Efficiency{e.qext, e.qsca, e.qabs, e.g, e.qback, {}, {}, {}}; }
+
+// mie::spheres() over a panel's nodes, on the calling thread (the integrals
+// already evaluate panels in parallel).  A bad x throws as sphere() would.
+EfficiencyBatch sphere_batch(std::complex<double> m, const mie::Options& options) {
+  return [m, options](const double* x, std::size_t n, Efficiency* out) {
+    mie::SpheresOptions so;
+    so.options = options;
+    so.threads = 1;
+    std::vector<mie::Efficiencies<double>> q(n);
+    const std::vector<mie::SphereError> errors = mie::spheres(x, m, n, q.data(), so);
+    if (!errors.empty()) throw std::invalid_argument(errors.front().message);
+    for (std::size_t i = 0; i < n; ++i) out[i] = from_mie(q[i]);
   };
 }
 
+}  // namespace
+
+EfficiencyFunction mie_efficiencies(std::complex<double> m) {
+  const mie::Options options = bulk_options(m);
+  return [m, options](double x) { return from_mie(mie::sphere(x, m, options)); };
+}
+
+EfficiencyBatch mie_efficiency_batch(std::complex<double> m) { return sphere_batch(m, bulk_options(m)); }
+
 EfficiencyFunction mie_efficiencies(std::complex<double> m, const QuadratureSettings& s) {
   if (s.legendre_moments < 0 && s.angles_deg.empty()) return mie_efficiencies(m);
-  mie::Options options;
-  if (std::abs(m - 1.0) >= 0.01) options.extended_above = 3e4;
+  const mie::Options options = bulk_options(m);
   mie::Extras extras;
   extras.coefficients = s.legendre_moments >= 0;
   extras.angles_deg = s.angles_deg;
@@ -53,13 +80,13 @@ EfficiencyFunction mie_efficiencies(std::complex<double> m, const QuadratureSett
 BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
                            const QuadratureSettings& s) {
   const bool angular = s.legendre_moments >= 0 || !s.angles_deg.empty();
-  if (!angular) return integrate_bulk_optics(d, wavelength_m, mie_efficiencies(m), s, m);
+  if (!angular) return integrate_bulk_optics(d, wavelength_m, mie_efficiency_batch(m), s, m);
   // Pass A: everything but the angular quantities, with cheap evaluations.
   QuadratureSettings cheap = s;
   cheap.legendre_moments = -1;
   cheap.angles_deg.clear();
   cheap.polarised = false;
-  BulkOptics out = integrate_bulk_optics(d, wavelength_m, mie_efficiencies(m), cheap, m);
+  BulkOptics out = integrate_bulk_optics(d, wavelength_m, mie_efficiency_batch(m), cheap, m);
   if (!out.scattering_computed) return out;  // large-x expansion used: no angular quantities either
   // Pass B: the angular quantities; sigma's resonance target was met in pass A,
   // so only theirs drives the refinement of the resonance panels here.
@@ -98,15 +125,8 @@ BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::
 
 BulkOptics bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
                        const QuadratureSettings& s) {
-  EfficiencyFunction q;
-  if (s.legendre_moments < 0 && s.angles_deg.empty())
-    q = [m](double x) {
-      auto e = mie::sphere(x, m);
-      return Efficiency{e.qext, e.qsca, e.qabs, e.g, e.qback, {}, {}, {}};
-    };
-  else
-    return mie_bulk_optics(d, wavelength_m, m, s);
-  return integrate_bulk_optics(d, wavelength_m, q, s, m);
+  if (s.legendre_moments >= 0 || !s.angles_deg.empty()) return mie_bulk_optics(d, wavelength_m, m, s);
+  return integrate_bulk_optics(d, wavelength_m, sphere_batch(m, mie::Options{}), s, m);
 }
 
 }  // namespace attenuvis::weather

@@ -38,7 +38,7 @@ BulkOptics real_axis_optics(const MieCondition& c, double wavelength_m, const Se
     q.resonance_tolerance = 1e-3;
     q.max_evaluations = 1000000;
   }
-  return integrate_bulk_optics(d, wavelength_m, mie_efficiencies(m), q, m);
+  return integrate_bulk_optics(d, wavelength_m, mie_efficiency_batch(m), q, m);
 }
 
 // What a Mie result depends on: the condition's value, the wavelength and

@@ -9,8 +9,9 @@
 // or the baseline SSE2, chosen at run time).  Each lane performs the very
 // operations of sphere(), so its results are bit for bit those of sphere()
 // (the library is built without fused multiply-add contraction).  Every other sphere (extended precision, upward
-// Dₙ(mx), non-default options) goes through sphere() itself.  The work is
-// split over threads.
+// Dₙ(mx), the small spheres of ratio_series.hpp, a term rule or precision
+// other than the default) goes through sphere() itself.  The work is split
+// over threads.
 //
 // Bad input never throws: each bad element is reported with its index and the
 // reason, its output is left as NaN, and every good element is computed.

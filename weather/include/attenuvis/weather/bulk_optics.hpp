@@ -78,6 +78,10 @@ struct MatrixExpansion {
   std::vector<double> alpha1, alpha2, alpha3, alpha4, beta1, beta2;
 };
 using EfficiencyFunction = std::function<Efficiency(double x)>;
+// Efficiencies of n spheres at once: out[i] at x[i].  The integrals below
+// evaluate the nodes of each panel in one call, so a batch that computes
+// several spheres per instruction (mie::spheres) pays off.
+using EfficiencyBatch = std::function<void(const double* x, std::size_t n, Efficiency* out)>;
 
 struct QuadratureSettings {
   double rel_tolerance = 1e-9;     // on every integral, relative to sigma_ext
@@ -136,6 +140,9 @@ struct BulkOptics {
 // (Im m = 1) switches the resonance term off, as for a smooth test integrand.
 BulkOptics integrate_bulk_optics(const SizeDistribution& d, double wavelength_m, const EfficiencyFunction& q,
                                  const QuadratureSettings& s = {}, std::complex<double> m = {1.33, 1.0});
+// The same with a batch efficiency function (same values, fewer calls).
+BulkOptics integrate_bulk_optics(const SizeDistribution& d, double wavelength_m, const EfficiencyBatch& q,
+                                 const QuadratureSettings& s = {}, std::complex<double> m = {1.33, 1.0});
 
 // Lorenz-Mie efficiencies (attenuvis::mie::sphere) of a homogeneous sphere of
 // index m, in the working precision the bulk integrals need: all-double
@@ -146,6 +153,9 @@ BulkOptics integrate_bulk_optics(const SizeDistribution& d, double wavelength_m,
 // 1e-13, far below any rel_tolerance accepted here; mie.hpp's double-precision
 // limits (Q_back, m = 1 + 1e-7) do not enter.  Otherwise mie's default.
 EfficiencyFunction mie_efficiencies(std::complex<double> m);
+// The same values for a panel of spheres at once (mie::spheres: vector lanes,
+// bit for bit mie_efficiencies(m) at each x; Q_back included).
+EfficiencyBatch mie_efficiency_batch(std::complex<double> m);
 // The same, plus Q_back (always: it is a by-product of the series) and, as
 // `s` asks, the Legendre moments chi_0..chi_L (mie::phase_function_moments)
 // and the phase function at s.angles_deg (mie::scattering_matrix).
