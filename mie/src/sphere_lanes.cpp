@@ -205,9 +205,6 @@ bool lane_eligible(double x, std::complex<double> m) {
 std::size_t lane_terms(double x, std::complex<double> m) {
   const double cbrt_x = bound_cbrt(x);  // as mie_series, so the table lengths agree
   if (use_extended(x, m, false, Options{})) return 0;
-  // Small spheres take the power-series tables (ratio_series.hpp), which the
-  // lanes do not have: sphere() evaluates them, so spheres() gives its bits.
-  if (in_series_domain(x, m)) return 0;
   if (choose_method<double, C>(x, m, max_terms<double>(x, cbrt_x)) != DMethod::downward) return 0;
   return first_terms<double>(x, cbrt_x);
 }

@@ -87,7 +87,6 @@
 
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/log_derivative.hpp"
-#include "attenuvis/mie/ratio_series.hpp"
 #include "attenuvis/mie/scratch.hpp"
 #include "attenuvis/mie/term_count.hpp"
 #include "attenuvis/mie/term_block.hpp"
@@ -159,8 +158,6 @@ struct DownwardTables {
   Scratch<StoredComplex<Work>> rho;
   Scratch<typename SlotStore<Work>::type> w;
   Scratch<unsigned char> is_value;
-  Scratch<StoredComplex<Work>> R;  // Rₙ and 1/|ξₙ|² order by order (series_ratios only)
-  Scratch<Work> s;
   void release_large() {
     constexpr std::size_t kKeep = std::size_t(8) << 20;
     if (y.capacity_bytes() > kKeep) y.release();
@@ -286,9 +283,8 @@ Work riccati_psi1(const Work& sx, const Work& cx, const Work& y0, const Work& in
 // Pass 1 of a block (serial, working precision): Rₙ = R_{n-1} ρₙ ψₙ/ψ_{n-1},
 // sₙ = 1/|ξₙ|², and each order's inputs for term_block.hpp.
 // The mode (perfect conductor, or the slot) is a template argument, so that
-// the per-order loop carries no test of it.  direct: Rₙ and sₙ are read from
-// the tables (series_ratios formed them order by order) instead of carried.
-template <class Real, class Work, bool pec, Slot slot, bool direct, class Tables>
+// the per-order loop carries no test of it.
+template <class Real, class Work, bool pec, Slot slot, class Tables>
 void block_inputs_for(std::size_t first, std::size_t count, const Tables& tables,
                       const ScaledInverseComplex<Work, Complex<Work>>& over_mxw,
                       UpwardLogDerivative<Work, Complex<Work>>& upward, Complex<Work>& R_io, Work& s_io,
@@ -306,13 +302,8 @@ void block_inputs_for(std::size_t first, std::size_t count, const Tables& tables
     const std::size_t n = first + i;
     const CW rho_w(tables.rho[n].real(), tables.rho[n].imag());  // ρₙ = ξ_{n-1}/ξₙ
     // R₁ = (ψ₁/ξ₀) ρ₁ with ψ₁/ξ₀ given as R_w (trap sin-zero: no y₀ here).
-    if constexpr (direct) {
-      R_w = CW(tables.R[n].real(), tables.R[n].imag());
-      s_w = tables.s[n];
-    } else {
-      R_w = n == 1 ? cmul(R_w, rho_w) : cmul(R_w, rho_w) * y[n - 1];
-      s_w *= norm2(rho_w);
-    }
+    R_w = n == 1 ? cmul(R_w, rho_w) : cmul(R_w, rho_w) * y[n - 1];
+    s_w *= norm2(rho_w);
     const Real yx = static_cast<Real>(y[n]);
     in.rn[i] = index_real<Real>(n);
     in.yx[i] = yx;
@@ -346,24 +337,18 @@ void block_inputs_for(std::size_t first, std::size_t count, const Tables& tables
 }
 
 template <class Real, class Work, class Tables>
-void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bool pec, Slot slot, bool direct,
+void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bool pec, Slot slot,
                   const ScaledInverseComplex<Work, Complex<Work>>& over_mxw,
                   UpwardLogDerivative<Work, Complex<Work>>& upward, Complex<Work>& R_w, Work& s_w,
                   TermInputs<Real>& in) {
   if (pec)
-    block_inputs_for<Real, Work, true, Slot::none, false>(first, count, tables, over_mxw, upward, R_w, s_w, in);
-  else if (direct && slot == Slot::difference)
-    block_inputs_for<Real, Work, false, Slot::difference, true>(first, count, tables, over_mxw, upward, R_w, s_w,
-                                                                in);
-  else if (direct)
-    block_inputs_for<Real, Work, false, Slot::value, true>(first, count, tables, over_mxw, upward, R_w, s_w, in);
+    block_inputs_for<Real, Work, true, Slot::none>(first, count, tables, over_mxw, upward, R_w, s_w, in);
   else if (slot == Slot::difference)
-    block_inputs_for<Real, Work, false, Slot::difference, false>(first, count, tables, over_mxw, upward, R_w, s_w,
-                                                                 in);
+    block_inputs_for<Real, Work, false, Slot::difference>(first, count, tables, over_mxw, upward, R_w, s_w, in);
   else if (slot == Slot::value)
-    block_inputs_for<Real, Work, false, Slot::value, false>(first, count, tables, over_mxw, upward, R_w, s_w, in);
+    block_inputs_for<Real, Work, false, Slot::value>(first, count, tables, over_mxw, upward, R_w, s_w, in);
   else
-    block_inputs_for<Real, Work, false, Slot::none, false>(first, count, tables, over_mxw, upward, R_w, s_w, in);
+    block_inputs_for<Real, Work, false, Slot::none>(first, count, tables, over_mxw, upward, R_w, s_w, in);
 }
 
 // One summation of the series from tables of N + 1 entries into `out`.
@@ -388,25 +373,12 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   } release_large_tables{tables};
   const ScaledInverse<Work> over_xw(xw);
   const ScaledInverseComplex<Work, CW> over_mxw(xw, mw);
-  const Work sx = sin(xw), cx = cos(xw);
-  bool by_series = false;  // small spheres: the tables from power series (ratio_series.hpp), double only
   std::size_t miller = 0;  // Lentz start unless miller_depth() allows the cheaper one (double only)
   if constexpr (std::is_same_v<Work, double>) {
-    const std::complex<double> md(m.real(), m.imag());
-    if (slot != Slot::none && in_series_domain(xd, md)) {
-      const bool diff = slot == Slot::difference;
-      tables.y.resize(N + 1), tables.rho.resize(N + 2), tables.w.resize(N + 1);
-      tables.R.resize(N + 1), tables.s.resize(N + 1);
-      tables.is_value.resize(diff ? N + 1 : 0);
-      by_series = series_ratios(xd, md, N, slot, sx, cx,
-                                SeriesTables{&tables.y[0], &tables.rho[0], &tables.w[0],
-                                             diff ? &tables.is_value[0] : nullptr, &tables.R[0], &tables.s[0]});
-    }
-    if (slot != Slot::none && !by_series) miller = miller_depth(xd, md, N);
+    if (slot != Slot::none) miller = miller_depth(xd, std::complex<double>(m.real(), m.imag()), N);
   }
-  if (!by_series)
-    downward_ratios<Work, CW>(over_xw, over_mxw, mw, N, slot, tables.y, tables.rho, tables.w, tables.is_value,
-                              miller);
+  downward_ratios<Work, CW>(over_xw, over_mxw, mw, N, slot, tables.y, tables.rho, tables.w, tables.is_value,
+                            miller);
   UpwardLogDerivative<Work, CW> upward(xw, mw, over_mxw, method == DMethod::upward);
 
   out = Scattering<Real>{};
@@ -434,6 +406,7 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   const Real tol(tol_d);
   SeriesSums<Real> sums;
   VectorSums vector_sums;  // double without extras (pass 3 below)
+  const Work sx = sin(xw), cx = cos(xw);
   const Work psi1 = riccati_psi1(sx, cx, tables.y[0], over_xw(Work(1)));
   CW R_w(sx * psi1, cx * psi1);  // ψ₁/ξ₀ (1/ξ₀ = sin x + i cos x); R₁ = ρ₁ ψ₁/ξ₀
   Work s_w(1);               // 1/|ξ₀|²
@@ -449,7 +422,7 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   for (std::size_t first = 1, count = 0; first <= N && !stopped; first += count, block = kTermBlock) {
     count = std::min(block, N + 1 - first);
     // Pass 1 (serial, working precision).
-    block_inputs<Real, Work>(first, count, tables, pec, slot, by_series, over_mxw, upward, R_w, s_w, in);
+    block_inputs<Real, Work>(first, count, tables, pec, slot, over_mxw, upward, R_w, s_w, in);
     // Pass 2 (every order independently): aₙ, bₙ and their terms.  The count
     // is padded to a multiple of 4 (the clones' vector width in doubles) with
     // copies of the last order, so that a short block (small x) runs in
