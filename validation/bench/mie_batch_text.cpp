@@ -1,0 +1,171 @@
+// The share of text in the batch command line `attenuvis mie`: for 100,000
+// input lines "x m_re m_im" at x near 0.1, 1 and 10 (m = 1.33+1e-8i; x_i =
+// x0 (1 + 0.01 i / n), written as the shortest text that reads back, so no
+// two lines are equal), the CPU time of
+//   (a) mie::batch::run from an in-memory istream to an ostream that discards
+//       what it is given (the whole command but its start and the kernel's
+//       pipes),
+//   (b) mie::spheres() alone on the already-parsed arrays, in the chunks of
+//       4096 that run() hands it, with the same options (the physics),
+// in alternating blocks, median of the repeats; the text share is
+// (a - b) / a.  Times are CPU seconds of the whole process (spheres() may run
+// on several threads; their time is counted, the time the process waits for a
+// core on a shared machine is not).
+//
+// With --write-inputs DIR the three input texts are also written to
+// DIR/mie_batch_x{0.1,1,10}.txt, for timing the real command from outside:
+//   farm-bench -- sh -c 'exec build/apps/attenuvis mie < DIR/mie_batch_x1.txt > /dev/null'
+//
+// Usage: mie_batch_text [--lines N] [--repeats R] [--write-inputs DIR]
+#include <algorithm>
+#include <complex>
+#include <cstdio>
+#include <ctime>
+#include <exception>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <streambuf>
+#include <string>
+#include <vector>
+
+#include "attenuvis/io/number_text.hpp"
+#include "attenuvis/mie/batch.hpp"
+#include "attenuvis/mie/spheres.hpp"
+#include "attenuvis/validation/mie_accuracy.hpp"
+
+namespace mie = attenuvis::mie;
+
+namespace {
+
+double process_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+// An output stream's buffer that counts the bytes and drops them, as
+// /dev/null would, so that (a) pays for formatting but not for memory.
+class CountingSink : public std::streambuf {
+ public:
+  std::size_t bytes = 0;
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (!traits_type::eq_int_type(c, traits_type::eof())) ++bytes;
+    return traits_type::not_eof(c);
+  }
+  std::streamsize xsputn(const char*, std::streamsize n) override {
+    bytes += static_cast<std::size_t>(n);
+    return n;
+  }
+};
+
+struct Input {
+  std::string text;
+  std::vector<double> x;
+  std::vector<std::complex<double>> m;
+};
+
+Input make_input(double x0, std::size_t lines) {
+  Input in;
+  const std::complex<double> m(1.33, 1e-8);
+  for (std::size_t i = 0; i < lines; ++i) {
+    const double x = x0 * (1.0 + 0.01 * double(i) / double(lines));
+    in.text += attenuvis::io::shortest(x) + " 1.33 1e-8\n";
+    in.x.push_back(x);
+    in.m.push_back(m);
+  }
+  return in;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct Share {
+  double a = 0, b = 0;  // median seconds of run() and of spheres()
+  std::size_t out_bytes = 0;
+};
+
+Share measure(const Input& input, int repeats) {
+  const mie::Options options;
+  mie::SpheresOptions spheres_options;
+  spheres_options.options = options;
+  constexpr std::size_t kChunk = 4096;  // run()'s chunk (mie/src/batch.cpp)
+  const std::size_t n = input.x.size();
+  std::vector<mie::Efficiencies<double>> q(n);
+  std::vector<double> ta, tb;
+  Share s;
+  for (int r = 0; r < repeats; ++r) {
+    {
+      std::istringstream in(input.text);
+      CountingSink sink;
+      std::ostream out(&sink);
+      std::ostringstream err;
+      const double t0 = process_seconds();
+      const std::size_t bad = mie::batch::run(in, out, err, options);
+      ta.push_back(process_seconds() - t0);
+      if (bad != 0 || !err.str().empty()) throw std::runtime_error("bad lines in the benchmark input: " + err.str());
+      s.out_bytes = sink.bytes;
+    }
+    {
+      const double t0 = process_seconds();
+      for (std::size_t i = 0; i < n; i += kChunk) {
+        const std::size_t count = std::min(kChunk, n - i);
+        const auto errors = mie::spheres(input.x.data() + i, input.m.data() + i, count, q.data() + i, spheres_options);
+        if (!errors.empty()) throw std::runtime_error("spheres() rejected " + errors.front().message);
+      }
+      tb.push_back(process_seconds() - t0);
+    }
+  }
+  s.a = median(ta);
+  s.b = median(tb);
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    std::size_t lines = 100000;
+    int repeats = 7;
+    std::string inputs_dir;
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      if (a == "--lines" && i + 1 < argc) {
+        lines = std::stoul(argv[++i]);
+      } else if (a == "--repeats" && i + 1 < argc) {
+        repeats = std::max(1, std::stoi(argv[++i]));
+      } else if (a == "--write-inputs" && i + 1 < argc) {
+        inputs_dir = argv[++i];
+      } else {
+        std::cerr << "usage: mie_batch_text [--lines N] [--repeats R] [--write-inputs DIR]\n";
+        return 2;
+      }
+    }
+    std::cout << "Text share of `attenuvis mie` (" << attenuvis::validation::timing_machine_description()
+              << "; here process CPU time over all threads)\n"
+              << lines << " lines 'x 1.33 1e-8', median of " << repeats << " alternating repeats\n\n";
+    std::printf("%-5s %12s %12s %12s %12s %8s\n", "x", "run ns/line", "phys ns/line", "text ns/line",
+                "out B/line", "share");
+    for (const double x0 : {0.1, 1.0, 10.0}) {
+      const Input input = make_input(x0, lines);
+      if (!inputs_dir.empty()) {
+        const std::string path = inputs_dir + "/mie_batch_x" + attenuvis::io::shortest(x0) + ".txt";
+        std::ofstream(path, std::ios::binary) << input.text;
+      }
+      const Share s = measure(input, repeats);
+      const double per = 1e9 / double(lines);
+      std::printf("%-5g %12.0f %12.0f %12.0f %12.1f %7.1f%%\n", x0, s.a * per, s.b * per, (s.a - s.b) * per,
+                  double(s.out_bytes) / double(lines), 100.0 * (s.a - s.b) / s.a);
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "mie_batch_text: " << e.what() << "\n";
+    return 1;
+  }
+}
