@@ -15,7 +15,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <istream>
 #include <ostream>
 #include <stdexcept>
@@ -121,7 +123,28 @@ bool is_header(const LineFields& f) {
   return f.count > 0 && f.count <= LineFields::kKept && (matches(names) || matches(older));
 }
 
-std::optional<Problem> parse_fields(std::string_view line) {
+// A batch mostly keeps one index over many lines (a size distribution, a
+// table at one wavelength): the index is read, and written, once for each run
+// of lines that repeat it.  A hit replays exactly what the miss computed: the
+// same index fields read to the same values, the same values (bit for bit,
+// -0 apart from 0) are written as the same text.
+struct IndexMemo {
+  bool read = false;
+  std::string re_field, im_field;  // the index fields last read ...
+  double re = 0, im = 0;           // ... and their values
+  bool written = false;
+  std::uint64_t re_bits = 0, im_bits = 0;  // the index last written ...
+  char text[2 * 25] = {};                   // ... as ",re,im"
+  std::size_t text_size = 0;
+};
+
+std::uint64_t bits_of(double v) {
+  std::uint64_t b;
+  std::memcpy(&b, &v, sizeof b);
+  return b;
+}
+
+std::optional<Problem> parse_fields(std::string_view line, IndexMemo* memo) {
   const LineFields f = line_fields(line.substr(0, line.find('#')));
   if (f.count == 0) return std::nullopt;
   if (is_header(f)) return std::nullopt;
@@ -129,8 +152,17 @@ std::optional<Problem> parse_fields(std::string_view line) {
     throw std::invalid_argument("expected 3 fields 'x m_re m_im', got " + std::to_string(f.count));
   Problem p;
   p.x = parse_number(f.field[0], "x");
-  const double n = parse_number(f.field[1], "m_re");
-  const double k = parse_number(f.field[2], "m_im");
+  double n = 0, k = 0;
+  if (memo && memo->read && f.field[1] == memo->re_field && f.field[2] == memo->im_field) {
+    n = memo->re, k = memo->im;
+  } else {
+    n = parse_number(f.field[1], "m_re");
+    k = parse_number(f.field[2], "m_im");
+    if (memo) {
+      memo->re_field.assign(f.field[1]), memo->im_field.assign(f.field[2]);
+      memo->re = n, memo->im = k, memo->read = true;
+    }
+  }
   if (p.x <= 0) throw std::invalid_argument("x must be > 0, got " + std::string(f.field[0]));
   if (k < 0) throw std::invalid_argument("m_im must be >= 0 (k > 0 absorbs), got " + std::string(f.field[2]));
   if (n < 0) throw std::invalid_argument("m_re must be >= 0, got " + std::string(f.field[1]));
@@ -142,33 +174,46 @@ std::optional<Problem> parse_fields(std::string_view line) {
 // reads back to it (1.33, not 1.3300000000000001); the results at 17
 // significant digits, %.17g by std::to_chars (printf's text without its
 // locale and format-string machinery), which read back exactly.
-void append_row(std::string& out, const Problem& p, const Efficiencies<double>& q) {
+void append_row(std::string& out, const Problem& p, const Efficiencies<double>& q, IndexMemo* memo) {
   // 9 numbers of at most 24 characters ("-2.2250738585072014e-308"), 20
   // digits of the term count, 9 commas.
   char buf[9 * 24 + 20 + 9];
   char* at = buf;
   char* const end = buf + sizeof buf;
-  for (const double v : {p.x, p.m.real(), p.m.imag()}) {
-    at = std::to_chars(at, end, v).ptr;
-    *at++ = ',';
+  at = std::to_chars(at, end, p.x).ptr;
+  const std::uint64_t re_bits = bits_of(p.m.real()), im_bits = bits_of(p.m.imag());
+  if (memo && memo->written && memo->re_bits == re_bits && memo->im_bits == im_bits) {
+    at = std::copy_n(memo->text, memo->text_size, at);
+  } else {
+    char* const index_text = at;
+    for (const double v : {p.m.real(), p.m.imag()}) {
+      *at++ = ',';
+      at = std::to_chars(at, end, v).ptr;
+    }
+    if (memo) {
+      memo->text_size = static_cast<std::size_t>(at - index_text);
+      std::copy(index_text, at, memo->text);
+      memo->re_bits = re_bits, memo->im_bits = im_bits, memo->written = true;
+    }
   }
   for (const double v : {q.qext, q.qsca, q.qabs, q.qback, q.qpr, q.g}) {
-    at = std::to_chars(at, end, v, std::chars_format::general, 17).ptr;
     *at++ = ',';
+    at = std::to_chars(at, end, v, std::chars_format::general, 17).ptr;
   }
+  *at++ = ',';
   at = std::to_chars(at, end, q.terms).ptr;
   out.append(buf, at);
 }
 
 }  // namespace
 
-std::optional<Problem> parse_line(const std::string& line) { return parse_fields(line); }
+std::optional<Problem> parse_line(const std::string& line) { return parse_fields(line, nullptr); }
 
 const char* csv_header() { return "x,m_re,m_im,qext,qsca,qabs,qback,qpr,g,terms"; }
 
 std::string csv_row(const Problem& p, const Efficiencies<double>& q) {
   std::string row;
-  append_row(row, p, q);
+  append_row(row, p, q, nullptr);
   return row;
 }
 
@@ -188,6 +233,7 @@ std::size_t run(std::istream& in, std::ostream& out, std::ostream& err, const Op
   std::string text;
   SpheresOptions spheres_options;
   spheres_options.options = options;
+  IndexMemo index_memo;
   auto evaluate = [&] {
     const std::size_t n = xs.size();
     q.resize(n);
@@ -199,7 +245,7 @@ std::size_t run(std::istream& in, std::ostream& out, std::ostream& err, const Op
         err << "line " << line_of[i] << ": " << errors[e++].message << '\n';
         continue;
       }
-      append_row(text, Problem{xs[i], ms[i]}, q[i]);
+      append_row(text, Problem{xs[i], ms[i]}, q[i], &index_memo);
       text += '\n';
     }
     out << text;
@@ -242,7 +288,7 @@ std::size_t run(std::istream& in, std::ostream& out, std::ostream& err, const Op
   for (std::string_view line; next_line(line);) {
     ++line_number;
     try {
-      const std::optional<Problem> p = parse_fields(line);
+      const std::optional<Problem> p = parse_fields(line, &index_memo);
       if (!p) continue;
       xs.push_back(p->x);
       ms.push_back(p->m);

@@ -8,7 +8,9 @@
 //   (b) mie::spheres() alone on the already-parsed arrays, in the chunks of
 //       4096 that run() hands it, with the same options (the physics),
 // in alternating blocks, median of the repeats; the text share is
-// (a - b) / a.  Times are CPU seconds of the whole process (spheres() may run
+// (a - b) / a.  For where the text time goes, also
+//   (c) reading: mie::batch::parse_line on each line (copied into one string),
+//   (d) writing: mie::batch::csv_row of each computed row.  Times are CPU seconds of the whole process (spheres() may run
 // on several threads; their time is counted, the time the process waits for a
 // core on a shared machine is not).
 //
@@ -38,6 +40,8 @@
 namespace mie = attenuvis::mie;
 
 namespace {
+
+volatile std::size_t g_sink = 0;
 
 double process_seconds() {
   timespec t{};
@@ -88,6 +92,7 @@ double median(std::vector<double> v) {
 
 struct Share {
   double a = 0, b = 0;  // median seconds of run() and of spheres()
+  double read = 0, write = 0;  // median seconds of parse_line and csv_row over all lines
   std::size_t out_bytes = 0;
 };
 
@@ -98,7 +103,8 @@ Share measure(const Input& input, int repeats) {
   constexpr std::size_t kChunk = 4096;  // run()'s chunk (mie/src/batch.cpp)
   const std::size_t n = input.x.size();
   std::vector<mie::Efficiencies<double>> q(n);
-  std::vector<double> ta, tb;
+  std::vector<double> ta, tb, tc, td;
+  std::size_t sink = 0;
   Share s;
   for (int r = 0; r < repeats; ++r) {
     {
@@ -121,9 +127,28 @@ Share measure(const Input& input, int repeats) {
       }
       tb.push_back(process_seconds() - t0);
     }
+    {
+      const double t0 = process_seconds();
+      std::string line;
+      for (std::size_t at = 0; at < input.text.size();) {
+        const std::size_t nl = input.text.find('\n', at);
+        line.assign(input.text, at, nl - at);
+        at = nl + 1;
+        sink += mie::batch::parse_line(line).has_value();
+      }
+      tc.push_back(process_seconds() - t0);
+    }
+    {
+      const double t0 = process_seconds();
+      for (std::size_t i = 0; i < n; ++i) sink += mie::batch::csv_row({input.x[i], input.m[i]}, q[i]).size();
+      td.push_back(process_seconds() - t0);
+    }
   }
+  g_sink = sink;  // the loops above have an effect
   s.a = median(ta);
   s.b = median(tb);
+  s.read = median(tc);
+  s.write = median(td);
   return s;
 }
 
@@ -149,9 +174,9 @@ int main(int argc, char** argv) {
     }
     std::cout << "Text share of `attenuvis mie` (" << attenuvis::validation::timing_machine_description()
               << "; here process CPU time over all threads)\n"
-              << lines << " lines 'x 1.33 1e-8', median of " << repeats << " alternating repeats\n\n";
-    std::printf("%-5s %12s %12s %12s %12s %8s\n", "x", "run ns/line", "phys ns/line", "text ns/line",
-                "out B/line", "share");
+              << lines << " lines 'x 1.33 1e-8', median of " << repeats << " alternating repeats; ns per line\n\n";
+    std::printf("%-5s %12s %12s %12s %8s %12s %12s %11s\n", "x", "(a) run", "(b) physics", "(a)-(b) text", "share",
+                "(c) reading", "(d) writing", "out B/line");
     for (const double x0 : {0.1, 1.0, 10.0}) {
       const Input input = make_input(x0, lines);
       if (!inputs_dir.empty()) {
@@ -160,8 +185,9 @@ int main(int argc, char** argv) {
       }
       const Share s = measure(input, repeats);
       const double per = 1e9 / double(lines);
-      std::printf("%-5g %12.0f %12.0f %12.0f %12.1f %7.1f%%\n", x0, s.a * per, s.b * per, (s.a - s.b) * per,
-                  double(s.out_bytes) / double(lines), 100.0 * (s.a - s.b) / s.a);
+      std::printf("%-5g %12.0f %12.0f %12.0f %7.1f%% %12.0f %12.0f %11.1f\n", x0, s.a * per, s.b * per,
+                  (s.a - s.b) * per, 100.0 * (s.a - s.b) / s.a, s.read * per, s.write * per,
+                  double(s.out_bytes) / double(lines));
     }
     return 0;
   } catch (const std::exception& e) {
