@@ -10,9 +10,13 @@
 // in alternating blocks, median of the repeats; the text share is
 // (a - b) / a.  For where the text time goes, also
 //   (c) reading: mie::batch::parse_line on each line (copied into one string),
-//   (d) writing: mie::batch::csv_row of each computed row.  Times are CPU seconds of the whole process (spheres() may run
-// on several threads; their time is counted, the time the process waits for a
-// core on a shared machine is not).
+//   (d) writing: mie::batch::csv_row of each computed row,
+//   (e) std::to_chars alone of a row's nine numbers (three shortest, six at 17
+//       digits, as the rows carry them).
+// (c) and (d) take one line at a time; run() also reads and writes a run of
+// lines with one index (as here) once.  Times are CPU seconds of the whole
+// process (spheres() may run on several threads; their time is counted, the
+// time the process waits for a core on a shared machine is not).
 //
 // With --write-inputs DIR the three input texts are also written to
 // DIR/mie_batch_x{0.1,1,10}.txt, for timing the real command from outside:
@@ -20,6 +24,7 @@
 //
 // Usage: mie_batch_text [--lines N] [--repeats R] [--write-inputs DIR]
 #include <algorithm>
+#include <charconv>
 #include <complex>
 #include <cstdio>
 #include <ctime>
@@ -93,6 +98,7 @@ double median(std::vector<double> v) {
 struct Share {
   double a = 0, b = 0;  // median seconds of run() and of spheres()
   double read = 0, write = 0;  // median seconds of parse_line and csv_row over all lines
+  double to_chars = 0;         // median seconds of std::to_chars of the rows' numbers
   std::size_t out_bytes = 0;
 };
 
@@ -103,7 +109,7 @@ Share measure(const Input& input, int repeats) {
   constexpr std::size_t kChunk = 4096;  // run()'s chunk (mie/src/batch.cpp)
   const std::size_t n = input.x.size();
   std::vector<mie::Efficiencies<double>> q(n);
-  std::vector<double> ta, tb, tc, td;
+  std::vector<double> ta, tb, tc, td, te;
   std::size_t sink = 0;
   Share s;
   for (int r = 0; r < repeats; ++r) {
@@ -143,12 +149,25 @@ Share measure(const Input& input, int repeats) {
       for (std::size_t i = 0; i < n; ++i) sink += mie::batch::csv_row({input.x[i], input.m[i]}, q[i]).size();
       td.push_back(process_seconds() - t0);
     }
+    {
+      const double t0 = process_seconds();
+      char buf[32];
+      for (std::size_t i = 0; i < n; ++i) {
+        for (const double v : {input.x[i], input.m[i].real(), input.m[i].imag()})
+          sink += static_cast<std::size_t>(std::to_chars(buf, buf + sizeof buf, v).ptr - buf);
+        for (const double v : {q[i].qext, q[i].qsca, q[i].qabs, q[i].qback, q[i].qpr, q[i].g})
+          sink += static_cast<std::size_t>(
+              std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 17).ptr - buf);
+      }
+      te.push_back(process_seconds() - t0);
+    }
   }
   g_sink = sink;  // the loops above have an effect
   s.a = median(ta);
   s.b = median(tb);
   s.read = median(tc);
   s.write = median(td);
+  s.to_chars = median(te);
   return s;
 }
 
@@ -175,8 +194,8 @@ int main(int argc, char** argv) {
     std::cout << "Text share of `attenuvis mie` (" << attenuvis::validation::timing_machine_description()
               << "; here process CPU time over all threads)\n"
               << lines << " lines 'x 1.33 1e-8', median of " << repeats << " alternating repeats; ns per line\n\n";
-    std::printf("%-5s %12s %12s %12s %8s %12s %12s %11s\n", "x", "(a) run", "(b) physics", "(a)-(b) text", "share",
-                "(c) reading", "(d) writing", "out B/line");
+    std::printf("%-5s %9s %12s %9s %7s %12s %12s %13s %11s\n", "x", "(a) run", "(b) physics", "text", "share",
+                "(c) reading", "(d) writing", "(e) to_chars", "out B/line");
     for (const double x0 : {0.1, 1.0, 10.0}) {
       const Input input = make_input(x0, lines);
       if (!inputs_dir.empty()) {
@@ -185,8 +204,8 @@ int main(int argc, char** argv) {
       }
       const Share s = measure(input, repeats);
       const double per = 1e9 / double(lines);
-      std::printf("%-5g %12.0f %12.0f %12.0f %7.1f%% %12.0f %12.0f %11.1f\n", x0, s.a * per, s.b * per,
-                  (s.a - s.b) * per, 100.0 * (s.a - s.b) / s.a, s.read * per, s.write * per,
+      std::printf("%-5g %9.0f %12.0f %9.0f %6.1f%% %12.0f %12.0f %13.0f %11.1f\n", x0, s.a * per, s.b * per,
+                  (s.a - s.b) * per, 100.0 * (s.a - s.b) / s.a, s.read * per, s.write * per, s.to_chars * per,
                   double(s.out_bytes) / double(lines));
     }
     return 0;
