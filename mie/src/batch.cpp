@@ -259,16 +259,18 @@ std::size_t run(std::istream& in, std::ostream& out, std::ostream& err, const Op
   // character per library call) and parsed where they lie.
   constexpr std::size_t kBlock = std::size_t(1) << 16;
   std::string pending;
-  std::size_t pos = 0;  // start of the unread part of `pending`
+  std::size_t pos = 0;   // start of the unread part of `pending`
+  std::size_t scan = 0;  // where the search for its line end resumes (a long line is searched once)
   bool more = true;
   auto next_line = [&](std::string_view& line) -> bool {
     for (;;) {
-      const auto nl = pending.find('\n', pos);
+      const auto nl = pending.find('\n', scan);
       if (nl != std::string::npos) {
         line = std::string_view(pending).substr(pos, nl - pos);
-        pos = nl + 1;
+        pos = scan = nl + 1;
         return true;
       }
+      scan = pending.size();
       if (!more) {
         if (pos >= pending.size()) return false;
         line = std::string_view(pending).substr(pos);  // last line without a newline
@@ -276,6 +278,7 @@ std::size_t run(std::istream& in, std::ostream& out, std::ostream& err, const Op
         return true;
       }
       pending.erase(0, pos);
+      scan -= pos;
       pos = 0;
       const std::size_t kept = pending.size();
       pending.resize(kept + kBlock);
