@@ -21,27 +21,41 @@ namespace {
 
 // Writes to `target` with "attenuvis: error: " before each line, so that the
 // batch's "line N: why" messages read like every other error of the program
-// (apps/main.cpp).
+// (apps/main.cpp).  Whole lines at a time: std::cerr is unbuffered, and one
+// character per put() was one system call per character.
 class ErrorPrefixBuf : public std::streambuf {
  public:
   explicit ErrorPrefixBuf(std::ostream& target) : target_(target) {}
+  ~ErrorPrefixBuf() override { sync(); }
 
  protected:
   int_type overflow(int_type c) override {
     if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
-    if (at_line_start_) target_ << "attenuvis: error: ";
-    target_.put(traits_type::to_char_type(c));
-    at_line_start_ = traits_type::to_char_type(c) == '\n';
+    const char ch = traits_type::to_char_type(c);
+    xsputn(&ch, 1);
     return c;
   }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    for (std::streamsize i = 0; i < n; ++i) {
+      if (line_.empty()) line_ = "attenuvis: error: ";
+      line_ += s[i];
+      if (s[i] == '\n') emit();
+    }
+    return n;
+  }
   int sync() override {
+    if (!line_.empty()) emit();
     target_.flush();
     return 0;
   }
 
  private:
+  void emit() {
+    target_.write(line_.data(), static_cast<std::streamsize>(line_.size()));
+    line_.clear();
+  }
   std::ostream& target_;
-  bool at_line_start_ = true;
+  std::string line_;  // the current line, with its prefix
 };
 
 struct MieArgs {
