@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
       q.resonance_tolerance = r.resonance_tol;
       w::BulkOptics b;
       auto d = w::condition_distribution(advection);
-      double t = best_seconds([&] { b = w::integrate_bulk_optics(d, 550e-9, w::mie_efficiencies(m), q, m); }, 1);
+      double t = best_seconds([&] { b = w::integrate_bulk_optics(d, 550e-9, w::mie_efficiency_batch(m), q, m); }, 1);
       print_fog(r.label, b, t, mie_s);
     }
     {

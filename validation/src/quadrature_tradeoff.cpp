@@ -77,7 +77,7 @@ std::vector<QuadratureTradeoffRow> quadrature_tradeoff(double wavelength_m, int 
         rows.push_back(row);
       }
     if (c.name == "fog:advection") continue;  // real-axis rows take seconds each there
-    auto q = mie_efficiencies(m);  // what bulk_optics uses (sigma.cpp)
+    auto q = mie_efficiency_batch(m);  // what the bulk integrals use (sigma.cpp)
     for (double resonance_tol : {1e-4, 5e-5, 1e-5})
       for (double tol : {1e-6, 1e-9})
         for (int order : {15, 31})
