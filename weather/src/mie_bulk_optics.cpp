@@ -1,5 +1,6 @@
 // The bridge from attenuvis::mie to the bulk integrals (bulk_optics.hpp):
-// Lorenz-Mie efficiencies as an EfficiencyFunction, and bulk_optics() with them.
+// Lorenz-Mie efficiencies as an EfficiencyFunction (one sphere per call) and an
+// EfficiencyBatch (a panel's nodes per call, mie::spheres), and bulk_optics() with them.
 #include <algorithm>
 #include <stdexcept>
 #include <string>
@@ -24,7 +25,9 @@ mie::Options bulk_options(std::complex<double> m) {
   return options;
 }
 
-Efficiency from_mie(const mie::Efficiencies<double>& e) { return Efficiency{e.qext, e.qsca, e.qabs, e.g, e.qback, {}, {}, {}}; }
+Efficiency from_mie(const mie::Efficiencies<double>& e) {
+  return Efficiency{e.qext, e.qsca, e.qabs, e.g, e.qback, {}, {}, {}};
+}
 
 // mie::spheres() over a panel's nodes, on the calling thread (the integrals
 // already evaluate panels in parallel).  A bad x throws as sphere() would.
