@@ -373,6 +373,47 @@ TEST_CASE("reproduce --quick: report files and key numbers", "[validation][slow]
     CHECK(key("mie.map.max_error") <= 1e-10);
     CHECK(key("mie.time.max_error.default") <= 1e-10);
   }
+
+  SECTION("without an earlier Mie core: no speed-up table, and the page says how to get one") {
+    const QuickRun& r = quick_run();
+    REQUIRE(r.status == 0);
+    CHECK_FALSE(r.key.contains("mie.speedup.per_call_min"));
+    CHECK_FALSE(fs::exists(r.dir / "mie_speedup_per_call.csv"));
+    const std::string html = slurp(r.dir / "report.html");
+    CHECK_THAT(html, Catch::Contains("build_mie_baseline.sh") &&
+                         Catch::Contains("attenuvis reproduce --mie-baseline build/mie_baseline_78ee94c/libmie_baseline.so"));
+  }
+}
+
+// An earlier Mie core that cannot be loaded stops the job before any work:
+// the message names the option, the file and the loader's reason, and the
+// output directory is not even created.
+TEST_CASE("reproduce: an earlier Mie core that cannot be loaded stops the job with nothing written", "[validation]") {
+  const fs::path base = fs::temp_directory_path() / ("attenuvis-reproduce-baseline-" + std::to_string(::getpid()));
+  fs::remove_all(base);
+  fs::create_directories(base);
+  const fs::path not_a_library = base / "not_a_library.so";
+  std::ofstream(not_a_library) << "this is text, not a shared library\n";
+  struct Case {
+    fs::path library;
+    const char* reason;  // part of the loader's message (glibc's dlerror)
+  };
+  for (const Case& c : {Case{base / "missing" / "libmie_baseline.so", "No such file"},
+                        Case{not_a_library, "cannot load the baseline Mie library"}}) {
+    const fs::path out = base / "out";
+    const fs::path log = base / "log";
+    const std::string cmd = std::string("'") + ATTENUVIS_CLI + "' reproduce --quick --threads 2 --out '" +
+                            out.string() + "' --mie-baseline '" + c.library.string() + "' >'" + log.string() +
+                            "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    const std::string text = slurp(log);
+    INFO(c.library << ": " << text);
+    CHECK(status != 0);
+    CHECK_THAT(text, Catch::Contains("attenuvis: error: --mie-baseline") && Catch::Contains(c.library.string()) &&
+                         Catch::Contains(c.reason) && Catch::Contains("no report written"));
+    CHECK_FALSE(fs::exists(out));
+  }
+  fs::remove_all(base);
 }
 
 TEST_CASE("reproduce: an output name taken by a directory stops the job with nothing moved", "[validation][slow]") {
