@@ -435,3 +435,60 @@ TEST_CASE("reproduce: an output name taken by a directory stops the job with not
   fs::remove_all(dir);
   fs::remove(log);
 }
+
+// With the earlier core built from the git history (a single file, about 2 s
+// of g++), the Mie section carries the speed tables.  Their numbers are
+// timings and are not checked (tests never time things); what is checked is
+// their shape, the key numbers' presence, and a property that is not a
+// timing: spheres() gives sphere()'s bits with every instruction set.
+TEST_CASE("reproduce --quick --mie-baseline: the Mie section carries the speed tables", "[validation][slow]") {
+  const fs::path root = fs::path(ATTENUVIS_TEST_DATA_DIR).parent_path().parent_path();
+  const fs::path base = fs::temp_directory_path() / ("attenuvis-reproduce-speed-" + std::to_string(::getpid()));
+  fs::remove_all(base);
+  fs::create_directories(base);
+  const std::string history = "git -C '" + root.string() + "' rev-parse --quiet --verify '78ee94c^{commit}' >/dev/null 2>&1";
+  if (std::system(history.c_str()) != 0) {
+    WARN("commit 78ee94c is not in this checkout's history (a source archive or a shallow clone): not tested");
+    return;
+  }
+  const fs::path lib_dir = base / "mie_baseline_78ee94c";
+  const std::string build = "sh '" + (root / "validation/bench/baseline/build_mie_baseline.sh").string() +
+                            "' 78ee94c '" + lib_dir.string() + "' >'" + (base / "build.log").string() + "' 2>&1";
+  {
+    const int status = std::system(build.c_str());
+    INFO(slurp(base / "build.log"));
+    REQUIRE(status == 0);
+  }
+  const fs::path out = base / "out";
+  const std::string cmd = std::string("'") + ATTENUVIS_CLI + "' reproduce --quick --threads 2 --out '" + out.string() +
+                          "' --mie-baseline '" + (lib_dir / "libmie_baseline.so").string() + "' >'" +
+                          (base / "log").string() + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  INFO(slurp(base / "log"));
+  REQUIRE(status == 0);
+  const auto k = nlohmann::json::parse(slurp(out / "key.json"));
+  for (const char* name : {"mie.speedup.per_call_min", "mie.speedup.per_call_median", "mie.speedup.per_call_max",
+                           "mie.speedup.sphere_loop", "mie.speedup.batch_one_thread", "mie.speedup.batch_threads"}) {
+    INFO(name);
+    REQUIRE(k.contains(name));
+    CHECK(std::isfinite(k.at(name).get<double>()));
+    CHECK(k.at(name).get<double>() > 0);
+  }
+  CHECK(k.at("mie.speedup.per_call_min") <= k.at("mie.speedup.per_call_median"));
+  CHECK(k.at("mie.speedup.per_call_median") <= k.at("mie.speedup.per_call_max"));
+  CHECK(k.at("mie.batch.bit_identical") == 1.0);
+  // Quick mode: three x (rows) by the four indices of the benchmark (columns).
+  const auto per_call = read_csv(out / "mie_speedup_per_call.csv");
+  REQUIRE(per_call.size() == 3);
+  for (const auto& row : per_call) {
+    CHECK(row.size() == 5);
+    CHECK(row.count("m = 1.33+1e-8i") == 1);
+  }
+  CHECK(read_csv(out / "mie_speedup_cells.csv").size() == 12);
+  const auto batch = read_csv(out / "mie_batch_speed.csv");
+  REQUIRE(batch.size() >= 4);  // the earlier loop, sphere() loop, spheres() one thread, spheres() threads
+  CHECK(batch.front().at("speed-up") == "1");
+  const std::string html = slurp(out / "report.html");
+  CHECK_THAT(html, Catch::Contains("against the 78ee94c core") && !Catch::Contains("is not measured in this run"));
+  fs::remove_all(base);
+}
