@@ -1,4 +1,4 @@
-// `attenuvis reproduce [--out DIR] [--quick] [--threads N]`: the main job.
+// `attenuvis reproduce [--out DIR] [--quick] [--threads N] [--mie-baseline LIB]`: the main job.
 // Parses arguments and calls attenuvis::validation::reproduce(); prints the
 // one-screen summary on stdout (progress goes to stderr).
 #include <iostream>
@@ -18,6 +18,12 @@ void register_reproduce(CLI::App& app) {
   cmd->add_option("--threads", options->threads, "Threads to use (0 = all cores)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  // The last one given wins, so that `scripts/main.sh --mie-baseline OTHER`
+  // overrides the library main.sh builds.
+  cmd->add_option("--mie-baseline", options->mie_baseline,
+                  "Shared library of an earlier Mie core (validation/bench/baseline/build_mie_baseline.sh): "
+                  "adds its per-call and batch speed-up to the Mie section")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   cmd->callback([options]() {
     options->progress = &std::cerr;
     const auto result = validation::reproduce(*options);

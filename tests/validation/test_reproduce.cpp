@@ -373,6 +373,47 @@ TEST_CASE("reproduce --quick: report files and key numbers", "[validation][slow]
     CHECK(key("mie.map.max_error") <= 1e-10);
     CHECK(key("mie.time.max_error.default") <= 1e-10);
   }
+
+  SECTION("without an earlier Mie core: no speed-up table, and the page says how to get one") {
+    const QuickRun& r = quick_run();
+    REQUIRE(r.status == 0);
+    CHECK_FALSE(r.key.contains("mie.speedup.per_call_min"));
+    CHECK_FALSE(fs::exists(r.dir / "mie_speedup_per_call.csv"));
+    const std::string html = slurp(r.dir / "report.html");
+    CHECK_THAT(html, Catch::Contains("build_mie_baseline.sh") &&
+                         Catch::Contains("attenuvis reproduce --mie-baseline build/mie_baseline_78ee94c/libmie_baseline.so"));
+  }
+}
+
+// An earlier Mie core that cannot be loaded stops the job before any work:
+// the message names the option, the file and the loader's reason, and the
+// output directory is not even created.
+TEST_CASE("reproduce: an earlier Mie core that cannot be loaded stops the job with nothing written", "[validation]") {
+  const fs::path base = fs::temp_directory_path() / ("attenuvis-reproduce-baseline-" + std::to_string(::getpid()));
+  fs::remove_all(base);
+  fs::create_directories(base);
+  const fs::path not_a_library = base / "not_a_library.so";
+  std::ofstream(not_a_library) << "this is text, not a shared library\n";
+  struct Case {
+    fs::path library;
+    const char* reason;  // part of the loader's message (glibc's dlerror)
+  };
+  for (const Case& c : {Case{base / "missing" / "libmie_baseline.so", "No such file"},
+                        Case{not_a_library, "cannot load the baseline Mie library"}}) {
+    const fs::path out = base / "out";
+    const fs::path log = base / "log";
+    const std::string cmd = std::string("'") + ATTENUVIS_CLI + "' reproduce --quick --threads 2 --out '" +
+                            out.string() + "' --mie-baseline '" + c.library.string() + "' >'" + log.string() +
+                            "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    const std::string text = slurp(log);
+    INFO(c.library << ": " << text);
+    CHECK(status != 0);
+    CHECK_THAT(text, Catch::Contains("attenuvis: error: --mie-baseline") && Catch::Contains(c.library.string()) &&
+                         Catch::Contains(c.reason) && Catch::Contains("no report written"));
+    CHECK_FALSE(fs::exists(out));
+  }
+  fs::remove_all(base);
 }
 
 TEST_CASE("reproduce: an output name taken by a directory stops the job with nothing moved", "[validation][slow]") {
@@ -393,4 +434,61 @@ TEST_CASE("reproduce: an output name taken by a directory stops the job with not
   CHECK(left == std::vector<std::string>{"key.json"});  // no table, figure or report moved in
   fs::remove_all(dir);
   fs::remove(log);
+}
+
+// With the earlier core built from the git history (a single file, about 2 s
+// of g++), the Mie section carries the speed tables.  Their numbers are
+// timings and are not checked (tests never time things); what is checked is
+// their shape, the key numbers' presence, and a property that is not a
+// timing: spheres() gives sphere()'s bits with every instruction set.
+TEST_CASE("reproduce --quick --mie-baseline: the Mie section carries the speed tables", "[validation][slow]") {
+  const fs::path root = fs::path(ATTENUVIS_TEST_DATA_DIR).parent_path().parent_path();
+  const fs::path base = fs::temp_directory_path() / ("attenuvis-reproduce-speed-" + std::to_string(::getpid()));
+  fs::remove_all(base);
+  fs::create_directories(base);
+  const std::string history = "git -C '" + root.string() + "' rev-parse --quiet --verify '78ee94c^{commit}' >/dev/null 2>&1";
+  if (std::system(history.c_str()) != 0) {
+    WARN("commit 78ee94c is not in this checkout's history (a source archive or a shallow clone): not tested");
+    return;
+  }
+  const fs::path lib_dir = base / "mie_baseline_78ee94c";
+  const std::string build = "sh '" + (root / "validation/bench/baseline/build_mie_baseline.sh").string() +
+                            "' 78ee94c '" + lib_dir.string() + "' >'" + (base / "build.log").string() + "' 2>&1";
+  {
+    const int status = std::system(build.c_str());
+    INFO(slurp(base / "build.log"));
+    REQUIRE(status == 0);
+  }
+  const fs::path out = base / "out";
+  const std::string cmd = std::string("'") + ATTENUVIS_CLI + "' reproduce --quick --threads 2 --out '" + out.string() +
+                          "' --mie-baseline '" + (lib_dir / "libmie_baseline.so").string() + "' >'" +
+                          (base / "log").string() + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  INFO(slurp(base / "log"));
+  REQUIRE(status == 0);
+  const auto k = nlohmann::json::parse(slurp(out / "key.json"));
+  for (const char* name : {"mie.speedup.per_call_min", "mie.speedup.per_call_median", "mie.speedup.per_call_max",
+                           "mie.speedup.sphere_loop", "mie.speedup.batch_one_thread", "mie.speedup.batch_threads"}) {
+    INFO(name);
+    REQUIRE(k.contains(name));
+    CHECK(std::isfinite(k.at(name).get<double>()));
+    CHECK(k.at(name).get<double>() > 0);
+  }
+  CHECK(k.at("mie.speedup.per_call_min") <= k.at("mie.speedup.per_call_median"));
+  CHECK(k.at("mie.speedup.per_call_median") <= k.at("mie.speedup.per_call_max"));
+  CHECK(k.at("mie.batch.bit_identical") == 1.0);
+  // Quick mode: three x (rows) by the four indices of the benchmark (columns).
+  const auto per_call = read_csv(out / "mie_speedup_per_call.csv");
+  REQUIRE(per_call.size() == 3);
+  for (const auto& row : per_call) {
+    CHECK(row.size() == 5);
+    CHECK(row.count("m = 1.33+1e-8i") == 1);
+  }
+  CHECK(read_csv(out / "mie_speedup_cells.csv").size() == 12);
+  const auto batch = read_csv(out / "mie_batch_speed.csv");
+  REQUIRE(batch.size() >= 4);  // the earlier loop, sphere() loop, spheres() one thread, spheres() threads
+  CHECK(batch.front().at("speed-up") == "1");
+  const std::string html = slurp(out / "report.html");
+  CHECK_THAT(html, Catch::Contains("against the 78ee94c core") && !Catch::Contains("is not measured in this run"));
+  fs::remove_all(base);
 }

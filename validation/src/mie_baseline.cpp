@@ -120,8 +120,9 @@ BatchSpeed mie_batch_vs_baseline(const MieBaseline& baseline, BatchSpeed b, int 
   std::vector<mie::Efficiencies<double>> single(b.count), batch(b.count);
   mie::SpheresOptions one;
   one.threads = 1;
+  b.threads = b.threads ? b.threads : std::max(1u, std::thread::hardware_concurrency());
   mie::SpheresOptions all;
-  b.threads = std::max(1u, std::thread::hardware_concurrency());
+  all.threads = b.threads;
   const double n = static_cast<double>(b.count);
   auto run_base = [&] {
     double acc = 0;

@@ -2,6 +2,7 @@
 // directory, draws the figures with matplotlib, writes report.html last and
 // only then moves everything into the output directory.
 #include "attenuvis/validation/reproduce.hpp"
+#include "attenuvis/validation/mie_baseline.hpp"
 #include "attenuvis/io/install_paths.hpp"
 #include "attenuvis/io/shell.hpp"
 #include "attenuvis/io/staged_file.hpp"
@@ -15,6 +16,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -128,6 +130,12 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 
 std::string sig(double v, int digits) { return format_number(v, digits); }
+
+std::string index_label(std::complex<double> m) {
+  std::string s = format_number(m.real(), 6);
+  if (m.imag() != 0) s += "+" + format_number(m.imag(), 3) + "i";
+  return s;
+}
 
 Table& add_table(Context& ctx, Section& s, Table t) {
   write_table_csv(t, (fs::path(ctx.dir) / (t.id + ".csv")).string());
@@ -250,6 +258,19 @@ std::string utc_now() {
 
 ReproduceResult reproduce(const ReproduceOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
+  // The earlier Mie core to time against is loaded first: a library that
+  // cannot be loaded stops the job before any work and before the output
+  // directory is touched.
+  std::unique_ptr<MieBaseline> mie_baseline;
+  if (!options.mie_baseline.empty()) {
+    try {
+      // An absolute path: dlopen reads a bare file name as a search in the
+      // system's library directories, not in the working directory.
+      mie_baseline = std::make_unique<MieBaseline>(fs::absolute(options.mie_baseline).lexically_normal().string());
+    } catch (const std::exception& e) {
+      throw std::runtime_error(std::string("--mie-baseline: ") + e.what() + " (no report written)");
+    }
+  }
   const fs::path out = options.out_dir.empty() ? fs::path("out") : fs::path(options.out_dir);
   std::error_code ec;
   fs::create_directories(out, ec);
@@ -281,6 +302,7 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
   ctx.progress = &progress;
   ctx.key = &report.key;
   ctx.closing = &report.closing;
+  ctx.mie_baseline = mie_baseline.get();
 
   detail::SeedConditions seed;
   detail::CityPerformance city_perf;

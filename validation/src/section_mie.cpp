@@ -21,12 +21,6 @@
 namespace attenuvis::validation::detail {
 namespace {
 
-std::string index_label(std::complex<double> m) {
-  std::string s = format_number(m.real(), 6);
-  if (m.imag() != 0) s += "+" + format_number(m.imag(), 3) + "i";
-  return s;
-}
-
 // ------------------------------------------------------------ published tables
 void published(Context& ctx, Section& s) {
   ctx.step("mie", "published tables");
@@ -365,13 +359,15 @@ void error_vs_time(Context& ctx, Section& s) {
 void section_mie(Context& ctx, Section& s) {
   s.text("What is compared: attenuvis::mie in double precision with its default options (1) against published "
          "Mie tables, each to the digits its source prints; (2) against the same series in 50-digit arithmetic over a grid of "
-         "size parameters and refractive indices; (3) in run time and error beside a textbook code." +
+         "size parameters and refractive indices; (3) in run time and error beside a textbook code; (4) in speed against an earlier build of itself, when the "
+         "job is given that build." +
          std::string(ctx.options.quick ? " QUICK MODE: coarse error map (every second decade up to x = 1e4) and "
                                          "a short error-vs-time table."
                                        : ""));
   published(ctx, s);
   error_map(ctx, s);
   error_vs_time(ctx, s);
+  section_mie_speed(ctx, s);
 }
 
 }  // namespace attenuvis::validation::detail

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <chrono>
+#include <complex>
 #include <cstdint>
 #include <map>
 #include <ostream>
@@ -13,6 +14,10 @@
 #include "attenuvis/validation/report.hpp"
 #include "attenuvis/weather/condition.hpp"
 #include "attenuvis/validation/reproduce.hpp"
+
+namespace attenuvis::validation {
+class MieBaseline;
+}
 
 namespace attenuvis::validation::detail {
 
@@ -38,7 +43,7 @@ struct Context {
   Progress* progress = nullptr;
   std::map<std::string, double>* key = nullptr;
   std::vector<Paragraph>* closing = nullptr;   // the report's closing note
-
+  const MieBaseline* mie_baseline = nullptr;   // earlier Mie core to time against (options.mie_baseline)
 
   void step(const std::string& section, const std::string& what) const {
     if (progress) progress->step(section, what);
@@ -120,6 +125,9 @@ struct CityPerformance {
 };
 
 void section_mie(Context& ctx, Section& s);
+// The Mie section's speed tables against an earlier core (ctx.mie_baseline),
+// or the sentence saying how to get them (section_mie_speed.cpp).
+void section_mie_speed(Context& ctx, Section& s);
 void section_weather(Context& ctx, Section& s, SeedConditions& seed);
 void section_optics(Context& ctx, Section& s);  // section_optics.cpp
 void section_layouts(Context& ctx, Section& s, const SeedConditions& seed);
@@ -134,6 +142,7 @@ Table& add_table(Context& ctx, Section& s, Table t);
 void write_data_csv(Context& ctx, const std::string& file, const std::vector<std::string>& header,
                     const std::vector<const std::vector<double>*>& columns);
 std::string sig(double v, int digits = 4);     // format_number shorthand for prose
+std::string index_label(std::complex<double> m);  // "1.33+1e-8i", "1.5": tables and figure labels
 double seconds_since(std::chrono::steady_clock::time_point t0);
 
 }  // namespace attenuvis::validation::detail

@@ -63,16 +63,17 @@ std::vector<SpeedCell> mie_speed_vs_baseline(const MieBaseline& baseline, const 
 
 /// Throughput over many spheres (x uniform in [x_min, x_max], one index):
 /// ns per sphere of the baseline's sphere() in a loop, the current sphere() in
-/// a loop, and the current spheres() on one thread and on all hardware
-/// threads; same alternating-block timing as above (the all-threads figure in
-/// wall-clock time).  spheres() on one thread is also timed with each vector
-/// instruction set this CPU runs (the first is the one chosen by default).
+/// a loop, and the current spheres() on one thread and on `threads` threads
+/// (0: all hardware threads); same alternating-block timing as above (the
+/// many-threads figure in wall-clock time).  spheres() on one thread is also
+/// timed with each vector instruction set this CPU runs (the first is the one
+/// chosen by default).
 struct BatchSpeed {
   double x_min = 0.01, x_max = 100;
   std::complex<double> m{1.33, 1e-8};
   std::size_t count = 20000;
   double ns_baseline = 0, ns_single = 0, ns_batch = 0, ns_batch_threads = 0;
-  unsigned threads = 0;
+  unsigned threads = 0;  ///< for the many-threads figure; 0 = hardware_concurrency() (set on return)
   bool identical = false;  ///< spheres() equal to sphere() bit for bit
   std::vector<std::string> instruction_sets;  ///< spheres_instruction_sets()
   std::vector<double> ns_batch_by_set;        ///< one thread, per instruction set

@@ -27,6 +27,12 @@ struct ReproduceOptions {
   int threads = 0;             // 0 = all cores TBB sees
   bool figures = true;         // false: skip matplotlib (tests that only check numbers)
   std::ostream* progress = nullptr;  // progress line (stderr in the CLI); nullptr = silent
+  // Shared library of an earlier Mie core (validation/bench/baseline/
+  // build_mie_baseline.sh, commit 78ee94c by default).  When given, the Mie
+  // section times the current core against it in the same run; "" = no such
+  // table (the section says how to get it).  A library that cannot be loaded
+  // stops the job before any work, naming the file and the loader's message.
+  std::string mie_baseline;
 };
 
 struct ReproduceResult {
