@@ -96,8 +96,8 @@ TEST_CASE("spheres(): non-default options go through sphere() with those options
 
 TEST_CASE("spheres(): extended_above keeps the vector path and equals sphere() with it, bit for bit", "[mie][spheres]") {
   // The bulk integrals ask for double recurrences up to x = 3e4 (weather's
-  // mie_efficiencies); x from 1e-3 to 3e4 crosses the series domain, the
-  // lanes, and the range (1e4, 3e4] that extended_above moves to double.
+  // mie_efficiencies); x from 1e-3 to 3e4 crosses the lanes and the range
+  // (1e4, 3e4] that extended_above moves to double.
   const auto x = random_x(600, 1e-3, 3e4, 11);
   mie::SpheresOptions o;
   o.options.extended_above = 3e4;

@@ -9,8 +9,8 @@
 // or the baseline SSE2, chosen at run time).  Each lane performs the very
 // operations of sphere(), so its results are bit for bit those of sphere()
 // (the library is built without fused multiply-add contraction).  Every other sphere (extended precision, upward
-// Dₙ(mx), the small spheres of ratio_series.hpp, a term rule or precision
-// other than the default) goes through sphere() itself.  The work is split
+// Dₙ(mx), a term rule or precision other than the default) goes through
+// sphere() itself.  The work is split
 // over threads.
 //
 // Bad input never throws: each bad element is reported with its index and the
