@@ -66,6 +66,7 @@ class Integrator {
   struct Node {
     double x = 0, w = 0;
     bool asymptotic = false;  // beyond asymptotic_x: Q_ext's large-x expansion, no Mie
+    std::size_t rule = 0;     // index of its abscissa and weights in the panel's rule
   };
   Node node(double u, Panel& p) const {
     const double r = std::exp(u);
@@ -125,29 +126,26 @@ class Integrator {
     for (std::size_t i = 0; i < rule_.abscissa.size(); ++i)
       for (int sgn = 0; sgn < (i == 0 ? 1 : 2); ++sgn) {
         nodes.push_back(node(mid + (sgn ? -rule_.abscissa[i] : rule_.abscissa[i]) * half, p));
+        nodes.back().rule = i;
         if (!nodes.back().asymptotic) xs.push_back(nodes.back().x);
       }
     std::vector<Efficiency> eff(xs.size());
     if (!xs.empty()) q_(xs.data(), xs.size(), eff.data());
-    std::size_t j = 0, e = 0;
+    std::size_t e = 0;
     const Efficiency none;
-    for (std::size_t i = 0; i < rule_.abscissa.size(); ++i) {
-      int copies = (i == 0) ? 1 : 2;
-      for (int sgn = 0; sgn < copies; ++sgn) {
-        double qext = 0;
-        const Node& nd = nodes[j++];
-        Vec f = integrand(nd, nd.asymptotic ? none : eff[e++], qext);
-        ++p.evaluations;
-        p.qext_max = std::max(p.qext_max, std::abs(qext));
-        for (int c = 0; c < n; ++c) {
-          k[c] += rule_.kronrod_weight[i] * f[c];
-          g[c] += rule_.gauss_weight[i] * f[c];
-          if (f[kWeight] > 0) {
-            double q = f[c] / f[kWeight];
-            q_min[c] = std::min(q_min[c], q);
-            q_max[c] = std::max(q_max[c], q);
-            p.q_max[c] = std::max(p.q_max[c], std::abs(q));
-          }
+    for (const Node& nd : nodes) {
+      double qext = 0;
+      Vec f = integrand(nd, nd.asymptotic ? none : eff[e++], qext);
+      ++p.evaluations;
+      p.qext_max = std::max(p.qext_max, std::abs(qext));
+      for (int c = 0; c < n; ++c) {
+        k[c] += rule_.kronrod_weight[nd.rule] * f[c];
+        g[c] += rule_.gauss_weight[nd.rule] * f[c];
+        if (f[kWeight] > 0) {
+          double q = f[c] / f[kWeight];
+          q_min[c] = std::min(q_min[c], q);
+          q_max[c] = std::max(q_max[c], q);
+          p.q_max[c] = std::max(p.q_max[c], std::abs(q));
         }
       }
     }
