@@ -191,11 +191,8 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
                                "); the distribution's number density is out of range");
   };
   const auto check_budget = [&](const char* what, const Sums& sum) {
-    if (evaluations > s.max_evaluations)
-      throw std::runtime_error(std::string("sigma_ext by contour: ") + what + " " +
-                               significant(sum.error / std::abs(sum.total.real()), 3) +
-                               " (relative) still above the tolerance " + significant(s.rel_tolerance, 3) + " after " +
-                               std::to_string(evaluations) + " Mie evaluations");
+    detail::check_evaluation_budget("sigma_ext by contour", what, sum.error / std::abs(sum.total.real()),
+                                    s.rel_tolerance, evaluations, s.max_evaluations);
   };
   // Adaptive: split panels until the summed |K - G| meets the target.
   const auto refine = [&](std::vector<PanelResult>& ps) {

@@ -7,7 +7,11 @@
 #include <algorithm>
 #include <complex>
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 #include <vector>
+
+#include "attenuvis/io/number_text.hpp"
 
 #include "attenuvis/mie/forward_amplitude.hpp"
 #include "gauss_kronrod_rule.hpp"
@@ -113,6 +117,17 @@ auto refined_sums(std::vector<Panel>& panels, bool verify, Refine refine, SumsOf
     if (accept(fine)) return fine;
     panels.swap(halves);
   }
+}
+
+// Throws once a contour rule (`rule`, e.g. "sigma_ext by contour") has spent
+// more than max_evaluations Mie evaluations with `what` (its error estimate,
+// relative to the sum) still above the tolerance.
+inline void check_evaluation_budget(const char* rule, const char* what, double relative_error, double tolerance,
+                                    std::size_t evaluations, std::size_t max_evaluations) {
+  if (evaluations <= max_evaluations) return;
+  throw std::runtime_error(std::string(rule) + ": " + what + " " + io::significant(relative_error, 3) +
+                           " (relative) still above the tolerance " + io::significant(tolerance, 3) + " after " +
+                           std::to_string(evaluations) + " Mie evaluations");
 }
 
 }  // namespace attenuvis::weather::detail

@@ -319,11 +319,8 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
                                significant(sum.total.real(), 3) + "); the distribution's number density is out of range");
   };
   const auto check_budget = [&](const char* what, double error, const Sums& sum) {
-    if (evaluations > s.max_evaluations)
-      throw std::runtime_error(std::string("sigma_ext by segmented contour: ") + what + " " +
-                               significant(error / std::abs(sum.total.real()), 3) +
-                               " (relative) still above the tolerance " + significant(s.rel_tolerance, 3) + " after " +
-                               std::to_string(evaluations) + " Mie evaluations");
+    detail::check_evaluation_budget("sigma_ext by segmented contour", what, error / std::abs(sum.total.real()),
+                                    s.rel_tolerance, evaluations, s.max_evaluations);
   };
   // Adaptive: split panels until |K - G| plus the near-axis bounds meet the target.
   const auto refine = [&](std::vector<Panel>& ps) {
