@@ -368,7 +368,7 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   static const double tol_d = std::exp(-tail_log_tolerance<Real>());
   const Real tol(tol_d);
   SeriesSums<Real> sums;
-  VectorSums vector_sums;  // double without extras (pass 3 below)
+  VectorSums vector_sums;  // double (pass 3 below)
   const Work sx = sin(xw), cx = cos(xw);
   const Work psi1 = riccati_psi1(sx, cx, tables.y[0], over_xw(Work(1)));
   CW R_w(sx * psi1, cx * psi1);  // ψ₁/ξ₀ (1/ξ₀ = sin x + i cos x); R₁ = ρ₁ ψ₁/ξ₀
@@ -394,43 +394,40 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
     const std::size_t padded = std::min(kTermBlock, (count + 3) / 4 * 4);
     for (std::size_t i = count; i < padded; ++i) in.copy_entry(count - 1, i);
     block_terms<Real>(pec, constants, in, padded, a_prev, b_prev, terms);
-    // Pass 3 (serial): compensated sums, extras, convergence.  Without extras
-    // in double, the seven sums advance together, two 4-wide vector
-    // operations per order (sum_block_double, the same operations per sum).
+    // Pass 3 (serial): compensated sums, convergence, extras.  In double the
+    // seven sums advance together, two 4-wide vector operations per order
+    // (sum_block_double, the same operations per sum as SeriesSums::add).
+    std::size_t used = count;
     if constexpr (std::is_same_v<Real, double>) {
-      if (!extras.coefficients && !any_angle) {
-        const std::size_t used = sum_block_double(terms, first, count, xd, tol, converged_rule, vector_sums);
-        if (vector_sums.converged) {  // stopped at order first + used − 1
+      used = sum_block_double(terms, first, count, xd, tol, converged_rule, vector_sums);
+      if (vector_sums.converged) {  // stopped at order first + used − 1
+        converged = stopped = true;
+        n_last = first + used - 1;
+      }
+    } else {
+      for (std::size_t i = 0; i < count; ++i) {
+        const std::size_t n = first + i;
+        sums.add(terms, i, n);
+        if (converged_rule && static_cast<double>(n) > xd && terms.size[i] <= tol * sums.scale()) {
           converged = stopped = true;
-          n_last = first + used - 1;
+          n_last = n;
+          used = i + 1;
+          break;
         }
-        a_prev = C(terms.a_re[count - 1], terms.a_im[count - 1]);
-        b_prev = C(terms.b_re[count - 1], terms.b_im[count - 1]);
-        continue;
       }
     }
-    std::size_t used = count;
-    for (std::size_t i = 0; i < count; ++i) {
-      const std::size_t n = first + i;
-      sums.add(terms, i, n);
-      if (extras.coefficients) {
+    // The extras of the orders summed.
+    if (extras.coefficients) {
+      for (std::size_t i = 0; i < used; ++i) {
         out.a.emplace_back(terms.a_re[i], terms.a_im[i]);
         out.b.emplace_back(terms.b_re[i], terms.b_im[i]);
-      }
-      if (converged_rule && static_cast<double>(n) > xd && terms.size[i] <= tol * sums.scale()) {
-        converged = stopped = true;
-        n_last = n;
-        used = i + 1;
-        break;
       }
     }
     if (any_angle) angular->add_block(first, used, terms);
     a_prev = C(terms.a_re[count - 1], terms.a_im[count - 1]);
     b_prev = C(terms.b_re[count - 1], terms.b_im[count - 1]);
   }
-  if constexpr (std::is_same_v<Real, double>) {
-    if (!extras.coefficients && !any_angle) vector_sums.to(sums);
-  }
+  if constexpr (std::is_same_v<Real, double>) vector_sums.to(sums);
   if (any_angle) angular->finish();
   sums.finish(x, pec, n_last, out.q);
   return converged;
