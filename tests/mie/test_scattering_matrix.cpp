@@ -21,7 +21,9 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
+#include <algorithm>
 
 #include <boost/math/constants/constants.hpp>
 #include <boost/math/quadrature/gauss.hpp>
@@ -126,4 +128,77 @@ TEST_CASE("Scattering matrix: bad input", "[mie][scattering_matrix]") {
   s.angles_deg = {10.0};
   CHECK_THROWS_AS(mie::scattering_matrix(1.0, s), std::invalid_argument);
   CHECK_THROWS_AS(mie::scattering_matrix(-1.0, cd(1.5, 0.0), {10.0}), std::invalid_argument);
+}
+
+// S1, S2 of scatter() against B&H 4.74 summed here, order by order in long
+// double, from the coefficients aₙ, bₙ scatter() returns with them (πₙ, τₙ by
+// B&H 4.47 from μ = cos θ in long double).  The series accumulates the
+// amplitudes a block of orders at a time with the angles in vector lanes;
+// this checks that every order is added once, to every angle, up to where
+// the series stops (x = 50 and 700 run through several blocks; angle counts
+// that fill no whole vector).  Bound: the rounding of double sums of up to
+// ~730 terms, relative to the largest |S| (the forward peak).
+TEST_CASE("Amplitudes S1, S2 equal B&H 4.74 summed from the returned coefficients", "[mie][scattering_matrix]") {
+  const long double pi = boost::math::constants::pi<long double>();
+  const std::vector<double> one = {37.5}, nine = {0, 10, 20, 45, 90, 120, 150, 170, 180};
+  std::vector<double> fine;
+  for (int k = 0; k <= 24; ++k) fine.push_back(7.5 * k);
+  for (const double x : {0.1, 3.0, 50.0, 700.0}) {
+    for (const cd m : {cd(1.33, 1e-8), cd(1.5, 0.1), cd(1.0001, 0.0)}) {
+      for (const std::vector<double>* list_p : std::vector<const std::vector<double>*>{&one, &nine, &fine}) {
+        const std::vector<double>& list = *list_p;
+        mie::Extras ex;
+        ex.coefficients = true;
+        ex.angles_deg = std::vector<double>(list.begin(), list.end());
+        const auto s = mie::scatter(x, m, ex);
+        REQUIRE(s.a.size() == s.q.terms);
+        REQUIRE(s.s1.size() == list.size());
+        long double largest = 0;
+        std::vector<std::complex<long double>> r1(list.size()), r2(list.size());
+        for (std::size_t j = 0; j < list.size(); ++j) {
+          const long double mu = std::cos(static_cast<long double>(list[j]) * pi / 180);
+          long double p0 = 0, p1 = 1;  // π_{n-1}, πₙ
+          for (std::size_t n = 1; n <= s.a.size(); ++n) {
+            const long double rn = n;
+            if (n >= 2) {
+              const long double p2 = ((2 * rn - 1) * mu * p1 - rn * p0) / (rn - 1);
+              p0 = p1;
+              p1 = p2;
+            }
+            const long double tau = rn * mu * p1 - (rn + 1) * p0;
+            const long double f = (2 * rn + 1) / (rn * (rn + 1));
+            const std::complex<long double> a(s.a[n - 1].real(), s.a[n - 1].imag());
+            const std::complex<long double> b(s.b[n - 1].real(), s.b[n - 1].imag());
+            r1[j] += f * (a * p1 + b * tau);
+            r2[j] += f * (a * tau + b * p1);
+          }
+          largest = std::max({largest, std::abs(r1[j]), std::abs(r2[j])});
+        }
+        for (std::size_t j = 0; j < list.size(); ++j) {
+          INFO("x = " << x << ", m = " << m << ", theta = " << list[j] << " deg of " << list.size());
+          const std::complex<long double> d1 = std::complex<long double>(s.s1[j].real(), s.s1[j].imag()) - r1[j];
+          const std::complex<long double> d2 = std::complex<long double>(s.s2[j].real(), s.s2[j].imag()) - r2[j];
+          CHECK(static_cast<double>(std::abs(d1) / largest) < 1e-13);
+          CHECK(static_cast<double>(std::abs(d2) / largest) < 1e-13);
+        }
+      }
+    }
+  }
+}
+
+// The cosines of an angle list are kept per thread for the next sphere; a
+// sphere at another list, or at the first one again, must not see stale ones.
+TEST_CASE("Amplitudes do not depend on the angle list asked for before", "[mie][scattering_matrix]") {
+  mie::Extras ea, eb;
+  ea.angles_deg = {0, 30, 60, 90};
+  eb.angles_deg = {5, 95, 175};
+  const auto first_a = mie::scatter(20.0, cd(1.5, 0.01), ea);
+  const auto then_b = mie::scatter(20.0, cd(1.5, 0.01), eb);
+  const auto again_a = mie::scatter(20.0, cd(1.5, 0.01), ea);
+  mie::Scattering<double> fresh_b;
+  std::thread([&] { fresh_b = mie::scatter(20.0, cd(1.5, 0.01), eb); }).join();
+  CHECK(then_b.s1 == fresh_b.s1);
+  CHECK(then_b.s2 == fresh_b.s2);
+  CHECK(again_a.s1 == first_a.s1);
+  CHECK(again_a.s2 == first_a.s2);
 }

@@ -83,9 +83,8 @@
 #include <type_traits>
 #include <vector>
 
-#include <boost/math/special_functions/cos_pi.hpp>
-
 #include "attenuvis/mie.hpp"
+#include "attenuvis/mie/angular_sums.hpp"
 #include "attenuvis/mie/log_derivative.hpp"
 #include "attenuvis/mie/scratch.hpp"
 #include "attenuvis/mie/term_count.hpp"
@@ -165,42 +164,6 @@ struct DownwardTables {
     if (is_value.capacity_bytes() > kKeep) is_value.release();
     if (w.capacity_bytes() > kKeep) w.release();
   }
-};
-
-// Amplitudes S1, S2 at the requested angles, accumulated term by term
-// (B&H 4.74 with πₙ, τₙ from B&H 4.47).
-template <class Real>
-class AngularSums {
- public:
-  using C = Complex<Real>;
-  AngularSums(const std::vector<double>& angles_deg, Scattering<Real>& out) : out_(out) {
-    const std::size_t na = angles_deg.size();
-    mu_.resize(na);
-    pi_prev_.assign(na, Real(0));
-    pi_cur_.assign(na, Real(1));
-    for (std::size_t j = 0; j < na; ++j) mu_[j] = boost::math::cos_pi(Real(angles_deg[j]) / Real(180));
-    out_.s1.assign(na, C(Real(0)));
-    out_.s2.assign(na, C(Real(0)));
-  }
-  void add(std::size_t n, const C& a, const C& b) {
-    const Real rn = Real(n), f = Real(2 * n + 1) / (rn * (rn + 1));
-    for (std::size_t j = 0; j < mu_.size(); ++j) {
-      Real pi_n = pi_cur_[j];
-      if (n >= 2) {
-        pi_n = (Real(2 * n - 1) * mu_[j] * pi_cur_[j] - rn * pi_prev_[j]) / Real(n - 1);
-        pi_prev_[j] = pi_cur_[j];
-        pi_cur_[j] = pi_n;
-      }
-      const Real tau = rn * mu_[j] * pi_n - (rn + 1) * pi_prev_[j];
-      const C fa = a * f, fb = b * f;
-      out_.s1[j] += fa * pi_n + fb * tau;
-      out_.s2[j] += fa * tau + fb * pi_n;
-    }
-  }
-
- private:
-  Scattering<Real>& out_;
-  std::vector<Real> mu_, pi_prev_, pi_cur_;
 };
 
 // The per-block term loops: the run-time dispatched clones for double
@@ -405,7 +368,7 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   static const double tol_d = std::exp(-tail_log_tolerance<Real>());
   const Real tol(tol_d);
   SeriesSums<Real> sums;
-  VectorSums vector_sums;  // double without extras (pass 3 below)
+  VectorSums vector_sums;  // double (pass 3 below)
   const Work sx = sin(xw), cx = cos(xw);
   const Work psi1 = riccati_psi1(sx, cx, tables.y[0], over_xw(Work(1)));
   CW R_w(sx * psi1, cx * psi1);  // ψ₁/ξ₀ (1/ξ₀ = sin x + i cos x); R₁ = ρ₁ ψ₁/ξ₀
@@ -431,42 +394,41 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
     const std::size_t padded = std::min(kTermBlock, (count + 3) / 4 * 4);
     for (std::size_t i = count; i < padded; ++i) in.copy_entry(count - 1, i);
     block_terms<Real>(pec, constants, in, padded, a_prev, b_prev, terms);
-    // Pass 3 (serial): compensated sums, extras, convergence.  Without extras
-    // in double, the seven sums advance together, two 4-wide vector
-    // operations per order (sum_block_double, the same operations per sum).
+    // Pass 3 (serial): compensated sums, convergence, extras.  In double the
+    // seven sums advance together, two 4-wide vector operations per order
+    // (sum_block_double, the same operations per sum as SeriesSums::add).
+    std::size_t used = count;
     if constexpr (std::is_same_v<Real, double>) {
-      if (!extras.coefficients && !any_angle) {
-        const std::size_t used = sum_block_double(terms, first, count, xd, tol, converged_rule, vector_sums);
-        if (vector_sums.converged) {  // stopped at order first + used − 1
-          converged = stopped = true;
-          n_last = first + used - 1;
-        }
-        a_prev = C(terms.a_re[count - 1], terms.a_im[count - 1]);
-        b_prev = C(terms.b_re[count - 1], terms.b_im[count - 1]);
-        continue;
-      }
-    }
-    for (std::size_t i = 0; i < count; ++i) {
-      const std::size_t n = first + i;
-      sums.add(terms, i, n);
-      const C a(terms.a_re[i], terms.a_im[i]), b(terms.b_re[i], terms.b_im[i]);
-      if (extras.coefficients) {
-        out.a.push_back(a);
-        out.b.push_back(b);
-      }
-      if (any_angle) angular->add(n, a, b);
-      if (converged_rule && static_cast<double>(n) > xd && terms.size[i] <= tol * sums.scale()) {
+      used = sum_block_double(terms, first, count, xd, tol, converged_rule, vector_sums);
+      if (vector_sums.converged) {  // stopped at order first + used − 1
         converged = stopped = true;
-        n_last = n;
-        break;
+        n_last = first + used - 1;
+      }
+    } else {
+      for (std::size_t i = 0; i < count; ++i) {
+        const std::size_t n = first + i;
+        sums.add(terms, i, n);
+        if (converged_rule && static_cast<double>(n) > xd && terms.size[i] <= tol * sums.scale()) {
+          converged = stopped = true;
+          n_last = n;
+          used = i + 1;
+          break;
+        }
       }
     }
+    // The extras of the orders summed.
+    if (extras.coefficients) {
+      for (std::size_t i = 0; i < used; ++i) {
+        out.a.emplace_back(terms.a_re[i], terms.a_im[i]);
+        out.b.emplace_back(terms.b_re[i], terms.b_im[i]);
+      }
+    }
+    if (any_angle) angular->add_block(first, used, terms);
     a_prev = C(terms.a_re[count - 1], terms.a_im[count - 1]);
     b_prev = C(terms.b_re[count - 1], terms.b_im[count - 1]);
   }
-  if constexpr (std::is_same_v<Real, double>) {
-    if (!extras.coefficients && !any_angle) vector_sums.to(sums);
-  }
+  if constexpr (std::is_same_v<Real, double>) vector_sums.to(sums);
+  if (any_angle) angular->finish();
   sums.finish(x, pec, n_last, out.q);
   return converged;
 }
