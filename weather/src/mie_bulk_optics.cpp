@@ -62,7 +62,7 @@ EfficiencyFunction mie_efficiencies(std::complex<double> m, const QuadratureSett
   const bool polarised = s.polarised && L >= 0;
   return [m, options, extras, L, polarised](double x) {
     const auto sc = mie::scatter(x, m, extras, options);
-    Efficiency e{sc.q.qext, sc.q.qsca, sc.q.qabs, sc.q.g, sc.q.qback, {}, {}, {}};
+    Efficiency e = from_mie(sc.q);
     if (L >= 0) {
       e.moments = mie::phase_function_moments(sc, static_cast<std::size_t>(L));
       e.moments.resize(static_cast<std::size_t>(L) + 1, 0.0);  // above 2N they are exact zeros
