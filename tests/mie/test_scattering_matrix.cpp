@@ -16,6 +16,7 @@
 
 #include "csv_rows.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <fstream>
@@ -23,7 +24,6 @@
 #include <string>
 #include <thread>
 #include <vector>
-#include <algorithm>
 
 #include <boost/math/constants/constants.hpp>
 #include <boost/math/quadrature/gauss.hpp>
