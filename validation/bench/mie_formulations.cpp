@@ -58,7 +58,8 @@ double min_ns(F&& f, int blocks) {
 template <class R>
 struct RatioTables {
   std::vector<R> y, rho_re, rho_im, y_err, rho_re_err, rho_im_err;  // *_err: compensated only
-  explicit RatioTables(long n) : y(n + 2), rho_re(n + 2), rho_im(n + 2), y_err(n + 2), rho_re_err(n + 2), rho_im_err(n + 2) {}
+  explicit RatioTables(long n)
+      : y(n + 2), rho_re(n + 2), rho_im(n + 2), y_err(n + 2), rho_re_err(n + 2), rho_im_err(n + 2) {}
 };
 
 // The core's step (downward_ratios with HankelRatio, Slot::difference) in
