@@ -20,8 +20,8 @@
 // 2. Small x: the same ratios for n <= N by power series in x² and (mx)²,
 //    every order independent (Horner across orders, vectorisable; δₙ by
 //    divided differences, so nothing cancels at m near 1; ρₙ from the series
-//    of ψₙ and χₙ), against the downward recurrences from the core's own
-//    table length and Miller start.  ns per call and the largest relative
+//    of ψₙ and χₙ), against the core's own downward pass (downward_ratios)
+//    with its table length and Miller start.  ns per call and the largest relative
 //    difference between the two.
 //
 // Usage: mie_formulations   (a few seconds; one thread)
@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "attenuvis/mie/log_derivative.hpp"
+#include "attenuvis/mie/series.hpp"
 #include "attenuvis/mie/term_count.hpp"
 
 namespace {
@@ -303,59 +304,50 @@ void series_ratios(double x, std::complex<double> m, int N, int K, SmallTables& 
   }
 }
 
-// What the core does at small x: downward from index N + K (Miller start from
-// zeros) with the table stored from N, the Hankel ratio upward alongside.
-void recurrence_ratios(double x, std::complex<double> m, int N, int K, SmallTables& o) {
-  using C = std::complex<double>;
-  const double ix = 1 / x;
-  const C iz = 1.0 / (m * x), c = (m - 1.0) * iz;
-  double yx = 0;
-  C yz = 0, d = 0, rho(0, 1);
-  for (int n = N + K;; --n) {
-    if (n <= N) {
-      o.y[n] = yx, o.w_re[n] = d.real(), o.w_im[n] = d.imag();
-      const int j = N + 1 - n;
-      const C u = double(2 * j - 1) * ix - rho;
-      const double s = 1 / std::norm(u);
-      rho = C(u.real() * s, -u.imag() * s);
-      o.rho_re[j] = rho.real(), o.rho_im[j] = rho.imag();
-    }
-    if (n == 0) break;
-    const double k = 2 * n + 1;
-    yx = 1 / (k * ix - yx);
-    const C dz = k * iz - yz;
-    const double s = 1 / std::norm(dz);
-    yz = C(dz.real() * s, -dz.imag() * s);
-    const C t = c * k + d;
-    d = C(t.real() * yz.real() - t.imag() * yz.imag(), t.real() * yz.imag() + t.imag() * yz.real()) * yx;
-  }
-}
-
 void small_x(double x, std::complex<double> m) {
   namespace d = attenuvis::mie::detail;
+  using C = attenuvis::mie::Complex<double>;
   const int N = int(d::first_terms<double>(x, std::cbrt(x)));
   const int K = int(d::miller_depth(x, m, std::size_t(N)));
-  const int terms = series_terms(std::max(x * x, std::norm(m) * x * x), N);
   if (N > kMaxOrder || K == 0) return;
-  SmallTables a{}, b{};
-  constexpr int kCalls = 200000;
+  const int terms = series_terms(std::max(x * x, std::norm(m) * x * x), N);
+  // The core's own downward pass (log_derivative.hpp) with its tables; the
+  // correctly rounded k/x, k/(mx) of the eight x values are built outside
+  // the timing, as the call builds them for its series too.
+  constexpr int kCalls = 200000, kXs = 8;
+  std::vector<d::ScaledInverse<double>> over_x;
+  std::vector<d::ScaledInverseComplex<double, C>> over_mx;
+  for (int i = 0; i < kXs; ++i) {
+    over_x.emplace_back(x * (1 + 1e-12 * i));
+    over_mx.emplace_back(x * (1 + 1e-12 * i), C(m.real(), m.imag()));
+  }
+  d::DownwardTables<double> core;
+  const auto core_pass = [&](int i) {
+    d::downward_ratios<double, C>(over_x[i], over_mx[i], C(m.real(), m.imag()), std::size_t(N), d::Slot::difference,
+                                  core.y, core.rho, core.w, core.is_value, std::size_t(K));
+  };
+  SmallTables a{};
   const double ns_series = min_ns([&] {
-    for (int i = 0; i < kCalls; ++i) series_ratios(x * (1 + 1e-12 * (i & 7)), m, N, terms, a), g_sink = a.w_re[1];
+    for (int i = 0; i < kCalls; ++i) series_ratios(x * (1 + 1e-12 * (i % kXs)), m, N, terms, a), g_sink = a.w_re[1];
   }, 9) / kCalls;
-  const double ns_rec = min_ns([&] {
-    for (int i = 0; i < kCalls; ++i) recurrence_ratios(x * (1 + 1e-12 * (i & 7)), m, N, K, b), g_sink = b.w_re[1];
+  const double ns_core = min_ns([&] {
+    for (int i = 0; i < kCalls; ++i) core_pass(i % kXs), g_sink = core.w[1].real();
   }, 9) / kCalls;
   series_ratios(x, m, N, terms, a);
-  recurrence_ratios(x, m, N, K, b);
+  core_pass(0);
   double diff = 0;
   for (int n = 0; n <= N; ++n) {
-    diff = std::max(diff, std::abs(a.y[n] - b.y[n]) / std::abs(b.y[n]));
-    diff = std::max(diff, std::hypot(a.w_re[n] - b.w_re[n], a.w_im[n] - b.w_im[n]) / std::hypot(b.w_re[n], b.w_im[n]));
-    diff = std::max(diff, std::hypot(a.rho_re[n + 1] - b.rho_re[n + 1], a.rho_im[n + 1] - b.rho_im[n + 1]) /
-                              std::hypot(b.rho_re[n + 1], b.rho_im[n + 1]));
+    const double y = core.y[n];
+    // w holds δₙ, or yₙ(mx) itself where is_value is set.
+    const double dr = core.w[n].real() - (core.is_value[n] ? y : 0.0), di = core.w[n].imag();
+    const auto rho = core.rho[n + 1];
+    diff = std::max(diff, std::abs(a.y[n] - y) / std::abs(y));
+    diff = std::max(diff, std::hypot(a.w_re[n] - dr, a.w_im[n] - di) / std::hypot(dr, di));
+    diff = std::max(diff, std::hypot(a.rho_re[n + 1] - rho.real(), a.rho_im[n + 1] - rho.imag()) /
+                              std::hypot(rho.real(), rho.imag()));
   }
   std::printf("x = %g, m = %g%+gi: orders 0..%d; y_n(x), delta_n, rho_n per call\n", x, m.real(), m.imag(), N);
-  std::printf("  downward from N + %d (the core)   %8.1f ns\n", K, ns_rec);
+  std::printf("  downward from N + %d (the core)   %8.1f ns\n", K, ns_core);
   std::printf("  power series, %2d terms           %8.1f ns   (max relative difference %.1e)\n", terms, ns_series,
               diff);
 }
