@@ -194,30 +194,19 @@ ScatteringMatrixExpansion<Real> gsf_coefficients(const std::vector<Complex<Real>
         "extras.coefficients = true");
   const std::size_t nt = a.size(), lmax = std::min(max_l, 2 * nt);
   const HalfGaussLegendre<Real>& rule = cached_rule<Real>(exact_order(nt, lmax));
-  const std::size_t m = rule.s.size();
   const AmplitudeSeries<Real> c(a, b);
   const BonnetCoefficients<Real> kp(lmax);
   const WignerCoefficients<Real> kw(lmax);
-  const Real inv_w = 1 / scattering_norm<Real>(a, b);
-  std::vector<Real> two_s(m), weight(m);
-  std::size_t split = 0;  // nodes [0, split) have s <= ¼ (ascending s)
-  for (std::size_t j = 0; j < m; ++j) {
-    two_s[j] = 2 * rule.s[j];
-    weight[j] = rule.w[j] * inv_w;
-    if (rule.s[j] <= Real(0.25)) split = j + 1;
-  }
+  const WeightedNodes<Real> nodes(rule, 1 / scattering_norm<Real>(a, b));
   std::vector<Real> acc((lmax + 1) * kGsfSums * kLanes, Real(0));
-  for (std::size_t j0 = 0; j0 < m;) {
-    const bool near = j0 < split;
-    const std::size_t len = std::min(kChunk, (near ? split : m) - j0);
+  nodes.for_each_chunk([&](const Real* two_s, const Real* weight, std::size_t len, bool near) {
     if constexpr (PerIsa && std::is_same_v<Real, double>)
-      gsf_chunk_double(c, kp, kw, two_s.data() + j0, weight.data() + j0, len, near, lmax, acc.data());
+      gsf_chunk_double(c, kp, kw, two_s, weight, len, near, lmax, acc.data());
     else if (near)
-      gsf_chunk<Real, true>(c, kp, kw, two_s.data() + j0, weight.data() + j0, len, lmax, acc.data());
+      gsf_chunk<Real, true>(c, kp, kw, two_s, weight, len, lmax, acc.data());
     else
-      gsf_chunk<Real, false>(c, kp, kw, two_s.data() + j0, weight.data() + j0, len, lmax, acc.data());
-    j0 += len;
-  }
+      gsf_chunk<Real, false>(c, kp, kw, two_s, weight, len, lmax, acc.data());
+  });
   ScatteringMatrixExpansion<Real> out;
   for (auto* v : {&out.alpha1, &out.alpha2, &out.alpha3, &out.alpha4, &out.beta1, &out.beta2})
     v->assign(output_length(nt, max_l), Real(0));

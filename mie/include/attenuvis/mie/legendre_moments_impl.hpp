@@ -142,6 +142,37 @@ struct AmplitudeSeries {
 inline constexpr std::size_t kLanes = 8;
 inline constexpr std::size_t kChunk = 32;
 
+// The nodes of the half-range rule as the chunk kernels read them: 2sⱼ, the
+// weights wⱼ divided by the norm W of the phase function, and how many nodes
+// (ascending s) have s <= ¼ and so take the near-forward (difference) form of
+// the recurrences.  Shared by the moments of p(μ) and the expansion of the
+// whole scattering matrix, which sum over the same nodes.
+template <class Real>
+struct WeightedNodes {
+  std::vector<Real> two_s, weight;
+  std::size_t split = 0;  // nodes [0, split) have s <= ¼
+  WeightedNodes(const HalfGaussLegendre<Real>& rule, const Real& inv_w)
+      : two_s(rule.s.size()), weight(rule.s.size()) {
+    for (std::size_t j = 0; j < rule.s.size(); ++j) {
+      two_s[j] = 2 * rule.s[j];
+      weight[j] = rule.w[j] * inv_w;
+      if (rule.s[j] <= Real(0.25)) split = j + 1;
+    }
+  }
+  // f(two_s, weight, len, near) for chunks of at most kChunk nodes, none of
+  // which straddles s = ¼.
+  template <class F>
+  void for_each_chunk(const F& f) const {
+    const std::size_t m = two_s.size();
+    for (std::size_t j0 = 0; j0 < m;) {
+      const bool near = j0 < split;
+      const std::size_t len = std::min(kChunk, (near ? split : m) - j0);
+      f(two_s.data() + j0, weight.data() + j0, len, near);
+      j0 += len;
+    }
+  }
+};
+
 // The kernels are inlined into their per-instruction-set callers
 // (mie/src/legendre_moments_double.cpp), which is what compiles them for each set.
 #if defined(__GNUC__)
@@ -382,24 +413,13 @@ std::vector<Real> legendre_moments(const std::vector<Complex<Real>>& a, const st
         "Legendre moments need the Mie coefficients: call scatter() with extras.coefficients = true");
   const std::size_t nt = a.size(), lmax = std::min(max_l, 2 * nt);
   const HalfGaussLegendre<Real>& rule = cached_rule<Real>(exact_order(nt, lmax));
-  const std::size_t m = rule.s.size();
   const AmplitudeSeries<Real> c(a, b);
   const BonnetCoefficients<Real> k(lmax);
-  const Real inv_w = 1 / scattering_norm<Real>(a, b);
-  std::vector<Real> two_s(m), weight(m);
-  std::size_t split = 0;  // nodes [0, split) have s <= ¼ (ascending s)
-  for (std::size_t j = 0; j < m; ++j) {
-    two_s[j] = 2 * rule.s[j];
-    weight[j] = rule.w[j] * inv_w;
-    if (rule.s[j] <= Real(0.25)) split = j + 1;
-  }
+  const WeightedNodes<Real> nodes(rule, 1 / scattering_norm<Real>(a, b));
   std::vector<Real> acc((lmax + 1) * kLanes, Real(0));
-  for (std::size_t j0 = 0; j0 < m;) {
-    const bool near = j0 < split;
-    const std::size_t len = std::min(kChunk, (near ? split : m) - j0);
-    moments_chunk_any<Real, PerIsa>(c, k, two_s.data() + j0, weight.data() + j0, len, near, lmax, acc.data());
-    j0 += len;
-  }
+  nodes.for_each_chunk([&](const Real* two_s, const Real* weight, std::size_t len, bool near) {
+    moments_chunk_any<Real, PerIsa>(c, k, two_s, weight, len, near, lmax, acc.data());
+  });
   std::vector<Real> chi(output_length(nt, max_l), Real(0));
   for (std::size_t l = 0; l <= lmax; ++l) chi[l] = lane_total(acc.data() + l * kLanes);
   return chi;
