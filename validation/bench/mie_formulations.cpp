@@ -144,12 +144,15 @@ ATTENUVIS_FMA_TARGET inline void scaled(double k, double hi, double lo, double& 
 
 // plain_pass with every ratio compensated (δ stays plain: it is damped).
 ATTENUVIS_FMA_TARGET void compensated_pass(double x, std::complex<double> m, long N, RatioTables<double>& t) {
-  const long double ixl = 1.0L / x;
-  const std::complex<long double> izl = 1.0L / (std::complex<long double>(m.real(), m.imag()) * (long double)x);
-  const double ixh = double(ixl), ixlo = double(ixl - ixh);
-  const double izh[2] = {double(izl.real()), double(izl.imag())};
-  const double izlo[2] = {double(izl.real() - izh[0]), double(izl.imag() - izh[1])};
-  const std::complex<double> c = (m - 1.0) * std::complex<double>(izh[0], izh[1]);
+  // 1/x and 1/(mx) as the core rounds them (x87 quotient, split into a
+  // double and its remainder): the same constants as the core's double path.
+  namespace core = attenuvis::mie::detail;
+  const core::ScaledInverse<double> over_x(x);
+  const core::ScaledInverseComplex<double, std::complex<double>> over_mx(x, m);
+  const double ixh = over_x.hi, ixlo = over_x.split.lo;
+  const double izh[2] = {over_mx.hi.real(), over_mx.hi.imag()};
+  const double izlo[2] = {over_mx.re.lo, over_mx.im.lo};
+  const std::complex<double> c = (m - 1.0) * over_mx.hi;
   double yx = 0, yxe = 0, yz[2] = {0, 0}, yze[2] = {0, 0}, d[2] = {0, 0}, rho[2] = {0, 1}, rhoe[2] = {0, 0};
   for (long n = N;; --n) {
     t.y[n] = yx, t.y_err[n] = yxe;
@@ -193,7 +196,7 @@ void errors(const RatioTables<R>& t, const RatioTables<Quad>& q, long N, bool co
 }
 
 void large_x(double x, std::complex<double> m) {
-  const long N = long(attenuvis::mie::detail::first_terms<double>(x, std::cbrt(x)));
+  const long N = long(attenuvis::mie::detail::first_terms<double>(x, attenuvis::mie::detail::bound_cbrt(x)));
   RatioTables<long double> tl(N);
   RatioTables<double> td(N), tc(N);
   RatioTables<Quad> tq(N);
@@ -307,7 +310,7 @@ void series_ratios(double x, std::complex<double> m, int N, int K, SmallTables& 
 void small_x(double x, std::complex<double> m) {
   namespace d = attenuvis::mie::detail;
   using C = attenuvis::mie::Complex<double>;
-  const int N = int(d::first_terms<double>(x, std::cbrt(x)));
+  const int N = int(d::first_terms<double>(x, d::bound_cbrt(x)));  // the core's table length
   const int K = int(d::miller_depth(x, m, std::size_t(N)));
   if (N > kMaxOrder || K == 0) return;
   const int terms = series_terms(std::max(x * x, std::norm(m) * x * x), N);
