@@ -2,9 +2,9 @@
 // attenuvis/validation/mie_baseline.hpp).
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/validation/mie_baseline.hpp"
+#include "block_timing.hpp"
 
 #include <dlfcn.h>
-#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -25,40 +25,8 @@ namespace attenuvis::validation {
 namespace {
 
 namespace mie = attenuvis::mie;
-volatile double g_sink = 0;
-
-// CPU time of the calling thread, in seconds: on a shared machine the time
-// the thread waits for a core is not charged to either core under test.
-double thread_seconds() {
-  timespec t{};
-  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-// Calls per block so that one block of f() lasts about min_seconds.
-template <class F>
-long calls_per_block(F&& f, double min_seconds) {
-  long reps = 1;
-  for (;;) {
-    const double t0 = thread_seconds();
-    double acc = 0;
-    for (long i = 0; i < reps; ++i) acc += f();
-    g_sink = g_sink + acc;
-    const double dt = thread_seconds() - t0;
-    if (dt >= min_seconds || reps > (1L << 30)) return reps;
-    reps = dt > 0 ? std::max(reps * 2, static_cast<long>(reps * 1.2 * min_seconds / dt)) : reps * 16;
-  }
-}
-
-template <class F>
-double block_ns(F&& f, long reps) {
-  const double t0 = thread_seconds();
-  double acc = 0;
-  for (long i = 0; i < reps; ++i) acc += f();
-  const double dt = thread_seconds() - t0;
-  g_sink = g_sink + acc;
-  return dt / static_cast<double>(reps) * 1e9;
-}
+using timing::block_ns;
+using timing::calls_per_block;
 
 }  // namespace
 
@@ -112,11 +80,16 @@ std::vector<SpeedCell> mie_speed_vs_baseline(const MieBaseline& baseline, const 
   return cells;
 }
 
-BatchSpeed mie_batch_vs_baseline(const MieBaseline& baseline, BatchSpeed b, int blocks) {
+std::vector<double> batch_size_parameters(double x_min, double x_max, std::size_t count) {
   std::mt19937_64 rng(20240601);
-  std::uniform_real_distribution<double> u(b.x_min, b.x_max);
-  std::vector<double> x(b.count);
+  std::uniform_real_distribution<double> u(x_min, x_max);
+  std::vector<double> x(count);
   for (double& v : x) v = u(rng);
+  return x;
+}
+
+BatchSpeed mie_batch_vs_baseline(const MieBaseline& baseline, BatchSpeed b, int blocks) {
+  const std::vector<double> x = batch_size_parameters(b.x_min, b.x_max, b.count);
   std::vector<mie::Efficiencies<double>> single(b.count), batch(b.count);
   mie::SpheresOptions one;
   one.threads = 1;

@@ -79,6 +79,9 @@ struct BatchSpeed {
   std::vector<double> ns_batch_by_set;        ///< one thread, per instruction set
   bool identical_by_set = false;              ///< every instruction set gives the same bits
 };
+/// The size parameters of the many-spheres timings: `count` values uniform in
+/// [x_min, x_max] from a fixed seed, the same in every run and every comparison.
+std::vector<double> batch_size_parameters(double x_min, double x_max, std::size_t count);
 BatchSpeed mie_batch_vs_baseline(const MieBaseline& baseline, BatchSpeed setup, int blocks = 5);
 std::string format_batch_speed(const BatchSpeed& b);
 
