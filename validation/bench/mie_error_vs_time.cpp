@@ -16,7 +16,13 @@
 // [0.01, 100], m = 1.33+1e-8i): the baseline's sphere() in a loop against the
 // current sphere() and spheres() (see attenuvis/validation/mie_baseline.hpp).
 //
-// Usage: mie_error_vs_time [out.csv] [--quick] [--max-x X] [--baseline LIB] [--speed-only]
+// With --miev0 LIB (default: build/miev0/libmiev0.so when present) it also
+// times Wiscombe's MIEV0 itself, built from the user's copy of its source by
+// validation/bench/miev0/build_miev0.sh: per call against the default and the
+// Wiscombe-count modes, with each one's error against the referee, and over
+// the same many spheres (see attenuvis/validation/mie_miev0.hpp).
+//
+// Usage: mie_error_vs_time [out.csv] [--quick] [--max-x X] [--baseline LIB] [--miev0 LIB] [--speed-only]
 //   out.csv       default out/mie_error_vs_time.csv (written atomically)
 //   --quick       stop at x = 1e4 (a few seconds); the full table needs the 50-digit
 //                 referee at x = 1e5 and 1e6, about 30 s per m at 1e6.
@@ -30,13 +36,14 @@
 
 #include "attenuvis/validation/mie_accuracy.hpp"
 #include "attenuvis/validation/mie_baseline.hpp"
+#include "attenuvis/validation/mie_miev0.hpp"
 
 int main(int argc, char** argv) {
   using namespace attenuvis::validation;
   try {
     std::string out = "out/mie_error_vs_time.csv";
     ErrorTimeOptions options;
-    std::string baseline_path;
+    std::string baseline_path, miev0_path;
     bool speed_only = false;
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -48,25 +55,30 @@ int main(int argc, char** argv) {
         options.max_x = std::stod(argv[++i]);
       } else if (a == "--baseline" && i + 1 < argc) {
         baseline_path = argv[++i];
+      } else if (a == "--miev0" && i + 1 < argc) {
+        miev0_path = argv[++i];
       } else if (a == "--speed-only") {
         speed_only = true;
       } else if (!a.empty() && a[0] == '-') {
         std::cerr << "mie_error_vs_time: unknown option " << a
-                  << "\nusage: mie_error_vs_time [out.csv] [--quick] [--max-x X] [--baseline LIB] [--speed-only]\n";
+                  << "\nusage: mie_error_vs_time [out.csv] [--quick] [--max-x X] [--baseline LIB] [--miev0 LIB] "
+                     "[--speed-only]\n";
         return 2;
       } else {
         out = a;
       }
     }
-    if (baseline_path.empty()) {
-      // The library build_mie_baseline.sh leaves in the build tree, if it is there.
-      const auto guess = std::filesystem::path(argv[0]).parent_path() / ".." / "mie_baseline_78ee94c" /
-                         "libmie_baseline.so";
+    // The libraries the build scripts leave in the build tree, if they are there.
+    const auto guess = [&](std::string& path, const char* folder, const char* file) {
+      if (!path.empty()) return;
+      const auto p = std::filesystem::path(argv[0]).parent_path() / ".." / folder / file;
       std::error_code ec;
-      if (std::filesystem::is_regular_file(guess, ec)) baseline_path = guess.lexically_normal().string();
-    }
-    if (speed_only && baseline_path.empty()) {
-      std::cerr << "mie_error_vs_time: --speed-only needs --baseline LIB\n";
+      if (std::filesystem::is_regular_file(p, ec)) path = p.lexically_normal().string();
+    };
+    guess(baseline_path, "mie_baseline_78ee94c", "libmie_baseline.so");
+    guess(miev0_path, "miev0", "libmiev0.so");
+    if (speed_only && baseline_path.empty() && miev0_path.empty()) {
+      std::cerr << "mie_error_vs_time: --speed-only needs --baseline LIB or --miev0 LIB\n";
       return 2;
     }
     std::cout << "Mie core timings (" << timing_machine_description() << ")\n";
@@ -78,17 +90,23 @@ int main(int argc, char** argv) {
       write_error_vs_time_csv(out, rows);
       std::cout << "\nwrote " << out << "\n";
     }
+    SpeedOptions speed;
+    speed.xs.erase(std::remove_if(speed.xs.begin(), speed.xs.end(), [&](double x) { return x > options.max_x; }),
+                   speed.xs.end());
     if (baseline_path.empty()) {
       std::cout << "\nno baseline core: build one with validation/bench/baseline/build_mie_baseline.sh "
                    "(commit 78ee94c by default) and pass --baseline LIB\n";
     } else {
       const MieBaseline baseline(baseline_path);
-      SpeedOptions speed;
-      speed.xs.erase(std::remove_if(speed.xs.begin(), speed.xs.end(), [&](double x) { return x > options.max_x; }),
-                     speed.xs.end());
       std::cout << "\nper call, default accuracy, against " << baseline_path << "\n"
                 << format_speed_vs_baseline(mie_speed_vs_baseline(baseline, speed), "baseline") << "\n"
                 << format_batch_speed(mie_batch_vs_baseline(baseline, BatchSpeed{}));
+    }
+    if (!miev0_path.empty()) {
+      const Miev0Library miev0(miev0_path);
+      std::cout << "\nper call against MIEV0 (" << miev0_path << ")\n"
+                << format_speed_vs_miev0(mie_speed_vs_miev0(miev0, speed)) << "\n"
+                << format_batch_vs_miev0(mie_batch_vs_miev0(miev0, Miev0Batch{}));
     }
     return 0;
   } catch (const std::exception& e) {
