@@ -20,7 +20,8 @@
 // times Wiscombe's MIEV0 itself, built from the user's copy of its source by
 // validation/bench/miev0/build_miev0.sh: per call against the default and the
 // Wiscombe-count modes, with each one's error against the referee, and over
-// the same many spheres (see attenuvis/validation/mie_miev0.hpp).
+// the same many spheres and over narrow ranges of x around 0.1, 1, 10 and 100
+// (see attenuvis/validation/mie_miev0.hpp).
 //
 // Usage: mie_error_vs_time [out.csv] [--quick] [--max-x X] [--baseline LIB] [--miev0 LIB] [--speed-only]
 //   out.csv       default out/mie_error_vs_time.csv (written atomically)
@@ -105,8 +106,14 @@ int main(int argc, char** argv) {
     if (!miev0_path.empty()) {
       const Miev0Library miev0(miev0_path);
       std::cout << "\nper call against MIEV0 (" << miev0_path << ")\n"
-                << format_speed_vs_miev0(mie_speed_vs_miev0(miev0, speed)) << "\n"
-                << format_batch_vs_miev0(mie_batch_vs_miev0(miev0, Miev0Batch{}));
+                << format_speed_vs_miev0(mie_speed_vs_miev0(miev0, speed));
+      // The goal's range, then narrow ranges around the per-call table's x.
+      const double ranges[][2] = {{0.01, 100}, {0.05, 0.15}, {0.5, 1.5}, {5, 15}, {50, 150}};
+      for (const auto& r : ranges) {
+        Miev0Batch b;
+        b.x_min = r[0], b.x_max = r[1];
+        std::cout << "\n" << format_batch_vs_miev0(mie_batch_vs_miev0(miev0, b));
+      }
     }
     return 0;
   } catch (const std::exception& e) {
