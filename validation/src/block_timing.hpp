@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <chrono>
 
 namespace attenuvis::validation::timing {
 
@@ -43,6 +44,18 @@ double block_ns(F&& f, long reps) {
   double acc = 0;
   for (long i = 0; i < reps; ++i) acc += f();
   const double dt = thread_seconds() - t0;
+  g_sink = g_sink + acc;
+  return dt / static_cast<double>(reps) * 1e9;
+}
+
+// ns per call of one block of `reps` calls of f() in wall-clock time (for
+// work spread over several threads, whose CPU times add up).
+template <class F>
+double wall_block_ns(F&& f, long reps) {
+  const auto t0 = std::chrono::steady_clock::now();
+  double acc = 0;
+  for (long i = 0; i < reps; ++i) acc += f();
+  const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   g_sink = g_sink + acc;
   return dt / static_cast<double>(reps) * 1e9;
 }

@@ -7,7 +7,6 @@
 #include <dlfcn.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstring>
 #include <random>
 #include <thread>
@@ -110,6 +109,10 @@ BatchSpeed mie_batch_vs_baseline(const MieBaseline& baseline, BatchSpeed b, int 
     mie::spheres(x.data(), b.m, b.count, batch.data(), one);
     return batch[0].qext;
   };
+  auto run_threads = [&] {
+    mie::spheres(x.data(), b.m, b.count, batch.data(), all);
+    return batch[0].qext;
+  };
   b.ns_baseline = b.ns_single = b.ns_batch = b.ns_batch_threads = std::numeric_limits<double>::infinity();
   b.instruction_sets = mie::spheres_instruction_sets();
   b.ns_batch_by_set.assign(b.instruction_sets.size(), std::numeric_limits<double>::infinity());
@@ -133,10 +136,7 @@ BatchSpeed mie_batch_vs_baseline(const MieBaseline& baseline, BatchSpeed b, int 
     b.ns_baseline = std::min(b.ns_baseline, block_ns(run_base, 1) / n);
     b.ns_single = std::min(b.ns_single, block_ns(run_single, 1) / n);
     b.ns_batch = std::min(b.ns_batch, block_ns(run_batch, 1) / n);
-    const auto t0 = std::chrono::steady_clock::now();
-    mie::spheres(x.data(), b.m, b.count, batch.data(), all);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    b.ns_batch_threads = std::min(b.ns_batch_threads, wall / n * 1e9);
+    b.ns_batch_threads = std::min(b.ns_batch_threads, timing::wall_block_ns(run_threads, 1) / n);
   }
   b.identical = std::memcmp(single.data(), batch.data(), sizeof(single[0]) * b.count) == 0;
   return b;

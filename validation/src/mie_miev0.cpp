@@ -5,7 +5,6 @@
 #include <dlfcn.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <limits>
 #include <sstream>
@@ -149,16 +148,17 @@ Miev0Batch mie_batch_vs_miev0(const Miev0Library& miev0, Miev0Batch b, int block
     mie::spheres(x.data(), b.m, b.count, out.data(), one);
     return out[0].qext;
   };
+  auto run_threads = [&] {
+    mie::spheres(x.data(), b.m, b.count, out.data(), all);
+    return out[0].qext;
+  };
   const double n = static_cast<double>(b.count);
   b.ns_miev0 = b.ns_single = b.ns_batch = b.ns_batch_threads = std::numeric_limits<double>::infinity();
   for (int k = 0; k < std::max(1, blocks); ++k) {
     b.ns_miev0 = std::min(b.ns_miev0, block_ns(run_miev0, 1) / n);
     b.ns_single = std::min(b.ns_single, block_ns(run_single, 1) / n);
     b.ns_batch = std::min(b.ns_batch, block_ns(run_batch, 1) / n);
-    const auto t0 = std::chrono::steady_clock::now();
-    mie::spheres(x.data(), b.m, b.count, out.data(), all);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    b.ns_batch_threads = std::min(b.ns_batch_threads, wall / n * 1e9);
+    b.ns_batch_threads = std::min(b.ns_batch_threads, timing::wall_block_ns(run_threads, 1) / n);
   }
   return b;
 }
