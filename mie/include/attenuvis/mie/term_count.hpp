@@ -73,15 +73,17 @@ std::size_t max_terms(double x, double cbrt_x) {
 // e = −kOctaves..−1, plus the number of the next kSteps thresholds at or below
 // x — compared without a data-dependent branch (a search stepping up from a
 // start per octave mispredicted its exit and took up to 16 steps near x = 1:
-// 22 ns per call for x in [0.5, 1.5]).  kSteps covers every slice (checked
-// when the table is built; otherwise, and outside the octaves, the plain
-// search).  (Only within rounding of a threshold can this and the logarithm
-// disagree, by one order; either is the same heuristic bound, and spheres()
-// takes its lengths from here too.  Measured: the same as the stepping search
-// on 2e7 random x in [1e-12, 1.2] and at every threshold and power of two.)
+// 14–16 ns per call for x in [0.5, 1), 2.5 ns now).  The floor rises by at
+// most two within any slice, so kSteps = 2 covers every one (checked when the
+// table is built; otherwise, and outside the octaves, the plain search).
+// Only within rounding of a threshold can this and the logarithm disagree, by
+// one order; either is the same heuristic bound, and spheres() takes its
+// lengths from here too (tests/mie/test_term_count.cpp; the same lengths as
+// the stepping search on 2e7 random x in [1e-12, 1.2], every threshold and
+// every power of two).
 template <class Real>
 std::size_t small_x_terms(double x) {
-  constexpr int kMaxJ = 64, kOctaves = 64, kSlices = 16, kSteps = 4;
+  constexpr int kMaxJ = 64, kOctaves = 64, kSlices = 16, kSteps = 2;
   struct Thresholds {
     double t[kMaxJ + 1 + kSteps];                // t[j]; +inf above kMaxJ
     unsigned char start[kOctaves][kSlices];      // [−e − 1][k]: the floor at the slice's lower end
