@@ -25,10 +25,6 @@ namespace {
 
 namespace mie = attenuvis::mie;
 
-MieQuantities from(const mie::Efficiencies<double>& e) {
-  return {e.qext, e.qsca, e.qabs, e.g, e.qback};
-}
-
 MieQuantities from(const ConventionalMieResult& r) { return {r.qext, r.qsca, r.qabs, r.g, r.qback}; }
 
 // Keeps the optimiser from dropping calls whose results are otherwise unused.
@@ -76,6 +72,8 @@ double mie_max_relative_error(const MieQuantities& got, const MieQuantities& ref
   return worst;
 }
 
+MieQuantities mie_quantities(const mie::Efficiencies<double>& e) { return {e.qext, e.qsca, e.qabs, e.g, e.qback}; }
+
 MieQuantities mie_referee_quantities(double x, std::complex<double> m) {
   const auto r = mie::sphere_referee(x, m);
   return {r.qext.convert_to<double>(), r.qsca.convert_to<double>(), r.qabs.convert_to<double>(),
@@ -89,7 +87,7 @@ std::vector<ErrorMapCell> mie_error_map(const std::vector<double>& xs,
   for (const auto& m : ms)
     for (double x : xs) {
       const MieQuantities ref = mie_referee_quantities(x, m);
-      const MieQuantities got = from(mie::sphere(x, m));
+      const MieQuantities got = mie_quantities(mie::sphere(x, m));
       cells.push_back({x, m.real(), m.imag(), mie_max_relative_error(got, ref)});
     }
   return cells;
@@ -118,19 +116,19 @@ std::vector<ErrorTimeRow> mie_error_vs_time(const ErrorTimeOptions& options) {
       rows.push_back({x, m, "default",
                       median_ns_per_call([&] { return mie::sphere(x, m).qext; },
                                          options.min_sample_seconds, options.samples),
-                      mie_max_relative_error(from(def), ref), static_cast<int>(def.terms)});
+                      mie_max_relative_error(mie_quantities(def), ref), static_cast<int>(def.terms)});
 
       const auto dbl = mie::sphere(x, m, fast);
       rows.push_back({x, m, "double",
                       median_ns_per_call([&] { return mie::sphere(x, m, fast).qext; },
                                          options.min_sample_seconds, options.samples),
-                      mie_max_relative_error(from(dbl), ref), static_cast<int>(dbl.terms)});
+                      mie_max_relative_error(mie_quantities(dbl), ref), static_cast<int>(dbl.terms)});
 
       const auto wis = mie::sphere(x, m, wiscombe);
       rows.push_back({x, m, "wiscombe",
                       median_ns_per_call([&] { return mie::sphere(x, m, wiscombe).qext; },
                                          options.min_sample_seconds, options.samples),
-                      mie_max_relative_error(from(wis), ref), static_cast<int>(wis.terms)});
+                      mie_max_relative_error(mie_quantities(wis), ref), static_cast<int>(wis.terms)});
 
       if (options.include_conventional) {
         const auto conv = conventional_bhmie(x, m);

@@ -67,11 +67,10 @@ std::vector<SpeedCell> mie_speed_vs_baseline(const MieBaseline& baseline, const 
       }
       const auto e = mie::sphere(x, m);
       c.terms_current = static_cast<int>(e.terms);
-      const MieQuantities got{e.qext, e.qsca, e.qabs, e.g, e.qback};
       const MieQuantities old = baseline.sphere(x, m, &c.terms_baseline);
       if (x <= options.max_referee_x) {
         const MieQuantities ref = mie_referee_quantities(x, m);
-        c.err_current = mie_max_relative_error(got, ref);
+        c.err_current = mie_max_relative_error(mie_quantities(e), ref);
         c.err_baseline = mie_max_relative_error(old, ref);
       }
       cells.push_back(c);

@@ -93,8 +93,8 @@ std::vector<Miev0Cell> mie_speed_vs_miev0(const Miev0Library& miev0, const Speed
       if (x <= options.max_referee_x) {
         const MieQuantities ref = mie_referee_quantities(x, m);
         c.err_miev0 = mie_max_relative_error(miev0.sphere(x, m), ref);
-        c.err_default = mie_max_relative_error({d.qext, d.qsca, d.qabs, d.g, d.qback}, ref);
-        c.err_wiscombe = mie_max_relative_error({w.qext, w.qsca, w.qabs, w.g, w.qback}, ref);
+        c.err_default = mie_max_relative_error(mie_quantities(d), ref);
+        c.err_wiscombe = mie_max_relative_error(mie_quantities(w), ref);
       }
       cells.push_back(c);
     }

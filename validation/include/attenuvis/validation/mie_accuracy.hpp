@@ -21,12 +21,17 @@
 #include <string>
 #include <vector>
 
+#include "attenuvis/mie.hpp"
+
 namespace attenuvis::validation {
 
 /// The five quantities the accuracy requirement names.
 struct MieQuantities {
   double qext = 0, qsca = 0, qabs = 0, g = 0, qback = 0;
 };
+
+/// The five quantities of a double-precision result of the core.
+MieQuantities mie_quantities(const mie::Efficiencies<double>& e);
 
 /// Largest normalised error of `got` against `ref` (see file comment).
 double mie_max_relative_error(const MieQuantities& got, const MieQuantities& ref);
