@@ -8,6 +8,8 @@
 #include <time.h>
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <chrono>
 
 namespace attenuvis::validation::timing {
@@ -46,6 +48,21 @@ double block_ns(F&& f, long reps) {
   const double dt = thread_seconds() - t0;
   g_sink = g_sink + acc;
   return dt / static_cast<double>(reps) * 1e9;
+}
+
+// ns per call of each of the functions: the calls per block of each sized to
+// about min_block_seconds, then `blocks` rounds in which each runs one block
+// in turn; each function's time is its minimum over the rounds.
+template <class... F>
+std::array<double, sizeof...(F)> alternating_min_ns(double min_block_seconds, int blocks, const F&... f) {
+  const std::array<long, sizeof...(F)> reps{calls_per_block(f, min_block_seconds)...};
+  std::array<double, sizeof...(F)> best;
+  best.fill(std::numeric_limits<double>::infinity());
+  for (int b = 0; b < std::max(1, blocks); ++b) {
+    std::size_t i = 0;
+    ((best[i] = std::min(best[i], block_ns(f, reps[i])), ++i), ...);
+  }
+  return best;
 }
 
 // ns per call of one block of `reps` calls of f() in wall-clock time (for

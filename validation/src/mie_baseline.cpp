@@ -25,7 +25,6 @@ namespace {
 
 namespace mie = attenuvis::mie;
 using timing::block_ns;
-using timing::calls_per_block;
 
 }  // namespace
 
@@ -56,15 +55,10 @@ std::vector<SpeedCell> mie_speed_vs_baseline(const MieBaseline& baseline, const 
       SpeedCell c;
       c.x = x;
       c.m = m;
-      auto current = [&] { return mie::sphere(x, m).qext; };
-      auto base = [&] { return baseline.sphere(x, m).qext; };
-      const long reps_c = calls_per_block(current, options.min_block_seconds);
-      const long reps_b = calls_per_block(base, options.min_block_seconds);
-      c.ns_current = c.ns_baseline = std::numeric_limits<double>::infinity();
-      for (int b = 0; b < std::max(1, options.blocks); ++b) {
-        c.ns_current = std::min(c.ns_current, block_ns(current, reps_c));
-        c.ns_baseline = std::min(c.ns_baseline, block_ns(base, reps_b));
-      }
+      const auto ns = timing::alternating_min_ns(
+          options.min_block_seconds, options.blocks, [&] { return mie::sphere(x, m).qext; },
+          [&] { return baseline.sphere(x, m).qext; });
+      c.ns_current = ns[0], c.ns_baseline = ns[1];
       const auto e = mie::sphere(x, m);
       c.terms_current = static_cast<int>(e.terms);
       const MieQuantities old = baseline.sphere(x, m, &c.terms_baseline);

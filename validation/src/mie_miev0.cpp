@@ -22,7 +22,6 @@ namespace {
 
 namespace mie = attenuvis::mie;
 using timing::block_ns;
-using timing::calls_per_block;
 
 // MIEV0's argument list as gfortran passes it (every argument by reference;
 // LOGICAL and INTEGER 4 bytes, REAL 8 and COMPLEX 16 with -fdefault-real-8).
@@ -75,18 +74,10 @@ std::vector<Miev0Cell> mie_speed_vs_miev0(const Miev0Library& miev0, const Speed
       Miev0Cell c;
       c.x = x;
       c.m = m;
-      auto f_miev0 = [&] { return miev0.sphere(x, m).qext; };
-      auto f_default = [&] { return mie::sphere(x, m).qext; };
-      auto f_wiscombe = [&] { return mie::sphere(x, m, wiscombe).qext; };
-      const long r_miev0 = calls_per_block(f_miev0, options.min_block_seconds);
-      const long r_default = calls_per_block(f_default, options.min_block_seconds);
-      const long r_wiscombe = calls_per_block(f_wiscombe, options.min_block_seconds);
-      c.ns_miev0 = c.ns_default = c.ns_wiscombe = std::numeric_limits<double>::infinity();
-      for (int b = 0; b < std::max(1, options.blocks); ++b) {
-        c.ns_miev0 = std::min(c.ns_miev0, block_ns(f_miev0, r_miev0));
-        c.ns_default = std::min(c.ns_default, block_ns(f_default, r_default));
-        c.ns_wiscombe = std::min(c.ns_wiscombe, block_ns(f_wiscombe, r_wiscombe));
-      }
+      const auto ns = timing::alternating_min_ns(
+          options.min_block_seconds, options.blocks, [&] { return miev0.sphere(x, m).qext; },
+          [&] { return mie::sphere(x, m).qext; }, [&] { return mie::sphere(x, m, wiscombe).qext; });
+      c.ns_miev0 = ns[0], c.ns_default = ns[1], c.ns_wiscombe = ns[2];
       const auto d = mie::sphere(x, m), w = mie::sphere(x, m, wiscombe);
       c.terms_default = static_cast<int>(d.terms);
       c.terms_wiscombe = static_cast<int>(w.terms);
