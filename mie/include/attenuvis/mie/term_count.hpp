@@ -68,14 +68,18 @@ std::size_t max_terms(double x, double cbrt_x) {
 // ⌊3 + L/(2 ln(2/x))⌋ >= j  ⇔  x >= t_j = 2 exp(−L/(2(j − 3))), j > 3,
 // computed once per type.  The t_j increase with j, so the floor is the
 // largest j with t_j <= x (at x < 1, ln(2/x) > ln 2, so it lies between 3 and
-// 3 + L/(2 ln 2) < kMaxJ).  It is found from the floor at the bottom of x's
+// 3 + L/(2 ln 2) < kMaxJ for double and long double; the 50-digit referee's
+// floor passes kMaxJ near x = 1 and is capped there, where the Airy bound of
+// first_terms is the smaller one anyway).  It is found from the floor at the bottom of x's
 // sixteenth of a binary octave, [2^e (1 + k/16), 2^e (1 + (k+1)/16)),
 // e = −kOctaves..−1, plus the number of the next kSteps thresholds at or below
 // x — compared without a data-dependent branch (a search stepping up from a
 // start per octave mispredicted its exit and took up to 16 steps near x = 1:
 // 14–16 ns per call for x in [0.5, 1), 2.5 ns now).  The floor rises by at
-// most two within any slice, so kSteps = 2 covers every one (checked when the
-// table is built; otherwise, and outside the octaves, the plain search).
+// most two within any slice in double and long double, so kSteps = 2 covers
+// every one (checked when the table is built; otherwise, as for the 50-digit
+// referee, the search steps on from there; outside the octaves it starts
+// from 3).
 // Only within rounding of a threshold can this and the logarithm disagree, by
 // one order; either is the same heuristic bound, and spheres() takes its
 // lengths from here too (tests/mie/test_term_count.cpp; the same lengths as
@@ -109,11 +113,14 @@ std::size_t small_x_terms(double x) {
   std::uint64_t bits;
   std::memcpy(&bits, &x, sizeof bits);
   const int e = static_cast<int>((bits >> 52) & 0x7ff) - 1023;  // x = 2^e · 1.f (x > 0 normal)
-  if (!(e < 0 && e >= -kOctaves && thresholds.sliced)) return static_cast<std::size_t>(thresholds.search(x)) + 1;
+  if (!(e < 0 && e >= -kOctaves)) return static_cast<std::size_t>(thresholds.search(x)) + 1;
   const int slice = static_cast<int>((bits >> 48) & (kSlices - 1));  // the top four bits of f
   const int j0 = thresholds.start[-e - 1][slice];
   int j = j0;
   for (int i = 1; i <= kSteps; ++i) j += x >= thresholds.t[j0 + i];
+  // A larger L (the 50-digit referee's) rises by more than kSteps in some
+  // slices: the search goes on from there.
+  if (!thresholds.sliced) j = thresholds.search(x, j);
   return static_cast<std::size_t>(j) + 1;
 }
 
