@@ -162,6 +162,13 @@ std::string format_batch_speed(const BatchSpeed& b) {
   return os.str();
 }
 
+std::string measured_error_text(double err) {
+  if (!(err >= 0)) return "-";
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%.1e", err);
+  return buf;
+}
+
 std::string format_speed_vs_baseline(const std::vector<SpeedCell>& cells, const std::string& baseline_name) {
   std::vector<std::complex<double>> ms;
   std::vector<double> xs;
@@ -183,11 +190,9 @@ std::string format_speed_vs_baseline(const std::vector<SpeedCell>& cells, const 
       const auto it = at.find({x, io::index_text(m)});
       if (it == at.end()) continue;
       const SpeedCell& c = *it->second;
-      char e1[16] = "-", e2[16] = "-";
-      if (c.err_current >= 0) std::snprintf(e1, sizeof e1, "%.1e", c.err_current);
-      if (c.err_baseline >= 0) std::snprintf(e2, sizeof e2, "%.1e", c.err_baseline);
       std::snprintf(buf, sizeof buf, "%8.0e %12.4g %12.4g %9.2f %10s %10s %7d\n", x, c.ns_current, c.ns_baseline,
-                    c.speedup(), e1, e2, c.terms_current);
+                    c.speedup(), measured_error_text(c.err_current).c_str(),
+                    measured_error_text(c.err_baseline).c_str(), c.terms_current);
       os << buf;
     }
   }

@@ -103,16 +103,12 @@ std::string format_speed_vs_miev0(const std::vector<Miev0Cell>& cells) {
                 "MIEV0 ns", "default", "wiscombe", "ratio", "r wisc", "err MV0", "err def", "err wis", "terms",
                 "wisc");
   os << buf;
-  auto err = [](double e, char* out, std::size_t n) {
-    if (e >= 0) std::snprintf(out, n, "%.1e", e);
-    else std::snprintf(out, n, "-");
-  };
   for (const auto& c : cells) {
-    char e0[16], e1[16], e2[16];
-    err(c.err_miev0, e0, sizeof e0), err(c.err_default, e1, sizeof e1), err(c.err_wiscombe, e2, sizeof e2);
     std::snprintf(buf, sizeof buf, "%-12s %7.0e | %10.4g %10.4g %10.4g | %7.2f %7.2f | %8s %8s %8s | %5d %5d\n",
                   io::index_text(c.m).c_str(), c.x, c.ns_miev0, c.ns_default, c.ns_wiscombe, c.ratio(),
-                  c.ns_wiscombe / c.ns_miev0, e0, e1, e2, c.terms_default, c.terms_wiscombe);
+                  c.ns_wiscombe / c.ns_miev0, measured_error_text(c.err_miev0).c_str(),
+                  measured_error_text(c.err_default).c_str(), measured_error_text(c.err_wiscombe).c_str(),
+                  c.terms_default, c.terms_wiscombe);
     os << buf;
   }
   return os.str();

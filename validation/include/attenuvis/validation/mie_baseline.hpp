@@ -59,6 +59,10 @@ struct SpeedCell {
   double speedup() const { return ns_baseline / ns_current; }
 };
 
+/// An error of a speed table as printed: "%.1e", or "-" where it was not
+/// measured (negative, as SpeedCell's and Miev0Cell's -1).
+std::string measured_error_text(double err);
+
 std::vector<SpeedCell> mie_speed_vs_baseline(const MieBaseline& baseline, const SpeedOptions& options = {});
 
 /// Throughput over many spheres (x uniform in [x_min, x_max], one index):
