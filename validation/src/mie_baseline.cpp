@@ -4,8 +4,6 @@
 #include "attenuvis/validation/mie_baseline.hpp"
 #include "block_timing.hpp"
 
-#include <dlfcn.h>
-
 #include <algorithm>
 #include <cstring>
 #include <random>
@@ -28,22 +26,15 @@ using timing::block_ns;
 
 }  // namespace
 
-MieBaseline::MieBaseline(const std::string& library_path) : path_(library_path) {
-  handle_ = ::dlopen(library_path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle_) throw std::runtime_error("cannot load the baseline Mie library " + library_path + ": " + ::dlerror());
-  entry_ = reinterpret_cast<Entry>(::dlsym(handle_, "attenuvis_mie_baseline_sphere"));
-  if (!entry_) {
-    ::dlclose(handle_);
-    throw std::runtime_error(library_path + " has no attenuvis_mie_baseline_sphere (build it with "
-                             "validation/bench/baseline/build_mie_baseline.sh)");
-  }
-}
-
-MieBaseline::~MieBaseline() { ::dlclose(handle_); }
+MieBaseline::MieBaseline(const std::string& library_path)
+    : library_(library_path, "the baseline Mie library", "attenuvis_mie_baseline_sphere",
+               "validation/bench/baseline/build_mie_baseline.sh") {}
 
 MieQuantities MieBaseline::sphere(double x, std::complex<double> m, int* terms) const {
   double q[6];
-  if (entry_(x, m.real(), m.imag(), q) != 0) throw std::runtime_error("baseline Mie core threw");
+  using Entry = int (*)(double x, double m_re, double m_im, double* q);
+  if (reinterpret_cast<Entry>(library_.entry())(x, m.real(), m.imag(), q) != 0)
+    throw std::runtime_error("baseline Mie core threw");
   if (terms) *terms = static_cast<int>(q[5]);
   return {q[0], q[1], q[2], q[4], q[3]};
 }

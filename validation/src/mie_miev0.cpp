@@ -2,8 +2,6 @@
 // attenuvis/validation/mie_miev0.hpp).
 #include "attenuvis/validation/mie_miev0.hpp"
 
-#include <dlfcn.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <limits>
@@ -39,17 +37,8 @@ constexpr double kMiev0MaxX = 2e4;
 
 }  // namespace
 
-Miev0Library::Miev0Library(const std::string& library_path) : path_(library_path) {
-  handle_ = ::dlopen(library_path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle_) throw std::runtime_error("cannot load the MIEV0 library " + library_path + ": " + ::dlerror());
-  entry_ = ::dlsym(handle_, "miev0_");
-  if (!entry_) {
-    ::dlclose(handle_);
-    throw std::runtime_error(library_path + " has no miev0_ (build it with validation/bench/miev0/build_miev0.sh)");
-  }
-}
-
-Miev0Library::~Miev0Library() { ::dlclose(handle_); }
+Miev0Library::Miev0Library(const std::string& library_path)
+    : library_(library_path, "the MIEV0 library", "miev0_", "validation/bench/miev0/build_miev0.sh") {}
 
 MieQuantities Miev0Library::sphere(double x, std::complex<double> m) const {
   // MIMCUT = 0: every index with Im m > 0 takes MIEV0's absorbing branch.
@@ -58,8 +47,9 @@ MieQuantities Miev0Library::sphere(double x, std::complex<double> m) const {
   int perfct = 0, anyang = 0, numang = 0, nmom = 0, ipolzn = 0, momdim = 1, prnt[2] = {0, 0};
   double mimcut = 0, xmu[1] = {0}, pmom[2 * 4] = {}, qext = kNaN, qsca = kNaN, gqsc = kNaN, spike = 0;
   Cd crefin = m, sforw, sback, s1[1], s2[1], tforw[2], tback[2];
-  reinterpret_cast<Miev0Entry>(entry_)(&x, &crefin, &perfct, &mimcut, &anyang, &numang, xmu, &nmom, &ipolzn, &momdim,
-                                       prnt, &qext, &qsca, &gqsc, pmom, &sforw, &sback, s1, s2, tforw, tback, &spike);
+  const auto miev0 = reinterpret_cast<Miev0Entry>(library_.entry());
+  miev0(&x, &crefin, &perfct, &mimcut, &anyang, &numang, xmu, &nmom, &ipolzn, &momdim, prnt, &qext, &qsca, &gqsc, pmom,
+        &sforw, &sback, s1, s2, tforw, tback, &spike);
   // SBACK = S(π) = ½ Σ (2n+1)(−1)^(n+1) (aₙ − bₙ): Qback = 4|S(π)|²/x².
   return {qext, qsca, qext - qsca, qsca > 0 ? gqsc / qsca : 0.0, 4 * std::norm(sback) / (x * x)};
 }

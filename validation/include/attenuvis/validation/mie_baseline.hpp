@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "attenuvis/validation/mie_accuracy.hpp"
+#include "attenuvis/validation/shared_library.hpp"
 
 namespace attenuvis::validation {
 
@@ -26,19 +27,13 @@ class MieBaseline {
   /// Loads the library; throws std::runtime_error naming the path and the
   /// loader's message if it cannot be loaded or lacks the entry point.
   explicit MieBaseline(const std::string& library_path);
-  ~MieBaseline();
-  MieBaseline(const MieBaseline&) = delete;
-  MieBaseline& operator=(const MieBaseline&) = delete;
 
   /// The earlier core's sphere(x, m); throws std::runtime_error if it threw.
   MieQuantities sphere(double x, std::complex<double> m, int* terms = nullptr) const;
-  const std::string& path() const { return path_; }
+  const std::string& path() const { return library_.path(); }
 
  private:
-  using Entry = int (*)(double, double, double, double*);
-  void* handle_ = nullptr;
-  Entry entry_ = nullptr;
-  std::string path_;
+  SharedLibrary library_;
 };
 
 struct SpeedOptions {

@@ -14,6 +14,7 @@
 
 #include "attenuvis/validation/mie_accuracy.hpp"
 #include "attenuvis/validation/mie_baseline.hpp"
+#include "attenuvis/validation/shared_library.hpp"
 
 namespace attenuvis::validation {
 
@@ -22,19 +23,14 @@ class Miev0Library {
   /// Loads the library; throws std::runtime_error naming the path and the
   /// loader's message if it cannot be loaded or has no miev0_.
   explicit Miev0Library(const std::string& library_path);
-  ~Miev0Library();
-  Miev0Library(const Miev0Library&) = delete;
-  Miev0Library& operator=(const Miev0Library&) = delete;
 
   /// MIEV0 with no angles and no moments (the efficiencies, g and the
   /// backscatter amplitude, from which Qback = 4|S(π)|²/x²).
   MieQuantities sphere(double x, std::complex<double> m) const;
-  const std::string& path() const { return path_; }
+  const std::string& path() const { return library_.path(); }
 
  private:
-  void* handle_ = nullptr;
-  void* entry_ = nullptr;
-  std::string path_;
+  SharedLibrary library_;
 };
 
 /// One (x, m): ns per call of MIEV0, of attenuvis's default sphere() and of
