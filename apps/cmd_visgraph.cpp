@@ -301,7 +301,7 @@ void run_vg(const VgArguments& given) {
   vg::VisibilityOptions options;
   for (const vg::ConditionInfo& c : conditions) options.sigmas.push_back(c.sigma);
   options.distance_stats = a.distances;
-  options.tolerance = a.prune_below;
+  options.prune_below = a.prune_below;
   options.max_distance = a.max_distance;
   options.threads = a.threads;
   options.progress = !a.quiet;

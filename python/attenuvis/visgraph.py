@@ -8,8 +8,8 @@ coefficient sigma_k (1/m) a pass reports
 * ``sum[k]``: S_S = sum over visible partners of exp(-sigma_k d) (the seed
   paper's sum score),
 * ``average[k]``: S_A = S_S / degree (NaN where degree is 0),
-* ``pruned``: partners skipped by pruning (``tolerance > 0``), each worth at
-  most ``tolerance`` in S_S,
+* ``pruned``: partners skipped by pruning (``prune_below > 0``), each worth at
+  most ``prune_below`` in S_S,
 
 and, only when asked (``edges=True``), every visible pair as arrays (i, j,
 distance).  Results do not depend on the thread count (fixed-point sums,
@@ -19,6 +19,7 @@ KeyboardInterrupt within a fraction of a second and stops the C++ work.
 
 from __future__ import annotations
 
+import warnings
 from typing import Callable, NamedTuple, Optional, Sequence
 
 import numpy as np
@@ -140,8 +141,8 @@ class VisibilityResult(NamedTuple):
     stats: pairs_total/cast/visible, pairs_culled_visible/blocked (decided
     without rays by exact culling), coincident_pairs, pruning_radius (m),
     pruning_note (what pruning dropped and why, or why it was not applied:
-    a tolerance prunes only where that is faster than the exact pass),
-    tolerance, seconds."""
+    prune_below prunes only where that is faster than the exact pass),
+    prune_below, seconds."""
 
     degree: Optional[np.ndarray]
     sum: np.ndarray
@@ -172,7 +173,7 @@ def _result(d) -> VisibilityResult:
             average[:, degree == 0] = np.nan
     edges = Edges(d["edge_i"], d["edge_j"], d["edge_distance"]) if "edge_i" in d else None
     stats = {k: d[k] for k in ("pairs_total", "pairs_cast", "pairs_visible", "coincident_pairs", "pruning_radius",
-                               "pruning_note", "pairs_culled_visible", "pairs_culled_blocked", "tolerance", "seconds")}
+                               "pruning_note", "pairs_culled_visible", "pairs_culled_blocked", "prune_below", "seconds")}
     return VisibilityResult(degree, total, average, d["pruned"], d["mean_distance"], d["max_distance"], edges, stats)
 
 
@@ -183,15 +184,26 @@ def _eyes(a, what) -> np.ndarray:
     return e
 
 
-def all_to_all(scene: Scene, eyes, sigmas, *, tolerance: float = 0.0, max_distance: float = np.inf,
+def _prune_below(prune_below: float, tolerance: Optional[float]) -> float:
+    """``tolerance=`` is the former name of ``prune_below=`` (the command line's --prune-below)."""
+    if tolerance is None:
+        return float(prune_below)
+    if prune_below:
+        raise TypeError("give prune_below= only (tolerance= is its former name)")
+    warnings.warn("tolerance= is deprecated: use prune_below=", DeprecationWarning, stacklevel=3)
+    return float(tolerance)
+
+
+def all_to_all(scene: Scene, eyes, sigmas, *, prune_below: float = 0.0, max_distance: float = np.inf,
                distance_stats: bool = False, threads: int = 0,
-               progress: Optional[Callable[[int, int], None]] = None, edges: bool = False) -> VisibilityResult:
+               progress: Optional[Callable[[int, int], None]] = None, edges: bool = False,
+               tolerance: Optional[float] = None) -> VisibilityResult:
     """Every unordered pair of ``eyes`` ((N, 3), m) once, both ends credited.
 
     sigmas: extinction coefficients (1/m), one row of ``sum``/``average``
-    each.  tolerance > 0 prunes pairs whose exp(-sigma_min d) < tolerance
-    (degree then None).  max_distance (m): farther pairs are not lines of
-    sight.  threads: 0 = every core.  progress: called about twice a second
+    each.  prune_below > 0 prunes pairs whose exp(-sigma_min d) < prune_below
+    (degree then None; ``tolerance=`` is its deprecated former name).
+    max_distance (m): farther pairs are not lines of sight.  threads: 0 = every core.  progress: called about twice a second
     as progress(pairs_done, pairs_total), on the calling thread; an exception
     it raises stops the pass.  edges=True also returns every visible pair
     (O(visible pairs) memory; only then are they kept).
@@ -200,14 +212,15 @@ def all_to_all(scene: Scene, eyes, sigmas, *, tolerance: float = 0.0, max_distan
     n = len(e)
     total = n * (n - 1) // 2
     cb = None if progress is None else (lambda done: progress(done, total))
-    d = _core.all_to_all(scene._cpp, e, _sigmas(sigmas), float(tolerance), float(max_distance),
+    d = _core.all_to_all(scene._cpp, e, _sigmas(sigmas), _prune_below(prune_below, tolerance), float(max_distance),
                          bool(distance_stats), int(threads), bool(edges), cb)
     return _result(d)
 
 
-def to_targets(scene: Scene, sources, targets, sigmas, *, tolerance: float = 0.0, max_distance: float = np.inf,
+def to_targets(scene: Scene, sources, targets, sigmas, *, prune_below: float = 0.0, max_distance: float = np.inf,
                distance_stats: bool = False, threads: int = 0,
-               progress: Optional[Callable[[int, int], None]] = None, edges: bool = False) -> VisibilityResult:
+               progress: Optional[Callable[[int, int], None]] = None, edges: bool = False,
+               tolerance: Optional[float] = None) -> VisibilityResult:
     """Every source against every target, the source credited (the seed's
     single-point analysis: sources = all nodes, one target).  Arguments and
     result as all_to_all; edges' j indexes the targets."""
@@ -215,6 +228,6 @@ def to_targets(scene: Scene, sources, targets, sigmas, *, tolerance: float = 0.0
     t = _eyes(targets, "targets")
     total = len(s) * len(t)
     cb = None if progress is None else (lambda done: progress(done, total))
-    d = _core.to_targets(scene._cpp, s, t, _sigmas(sigmas), float(tolerance), float(max_distance),
+    d = _core.to_targets(scene._cpp, s, t, _sigmas(sigmas), _prune_below(prune_below, tolerance), float(max_distance),
                          bool(distance_stats), int(threads), bool(edges), cb)
     return _result(d)

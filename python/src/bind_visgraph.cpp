@@ -167,7 +167,7 @@ py::dict pass_result(const vg::VisibilityResult& r, std::size_t K) {
                                                  : py::object(Doubles(r.mean_distance.size(), r.mean_distance.data()));
   out["max_distance"] = r.max_distance.empty() ? py::object(py::none())
                                                : py::object(Doubles(r.max_distance.size(), r.max_distance.data()));
-  out["tolerance"] = r.tolerance;
+  out["prune_below"] = r.prune_below;
   out["pruning_radius"] = r.pruning_radius;
   out["pruning_note"] = r.pruning_note;
   out["pairs_culled_visible"] = r.pairs_culled_visible;
@@ -197,11 +197,11 @@ struct EdgeArrays {
 };
 
 py::dict run(const PyScene& s, const std::vector<Eigen::Vector3d>& sources,
-             const std::vector<Eigen::Vector3d>* targets, const std::vector<double>& sigmas, double tolerance,
+             const std::vector<Eigen::Vector3d>* targets, const std::vector<double>& sigmas, double prune_below,
              double max_distance, bool distance_stats, int threads, bool edges, py::object progress) {
   vg::VisibilityOptions options;
   options.sigmas = sigmas;
-  options.tolerance = tolerance;
+  options.prune_below = prune_below;
   options.max_distance = max_distance;
   options.distance_stats = distance_stats;
   options.threads = threads;
@@ -258,22 +258,22 @@ void bind_visgraph(py::module_ module) {
              py::arg("eye_height"), py::arg("max_slope_deg"));
   module.def(
       "all_to_all",
-      [](const PyScene& s, const Doubles& eyes, const std::vector<double>& sigmas, double tolerance,
+      [](const PyScene& s, const Doubles& eyes, const std::vector<double>& sigmas, double prune_below,
          double max_distance, bool distance_stats, int threads, bool edges, py::object progress) {
         const auto e = points(eyes, "eyes");
-        return run(s, e, nullptr, sigmas, tolerance, max_distance, distance_stats, threads, edges, progress);
+        return run(s, e, nullptr, sigmas, prune_below, max_distance, distance_stats, threads, edges, progress);
       },
-      py::arg("scene"), py::arg("eyes"), py::arg("sigmas"), py::arg("tolerance"), py::arg("max_distance"),
+      py::arg("scene"), py::arg("eyes"), py::arg("sigmas"), py::arg("prune_below"), py::arg("max_distance"),
       py::arg("distance_stats"), py::arg("threads"), py::arg("edges"), py::arg("progress"));
   module.def(
       "to_targets",
       [](const PyScene& s, const Doubles& sources, const Doubles& targets, const std::vector<double>& sigmas,
-         double tolerance, double max_distance, bool distance_stats, int threads, bool edges, py::object progress) {
+         double prune_below, double max_distance, bool distance_stats, int threads, bool edges, py::object progress) {
         const auto a = points(sources, "sources");
         const auto b = points(targets, "targets");
-        return run(s, a, &b, sigmas, tolerance, max_distance, distance_stats, threads, edges, progress);
+        return run(s, a, &b, sigmas, prune_below, max_distance, distance_stats, threads, edges, progress);
       },
-      py::arg("scene"), py::arg("sources"), py::arg("targets"), py::arg("sigmas"), py::arg("tolerance"),
+      py::arg("scene"), py::arg("sources"), py::arg("targets"), py::arg("sigmas"), py::arg("prune_below"),
       py::arg("max_distance"), py::arg("distance_stats"), py::arg("threads"), py::arg("edges"),
       py::arg("progress"));
   module.def("classic_layout_name", &vg::classic_layout_name, py::arg("index"));

@@ -73,17 +73,24 @@ def test_to_targets_and_pruning(layout2):
     assert len(r.edges.i) == r.degree.sum() and np.all(r.edges.j == 0)
     # sigma = 5/m: the pruning radius ln(1/eps)/sigma = 1.4 m holds under 10% of the pairs (along x),
     # so pruning is applied; degree is withheld and each node's S_S is within its certified bound.
-    p = vg.all_to_all(layout2, eyes, [5.0], tolerance=1e-3)
+    p = vg.all_to_all(layout2, eyes, [5.0], prune_below=1e-3)
     exact = vg.all_to_all(layout2, eyes, [5.0])
     assert p.degree is None, p.stats["pruning_note"]
     assert np.all(np.abs(p.sum[0] - exact.sum[0]) <= p.pruned * 1e-3 + 1e-9)
     # sigma = 0.05/m: a 138 m radius covers most pairs, where the exact culled pass is faster; the
     # run is exact, keeps every column, and says why.
-    wide = vg.all_to_all(layout2, eyes, [0.05], tolerance=1e-3)
+    wide = vg.all_to_all(layout2, eyes, [0.05], prune_below=1e-3)
     exact = vg.all_to_all(layout2, eyes, [0.05])
     np.testing.assert_array_equal(wide.degree, exact.degree)
     np.testing.assert_array_equal(wide.sum, exact.sum)
     assert wide.stats["pruning_note"]
+    # tolerance= is the former name of prune_below=: the same pass, with a DeprecationWarning.
+    with pytest.warns(DeprecationWarning, match="prune_below"):
+        old = vg.all_to_all(layout2, eyes, [5.0], tolerance=1e-3)
+    np.testing.assert_array_equal(old.sum, p.sum)
+    assert old.stats["prune_below"] == 1e-3
+    with pytest.raises(TypeError, match="prune_below= only"):
+        vg.all_to_all(layout2, eyes, [5.0], prune_below=1e-3, tolerance=1e-3)
 
 
 def test_from_arrays_equals_obj(tmp_path):

@@ -136,7 +136,7 @@ TEST_CASE("pass shares: every path of the pass, identical to one process", "[vis
     }
     SECTION("pruned") {
       o.sigmas = {4.0};
-      o.tolerance = 1e-3;
+      o.prune_below = 1e-3;
       check_shares(all, o, count);
     }
     SECTION("distance limit") {

@@ -46,7 +46,7 @@ TEST_CASE("pruning: runs with and without edge output give identical results", "
   for (double eps : {1e-1, 1e-3}) {
     vg::VisibilityOptions o;
     o.sigmas = {0.15, 0.4};
-    o.tolerance = eps;
+    o.prune_below = eps;
     o.always_prune = true;  // R = ln(1/eps)/0.15: 15.4 m and 46 m, inside the 60 m floor
     o.threads = 2;
     const vg::VisibilityResult slab = vg::all_to_all(scene, nodes, o);
@@ -114,7 +114,7 @@ TEST_CASE("pruning: a radius that covers the scene prunes nothing and keeps ever
   const vg::VisibilityResult reference = vg::all_to_all(scene, nodes, exact);
   for (bool always : {false, true}) {
     vg::VisibilityOptions o = exact;
-    o.tolerance = 1e-9;
+    o.prune_below = 1e-9;
     o.always_prune = always;
     const vg::VisibilityResult r = vg::all_to_all(scene, nodes, o);
     INFO("always_prune " << always);
@@ -131,7 +131,7 @@ TEST_CASE("pruning: a radius that covers the scene prunes nothing and keeps ever
   // A radius inside the scene still prunes, and says what it dropped.
   vg::VisibilityOptions o = exact;
   o.sigmas = {2.0};
-  o.tolerance = 1e-1;  // R = 1.15 m on a 60 m floor: ~4% of the pairs within R along x
+  o.prune_below = 1e-1;  // R = 1.15 m on a 60 m floor: ~4% of the pairs within R along x
   const vg::VisibilityResult pruned = vg::all_to_all(scene, nodes, o);
   CHECK_FALSE(pruned.degree_exact);
   CHECK(pruned.pruning_note.find("pruned ") == 0);

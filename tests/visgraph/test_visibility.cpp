@@ -202,7 +202,7 @@ TEST_CASE("range pruning stays within its certified bound", "[visgraph][visibili
   const vg::VisibilityResult exact = vg::all_to_all(scene, nodes, every_pair);
   for (double eps : {1e-1, 1e-2, 1e-3}) {
     vg::VisibilityOptions o = with_sigmas(sigmas);
-    o.tolerance = eps;
+    o.prune_below = eps;
     o.always_prune = true;  // the pruning machinery itself, even where exact is faster
     const vg::VisibilityResult pruned = vg::all_to_all(scene, nodes, o);
     INFO("eps " << eps);
@@ -223,7 +223,7 @@ TEST_CASE("range pruning stays within its certified bound", "[visgraph][visibili
   }
   // sigma = 0 ("no extinction") disables pruning: nothing can be skipped.
   vg::VisibilityOptions o = with_sigmas({0.0, 0.5});
-  o.tolerance = 1e-3;
+  o.prune_below = 1e-3;
   o.always_prune = true;
   const vg::VisibilityResult none = vg::all_to_all(scene, nodes, o);
   CHECK(none.degree_exact);
@@ -300,6 +300,6 @@ TEST_CASE("bad inputs are rejected with a clear error", "[visgraph][visibility]"
   CHECK_THROWS_WITH(vg::all_to_all(scene, {}, with_sigmas({0.1})), Catch::Contains("no nodes"));
   CHECK_THROWS_WITH(vg::to_targets(scene, ok, {}, with_sigmas({0.1})), Catch::Contains("no targets"));
   vg::VisibilityOptions o = with_sigmas({0.1});
-  o.tolerance = 2;
+  o.prune_below = 2;
   CHECK_THROWS_WITH(vg::all_to_all(scene, ok, o), Catch::Contains("tolerance"));
 }

@@ -313,10 +313,11 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
   for (double eps : {1e-12, 1e-9, 1e-6, 1e-3}) {
     // A radius beyond the nodes' bounding-box diagonal prunes nothing: the
     // result is the exact one, so it is not run again.
-    if (std::log(1 / eps) / sigmas[snow_k] >= perf.city_diameter_m) {
+    const double radius = vg::pruning_radius(eps, sigmas[snow_k]);
+    if (radius >= perf.city_diameter_m) {
       CityPerformance::PruneRow row;
-      row.tolerance = eps;
-      row.radius_m = std::log(1 / eps) / sigmas[snow_k];
+      row.prune_below = eps;
+      row.radius_m = radius;
       row.skipped = true;
       perf.prune.push_back(row);
       continue;
@@ -324,16 +325,15 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
     vg::VisibilityOptions popt;
     popt.sigmas = {sigmas[snow_k]};
     popt.threads = ctx.threads;
-    popt.tolerance = eps;
+    popt.prune_below = eps;
     popt.progress = ctx.options.progress != nullptr;
-    const double radius = std::log(1 / eps) / sigmas[snow_k];
     ctx.step("city", "pruning study, eps = " + format_number(eps, 2) + " (radius " + format_number(radius, 4) + " m)");
     const vg::VisibilityResult pr = [&] {
       const ExternalProgress pairs_line;
       return vg::all_to_all(scene, eyes, popt);
     }();
     CityPerformance::PruneRow row;
-    row.tolerance = eps;
+    row.prune_below = eps;
     row.radius_m = std::isfinite(pr.pruning_radius) ? pr.pruning_radius : radius;
     row.not_applied = !std::isfinite(pr.pruning_radius);
     row.note = pr.pruning_note;

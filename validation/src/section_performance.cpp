@@ -98,20 +98,20 @@ void section_performance(Context& ctx, Section& s, const CityPerformance& city) 
             "degree and two more conditions, so the speed-up slightly flatters pruning."};
     for (const auto& r : city.prune) {
       if (r.skipped) {
-        p.add_row({Cell(r.tolerance, 2), Cell(r.radius_m, 4), "-", "-", "not run", "-", "0 (radius > city diagonal " +
+        p.add_row({Cell(r.prune_below, 2), Cell(r.radius_m, 4), "-", "-", "not run", "-", "0 (radius > city diagonal " +
                    format_number(city.city_diameter_m, 4) + " m: nothing to prune)", "0", 0});
         continue;
       }
       if (r.not_applied)
-        p.add_row({Cell(r.tolerance, 2), format_number(r.radius_m, 4) + " (not applied: exact pass run)", r.pairs_cast,
+        p.add_row({Cell(r.prune_below, 2), format_number(r.radius_m, 4) + " (not applied: exact pass run)", r.pairs_cast,
                    Cell(double(r.pairs_cast) / double(city.city_pairs), 3), Cell(r.seconds, 3), "-",
                    Cell(r.max_abs_error, 3), Cell(r.max_bound, 3), r.bound_violations});
       else
-        p.add_row({Cell(r.tolerance, 2), Cell(r.radius_m, 4), r.pairs_cast, Cell(double(r.pairs_cast) / double(city.city_pairs), 3),
+        p.add_row({Cell(r.prune_below, 2), Cell(r.radius_m, 4), r.pairs_cast, Cell(double(r.pairs_cast) / double(city.city_pairs), 3),
                    Cell(r.seconds, 3), Cell(city.city_exact_seconds / r.seconds, 3), Cell(r.max_abs_error, 3),
                    Cell(r.max_bound, 3), r.bound_violations});
-      ctx.set("performance.prune_" + format_number(r.tolerance, 2) + ".max_error", r.max_abs_error);
-      ctx.set("performance.prune_" + format_number(r.tolerance, 2) + ".violations", double(r.bound_violations));
+      ctx.set("performance.prune_" + format_number(r.prune_below, 2) + ".max_error", r.max_abs_error);
+      ctx.set("performance.prune_" + format_number(r.prune_below, 2) + ".violations", double(r.bound_violations));
     }
     add_table(ctx, s, p);
     for (const auto& r : city.prune)
@@ -130,7 +130,7 @@ void section_performance(Context& ctx, Section& s, const CityPerformance& city) 
     std::string line = "city: exact " + sig(city.city_exact_seconds, 3) + " s";
     for (const auto& r : city.prune)
       if (!r.skipped)
-        line += "; eps " + sig(r.tolerance, 2) + ": " + sig(r.seconds, 3) + " s, max err " + sig(r.max_abs_error, 2) +
+        line += "; eps " + sig(r.prune_below, 2) + ": " + sig(r.seconds, 3) + " s, max err " + sig(r.max_abs_error, 2) +
                 " <= bound " + sig(r.max_bound, 2);
     s.summary.push_back(line);
   } else {

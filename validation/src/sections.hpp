@@ -109,7 +109,7 @@ struct CityPerformance {
   double city_exact_seconds = 0;   // all-to-all, degree + all conditions, exact
   std::uint64_t city_culled_visible = 0, city_culled_blocked = 0, city_cast = 0;  // how its pairs were decided
   struct PruneRow {
-    double tolerance = 0, radius_m = 0, seconds = 0;
+    double prune_below = 0, radius_m = 0, seconds = 0;
     std::uint64_t pairs_cast = 0;
     double max_abs_error = 0;      // max over nodes |S_S(eps) - S_S(exact)|
     double max_bound = 0;          // max over nodes of the certified bound

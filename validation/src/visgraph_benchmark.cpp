@@ -133,15 +133,15 @@ MemoryUse measure_memory(const vg::Scene& scene, const std::vector<Eigen::Vector
 }
 
 PruningPoint measure_pruning(const vg::Scene& scene, const std::vector<Eigen::Vector3d>& eyes, double sigma,
-                             double tolerance, const std::vector<double>& reference, int threads, int repeats) {
+                             double prune_below, const std::vector<double>& reference, int threads, int repeats) {
   if (reference.size() != eyes.size()) throw std::invalid_argument("measure_pruning: reference has the wrong size");
   vg::VisibilityOptions o;
   o.sigmas = {sigma};
-  o.tolerance = tolerance;
+  o.prune_below = prune_below;
   o.threads = threads;
   vg::VisibilityResult r;
   PruningPoint p;
-  p.tolerance = tolerance;
+  p.prune_below = prune_below;
   p.seconds = time_repeats(repeats, [&] { r = vg::all_to_all(scene, eyes, o); }).best_s;
   p.radius_m = r.pruning_radius;
   p.pairs_cast = r.pairs_cast;

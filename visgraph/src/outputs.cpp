@@ -29,7 +29,7 @@ namespace attenuvis::visgraph {
 
 namespace {
 bool has_pruning(const VisibilityResult& r) {
-  return r.tolerance > 0 && std::isfinite(r.pruning_radius);
+  return r.prune_below > 0 && std::isfinite(r.pruning_radius);
 }
 
 // Viridis, sampled at 9 points (matplotlib's _viridis_data at 0, 1/8, ..., 1).
@@ -259,7 +259,7 @@ std::string summary_json(const ScoreTable& table, const RunInfo& info) {
   j["scores"] = scores;
   double worst_bound = 0;
   for (std::size_t i = 0; i < r.nodes; ++i) worst_bound = std::max(worst_bound, r.sum_error_bound(i));
-  j["pruning"] = {{"tolerance", r.tolerance},
+  j["pruning"] = {{"prune_below", r.prune_below},
                   {"radius_m", std::isfinite(r.pruning_radius) ? json(r.pruning_radius) : json(nullptr)},
                   {"degree_exact", r.degree_exact},
                   {"note", r.pruning_note},

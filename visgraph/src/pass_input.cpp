@@ -16,7 +16,7 @@ namespace {
 void validate(const VisibilityOptions& o) {
   for (double s : o.sigmas)
     if (!std::isfinite(s) || s < 0) throw std::invalid_argument("visibility: sigma must be finite and >= 0 (1/m)");
-  if (!(o.tolerance >= 0) || !(o.tolerance < 1)) throw std::invalid_argument("visibility: tolerance must be in [0, 1)");
+  if (!(o.prune_below >= 0) || !(o.prune_below < 1)) throw std::invalid_argument("visibility: prune_below (the pruning tolerance eps) must be in [0, 1)");
   if (!(o.max_distance > 0)) throw std::invalid_argument("visibility: max distance must be positive");
   if (o.threads < 0) throw std::invalid_argument("visibility: thread count must be >= 0");
   if (o.share.count < 1 || o.share.index < 0 || o.share.index >= o.share.count)

@@ -216,10 +216,7 @@ struct Plan {
 
 Plan plan_pass(const VisibilityOptions& options, bool symmetric) {
   Plan plan;
-  const int K = static_cast<int>(options.sigmas.size());
-  double sigma_min = std::numeric_limits<double>::infinity();
-  for (double s : options.sigmas) sigma_min = std::min(sigma_min, s);
-  if (options.tolerance > 0 && K > 0 && sigma_min > 0) plan.prune_radius = std::log(1.0 / options.tolerance) / sigma_min;
+  plan.prune_radius = pruning_radius(options.prune_below, options.sigmas);
   plan.radius = std::min(plan.prune_radius, options.max_distance);
   plan.pruning = plan.prune_radius < options.max_distance;
   // Candidates within a radius are found with a little slack (relative 5e-10
@@ -237,7 +234,7 @@ Plan plan_pass(const VisibilityOptions& options, bool symmetric) {
   plan.x_order = symmetric;
   plan.slab = symmetric && std::isfinite(plan.radius);
   plan.use_tree = !symmetric && std::isfinite(plan.radius);
-  plan.within_slot = 2 + static_cast<std::size_t>(K);
+  plan.within_slot = 2 + options.sigmas.size();
   plan.slots = plan.within_slot + (plan.slab ? 1 : 0);
   return plan;
 }
@@ -475,7 +472,7 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
                                    : static_cast<double>(given_sources.size()) * partners.size();
     const double within = pairs_within_x(given_sources, partners, symmetric, asked.prune_radius);
     if (within > kPruneWorthFraction * total) {
-      options.tolerance = 0;
+      options.prune_below = 0;
       pruning_note = "nothing pruned: " + std::to_string(static_cast<int>(100 * within / total + 0.5)) +
                      "% of the pairs lie within the pruning radius " + std::to_string(asked.prune_radius) +
                      " m, more than the " + std::to_string(static_cast<int>(100 * kPruneWorthFraction)) +
@@ -487,7 +484,7 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
   const int K = static_cast<int>(options.sigmas.size());
   VisibilityResult result;
   result.nodes = N;
-  result.tolerance = options.tolerance;
+  result.prune_below = options.prune_below;
   result.pruning_radius = plan.prune_radius;
   result.pruning_note = pruning_note;
   result.degree_exact = !plan.pruning;
@@ -548,13 +545,23 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
     for (std::uint32_t p : result.pruned) dropped += p, nodes_with_drops += p > 0;
     result.pruning_note = "pruned " + std::to_string(dropped) + " partner slots (pairs farther than " +
                           std::to_string(plan.prune_radius) + " m, each contributing < " +
-                          std::to_string(options.tolerance) + " to every S_S) at " + std::to_string(nodes_with_drops) +
+                          std::to_string(options.prune_below) + " to every S_S) at " + std::to_string(nodes_with_drops) +
                           " nodes; degree, averages and distances need every pair and are left out";
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;
 }
 }  // namespace
+
+double pruning_radius(double prune_below, double sigma_min) {
+  if (!(prune_below > 0 && prune_below < 1 && sigma_min > 0)) return std::numeric_limits<double>::infinity();
+  return std::log(1.0 / prune_below) / sigma_min;
+}
+
+double pruning_radius(double prune_below, const std::vector<double>& sigmas) {
+  if (sigmas.empty()) return std::numeric_limits<double>::infinity();
+  return pruning_radius(prune_below, *std::min_element(sigmas.begin(), sigmas.end()));
+}
 
 double VisibilityResult::average(std::size_t k, std::size_t i) const {
   if (degree.empty() || degree[i] == 0) return std::numeric_limits<double>::quiet_NaN();

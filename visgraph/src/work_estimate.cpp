@@ -15,11 +15,7 @@ namespace {
 // The radius visibility.cpp's plan_pass uses: the pruning radius
 // ln(1/eps)/sigma_min when pruning applies, capped by max_distance.
 double candidate_radius(const VisibilityOptions& o) {
-  double sigma_min = std::numeric_limits<double>::infinity();
-  for (double s : o.sigmas) sigma_min = std::min(sigma_min, s);
-  double r = std::numeric_limits<double>::infinity();
-  if (o.tolerance > 0 && o.tolerance < 1 && !o.sigmas.empty() && sigma_min > 0) r = std::log(1.0 / o.tolerance) / sigma_min;
-  return std::min(r, o.max_distance);
+  return std::min(pruning_radius(o.prune_below, o.sigmas), o.max_distance);
 }
 
 double o_max_distance(const VisibilityOptions& o) { return o.max_distance; }

@@ -92,10 +92,10 @@ MemoryUse measure_memory(const visgraph::Scene& scene, const std::vector<Eigen::
                          const std::vector<double>& sigmas, int threads, const AllocationCounter& counter = {});
 
 // One row of the error-against-time study: all_to_all with S_S for `sigma`
-// only, at tolerance eps, compared with the exact sums `reference` (the same
+// only, at prune_below = eps, compared with the exact sums `reference` (the same
 // sigma, eps = 0).
 struct PruningPoint {
-  double tolerance = 0;
+  double prune_below = 0;
   double radius_m = 0;          // ln(1/eps)/sigma; infinite for eps = 0
   std::uint64_t pairs_cast = 0;
   double seconds = 0;           // best of the repeats
@@ -105,7 +105,7 @@ struct PruningPoint {
 };
 
 PruningPoint measure_pruning(const visgraph::Scene& scene, const std::vector<Eigen::Vector3d>& eyes, double sigma,
-                             double tolerance, const std::vector<double>& reference, int threads, int repeats);
+                             double prune_below, const std::vector<double>& reference, int threads, int repeats);
 
 // Resident-set figures of this process from /proc/self/status, MB (-1 if unreadable).
 double proc_status_mb(const std::string& field);  // "VmRSS", "VmHWM", ...

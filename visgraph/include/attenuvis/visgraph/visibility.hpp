@@ -40,8 +40,8 @@
 // schedule.  The price is rounding each C to 2^-41 (4.5e-13): |S_S error| <=
 // partners x 2^-41 in addition to the double evaluation of exp (~2 ulp).
 //
-// Pruning.  With tolerance eps > 0 and sigma_min > 0, pairs farther than
-// R = ln(1/eps)/sigma_min are never cast (all-to-all: candidates from the
+// Pruning.  With prune_below = eps in (0, 1) and sigma_min > 0, pairs farther
+// than R = pruning_radius(eps, sigmas) = ln(1/eps)/sigma_min are never cast (all-to-all: candidates from the
 // slab x_i <= x <= x_i + R of the nodes sorted by x; to_targets: a kd-tree
 // radius search).  Each skipped partner would have contributed at most
 // exp(-sigma_k R) <= eps to S_S[k], so |S_S error| <= pruned x eps, reported
@@ -105,7 +105,9 @@ struct PassShare {
 struct VisibilityOptions {
   std::vector<double> sigmas;            // extinction coefficients, 1/m, each finite and >= 0
   bool distance_stats = false;           // mean and max visible distance
-  double tolerance = 0;                  // eps; 0 = exact (every pair cast)
+  // eps (the CLI's --prune-below): partners whose contrast exp(-sigma_min d)
+  // is below eps may be skipped; 0 = exact (every pair cast).
+  double prune_below = 0;
   double max_distance = std::numeric_limits<double>::infinity();  // farther pairs are not lines of sight
   int threads = 0;                       // 0 = all cores
   // If set, receives the visible edges in blocks (so the edge list is never
@@ -122,7 +124,7 @@ struct VisibilityOptions {
   // pairs decided without rays, results identical to casting every pair.
   // false: every pair cast (the reference the culling is tested against).
   bool culling = true;
-  // Prune whenever tolerance > 0 allows it, even where the exact pass would
+  // Prune whenever prune_below > 0 allows it, even where the exact pass would
   // be faster (tests and error studies of the pruning itself).
   bool always_prune = false;
   // For a caller watching the pass from another thread (the Python binding
@@ -149,7 +151,7 @@ struct VisibilityResult {
   std::vector<double> mean_distance;        // empty unless distance_stats && degree_exact; NaN if degree 0
   std::vector<double> max_distance;         // likewise; NaN if degree 0
   std::vector<std::uint32_t> pruned;        // partners not cast per node (pruning), else zeros
-  double tolerance = 0;
+  double prune_below = 0;                   // VisibilityOptions::prune_below as applied (0: exact pass run)
   double pruning_radius = std::numeric_limits<double>::infinity();  // m
   std::uint64_t pairs_total = 0;            // pairs considered (unordered, or source x target)
   std::uint64_t pairs_cast = 0;             // pairs given to Embree
@@ -164,8 +166,15 @@ struct VisibilityResult {
   // S_A for condition k at node i (NaN when degree is 0 or withheld).
   double average(std::size_t k, std::size_t i) const;
   // Certified bound on |S_S error| at node i from pruning.
-  double sum_error_bound(std::size_t i) const { return pruned.empty() ? 0.0 : pruned[i] * tolerance; }
+  double sum_error_bound(std::size_t i) const { return pruned.empty() ? 0.0 : pruned[i] * prune_below; }
 };
+
+// The pruning radius R = ln(1/eps)/sigma_min (m): a partner farther than R
+// contributes exp(-sigma_k d) < eps to every S_S[k].  Infinite (nothing may
+// be pruned) unless 0 < eps < 1 and sigma_min > 0.
+double pruning_radius(double prune_below, double sigma_min);
+// The same with sigma_min the smallest of `sigmas` (infinite when empty).
+double pruning_radius(double prune_below, const std::vector<double>& sigmas);
 
 // Every unordered pair of `eyes` (world frame) once, both ends credited.
 VisibilityResult all_to_all(const Scene& scene, const std::vector<Eigen::Vector3d>& eyes,
