@@ -118,3 +118,47 @@ TEST_CASE("input files: regular files only, within the reader's limit", "[io]") 
   CHECK_THROWS_WITH(read_input_file((d / "missing").string(), 100), Catch::Contains("No such file"));
   fs::remove_all(d);
 }
+
+// ---- Internal invariants (check.hpp) ----------------------------------------
+
+#include <csignal>
+#include <sys/wait.h>
+
+#include "attenuvis/io/check.hpp"
+
+TEST_CASE("internal check: the message names the expression, both values, the file and the line", "[io][check]") {
+  CHECK(check_failure_text("a.cpp", 12, "n == m", "n = 3, m = 4") ==
+        "attenuvis: internal check failed at a.cpp:12: n == m (n = 3, m = 4)");
+  CHECK(check_failure_text("a.cpp", 12, "ok", "") == "attenuvis: internal check failed at a.cpp:12: ok");
+  CHECK(detail::check_values("x", 0.1, "y", 2) == "x = 0.10000000000000001, y = 2");
+}
+
+TEST_CASE("internal check: a failed check aborts where checks are on, and costs nothing where they are off",
+          "[io][check]") {
+  int fds[2];
+  REQUIRE(::pipe(fds) == 0);
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    ::dup2(fds[1], 2);
+    const int three = 3, four = 4;
+    ATTENUVIS_CHECK_EQ(three, four);
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  std::string err;
+  char buffer[256];
+  for (ssize_t n; (n = ::read(fds[0], buffer, sizeof buffer)) > 0;) err.append(buffer, static_cast<std::size_t>(n));
+  ::close(fds[0]);
+  int status = 0;
+  REQUIRE(::waitpid(child, &status, 0) == child);
+#if defined(ATTENUVIS_CHECKS)
+  REQUIRE(WIFSIGNALED(status));
+  CHECK(WTERMSIG(status) == SIGABRT);
+  CHECK_THAT(err, Catch::Contains("internal check failed at") && Catch::Contains("three == four (three = 3, four = 4)"));
+#else
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 0);
+  CHECK(err.empty());
+#endif
+}
