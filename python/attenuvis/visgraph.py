@@ -15,14 +15,25 @@ and, only when asked (``edges=True``), every visible pair as arrays (i, j,
 distance).  Results do not depend on the thread count (fixed-point sums,
 visgraph/visibility.hpp).  Long passes release the GIL; Ctrl-C raises
 KeyboardInterrupt within a fraction of a second and stops the C++ work.
+
+Examples
+--------
+>>> from attenuvis import visgraph as vg
+>>> scene = vg.Scene.layout(2)
+>>> eyes = vg.node_grid(scene, 5.0)
+>>> r = vg.all_to_all(scene, eyes, [1e-3, 2e-2])
+>>> r.sum.shape
+(2, 96)
 """
 
 from __future__ import annotations
 
+import os
 import warnings
-from typing import Callable, NamedTuple, Optional, Sequence
+from typing import Callable, List, NamedTuple, Optional, Sequence, Union
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import _attenuvis
 
@@ -32,38 +43,191 @@ __all__ = ["Scene", "node_grid", "all_to_all", "to_targets", "VisibilityResult",
 
 
 class Scene:
-    """A ray-traceable triangle scene (Embree BVH, built once)."""
+    """A ray-traceable triangle scene (Embree BVH, built once).
+
+    Build one with :meth:`from_file`, :meth:`from_obj`, :meth:`layout`,
+    :meth:`city` or :meth:`from_arrays`; the constructor wraps the
+    extension's scene and is not for direct use.  Its properties
+    ``triangle_count``, ``bounds``, ``groups`` and ``warnings`` describe it.
+
+    Examples
+    --------
+    >>> from attenuvis import visgraph as vg
+    >>> vg.Scene.layout(2)
+    Scene(layout:2, 14 triangles, groups=['floor', 'obstacle'])
+    """
 
     def __init__(self, cpp):
         self._cpp = cpp
 
     @classmethod
-    def from_file(cls, path, *, up_axis: str = "z", lod: str = "") -> "Scene":
-        """OBJ, CityJSON (.json/.city.json/.jsonl) or glTF (.gltf/.glb), recognised by content.
-        ``up_axis`` ("z" or "y") applies to OBJ; ``lod`` picks a CityJSON level of detail."""
+    def from_file(cls, path: Union[str, os.PathLike], *, up_axis: str = "z", lod: str = "") -> Scene:
+        """A scene from an OBJ, CityJSON or glTF file, recognised by content.
+
+        Parameters
+        ----------
+        path : str or path-like
+            Wavefront OBJ, CityJSON (.json/.city.json/.jsonl) or glTF
+            (.gltf/.glb).
+        up_axis : {"z", "y"}, default "z"
+            The file's up axis; applies to OBJ (the scene is z up).
+        lod : str, default ""
+            CityJSON level of detail to read ("" = the reader's choice).
+
+        Returns
+        -------
+        Scene
+
+        Raises
+        ------
+        RuntimeError
+            If the file cannot be read or parsed (the message names the
+            file and where).
+        ValueError
+            For a bad argument: an ``up_axis`` other than "z" or "y", or a
+            ``lod`` for a file that is not CityJSON.
+
+        Examples
+        --------
+        A ground square with a wall across it, written as OBJ:
+
+        >>> import os, tempfile
+        >>> from attenuvis import visgraph as vg
+        >>> tmp = tempfile.TemporaryDirectory()
+        >>> path = os.path.join(tmp.name, "wall.obj")
+        >>> with open(path, "w") as f:
+        ...     _ = f.write("g ground\\nv 0 0 0\\nv 20 0 0\\nv 20 20 0\\nv 0 20 0\\nf 1 2 3\\nf 1 3 4\\n"
+        ...                 "g wall\\nv 10 0 0\\nv 10 8 0\\nv 10 8 3\\nv 10 0 3\\nf 5 6 7\\nf 5 7 8\\n")
+        >>> vg.Scene.from_file(path)
+        Scene(OBJ, 4 triangles, groups=['ground', 'wall'])
+        >>> tmp.cleanup()
+        """
         return cls(_core.Scene.from_file(str(path), up_axis, lod))
 
     @classmethod
-    def from_obj(cls, path, *, up_axis: str = "z") -> "Scene":
-        """A Wavefront OBJ file; groups (``g``) name the surfaces."""
+    def from_obj(cls, path: Union[str, os.PathLike], *, up_axis: str = "z") -> Scene:
+        """A scene from a Wavefront OBJ file; groups (``g``) name the surfaces.
+
+        Parameters
+        ----------
+        path : str or path-like
+            The OBJ file.
+        up_axis : {"z", "y"}, default "z"
+            As :meth:`from_file`.
+
+        Returns
+        -------
+        Scene
+
+        Raises
+        ------
+        RuntimeError, ValueError
+            As :meth:`from_file`.
+
+        Examples
+        --------
+        >>> import pathlib, tempfile
+        >>> from attenuvis import visgraph as vg
+        >>> tmp = tempfile.TemporaryDirectory()
+        >>> path = pathlib.Path(tmp.name) / "floor.obj"
+        >>> _ = path.write_text("g floor\\nv 0 0 0\\nv 10 0 0\\nv 10 10 0\\nv 0 10 0\\nf 1 2 3\\nf 1 3 4\\n")
+        >>> vg.Scene.from_obj(path).groups
+        ['floor']
+        >>> tmp.cleanup()
+        """
         return cls.from_file(path, up_axis=up_axis)
 
     @classmethod
-    def layout(cls, index: int) -> "Scene":
-        """One of the five classic 50 x 50 m layouts of the seed paper (0..4);
-        nodes stand on its floor by default."""
+    def layout(cls, index: int) -> Scene:
+        """One of the five classic 50 x 50 m layouts of the seed paper.
+
+        Nodes stand on its floor by default.
+
+        Parameters
+        ----------
+        index : int
+            0..4 (names: :func:`classic_layout_names`).
+
+        Returns
+        -------
+        Scene
+
+        Raises
+        ------
+        ValueError
+            For an index outside 0..4.
+
+        Examples
+        --------
+        >>> from attenuvis import visgraph as vg
+        >>> scene = vg.Scene.layout(2)
+        >>> scene.triangle_count
+        14
+        >>> print(scene.bounds)
+        [[ 0.  0.  0.]
+         [50. 50. 10.]]
+        """
         return cls(_core.Scene.from_spec(f"layout:{int(index)}"))
 
     @classmethod
-    def city(cls, seed: Optional[int] = None) -> "Scene":
-        """The synthetic city; nodes stand on sidewalks and crosswalks by default."""
+    def city(cls, seed: Optional[int] = None) -> Scene:
+        """The synthetic city; nodes stand on sidewalks and crosswalks by default.
+
+        Parameters
+        ----------
+        seed : int, optional
+            Seed of the generated city (None: the default city, as the
+            command line's ``city``; a seed gives ``city:SEED``).
+
+        Returns
+        -------
+        Scene
+
+        Examples
+        --------
+        >>> from attenuvis import visgraph as vg
+        >>> vg.Scene.city().groups
+        ['sidewalk', 'crosswalk', 'road', 'ground', 'building', 'terrain']
+        """
         return cls(_core.Scene.from_spec("city" if seed is None else f"city:{int(seed)}"))
 
     @classmethod
-    def from_arrays(cls, vertices, triangles, groups=None) -> "Scene":
-        """A scene from an (V, 3) float array of vertices (m) and an (T, 3)
-        integer array of vertex indices.  ``groups``: None (one group
-        "default"), or a length-T sequence of group names (str) per triangle."""
+    def from_arrays(cls, vertices: ArrayLike, triangles: ArrayLike, groups: Optional[Sequence[str]] = None) -> Scene:
+        """A scene from arrays of vertices and triangles.
+
+        Parameters
+        ----------
+        vertices : array_like of float, shape (V, 3)
+            Vertex coordinates (m), z up.
+        triangles : array_like of int, shape (T, 3)
+            Vertex indices (0-based) of each triangle.
+        groups : sequence of str, optional
+            One group name per triangle (length T); None puts every triangle
+            in one group "default".
+
+        Returns
+        -------
+        Scene
+
+        Raises
+        ------
+        ValueError
+            If ``triangles`` is not (T, 3), an index is out of range, or
+            ``groups`` does not have one name per triangle.
+        TypeError
+            If ``triangles`` is not an integer array.
+
+        Examples
+        --------
+        A 20 x 20 m ground with a 3 m high wall along x = 10 from y = 0 to 8:
+
+        >>> from attenuvis import visgraph as vg
+        >>> vertices = [[0, 0, 0], [20, 0, 0], [20, 20, 0], [0, 20, 0],
+        ...             [10, 0, 0], [10, 8, 0], [10, 8, 3], [10, 0, 3]]
+        >>> triangles = [[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]]
+        >>> vg.Scene.from_arrays(vertices, triangles, groups=["ground", "ground", "wall", "wall"])
+        Scene(arrays, 4 triangles, groups=['ground', 'wall'])
+        """
         v = np.ascontiguousarray(vertices, dtype=np.float64)
         t = np.asarray(triangles)
         if t.ndim != 2 or t.shape[1:] != (3,):
@@ -95,12 +259,12 @@ class Scene:
         return self._cpp.bounds
 
     @property
-    def groups(self) -> Sequence[str]:
+    def groups(self) -> List[str]:
         """Group names (OBJ ``g``/``o``, or materials), what ``walkable=`` selects."""
         return self._cpp.groups
 
     @property
-    def warnings(self) -> Sequence[str]:
+    def warnings(self) -> List[str]:
         """What the reader noticed (an up axis that looks wrong, faces skipped)."""
         return self._cpp.warnings
 
@@ -108,26 +272,86 @@ class Scene:
         return f"Scene({self._cpp.format}, {self.triangle_count} triangles, groups={list(self.groups)})"
 
 
-def classic_layout_names():
-    """Names of the classic layouts 0..4."""
+def classic_layout_names() -> List[str]:
+    """Names of the classic layouts 0..4.
+
+    Returns
+    -------
+    list of str
+        The name of each index :meth:`Scene.layout` accepts.
+
+    Examples
+    --------
+    >>> from attenuvis import visgraph as vg
+    >>> vg.classic_layout_names()
+    ['four-L-walls', 'T-block', 'single-block', 'plus-block', 'two-walls']
+    """
     return [_core.classic_layout_name(i) for i in range(5)]
 
 
 def node_grid(scene: Scene, spacing: float, *, walkable: Optional[Sequence[str]] = None, eye_height: float = 1.7,
               max_slope_deg: float = 90.0) -> np.ndarray:
-    """Eye points on a square grid of pitch ``spacing`` (m) over the scene,
-    ``eye_height`` (m) above the surface people stand on: the named
-    ``walkable`` groups (or classes; "*" = any surface), else the scene's own
-    rule (shipped scenes: their floors and sidewalks; files: the lowest
-    surface outside every solid, visgraph/nodes.hpp).  Returns an (N, 3)
-    float64 array."""
+    """Eye points on a square grid over the surface people stand on.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene.
+    spacing : float
+        Grid pitch (m).
+    walkable : sequence of str, optional
+        Groups (or classes) people stand on; "*" = any surface.  None: the
+        scene's own rule (shipped scenes: their floors and sidewalks; files:
+        the lowest surface outside every solid, visgraph/nodes.hpp).
+    eye_height : float, default 1.7
+        Height of the eye above the surface (m).
+    max_slope_deg : float, default 90
+        Steepest surface (degrees from horizontal) that still carries a node.
+
+    Returns
+    -------
+    numpy.ndarray of float64, shape (N, 3)
+        The eye points x, y, z (m).
+
+    Raises
+    ------
+    ValueError
+        For a spacing outside its range or a ``walkable`` name that is
+        neither a group nor a class of the scene.
+
+    Examples
+    --------
+    >>> from attenuvis import visgraph as vg
+    >>> eyes = vg.node_grid(vg.Scene.layout(2), 5.0)
+    >>> eyes.shape
+    (96, 3)
+    >>> print(eyes[0])
+    [2.5 2.5 1.7]
+    """
     return _core.node_grid(scene._cpp, float(spacing), None if walkable is None else list(walkable),
                            float(eye_height), float(max_slope_deg))
 
 
 class Edges(NamedTuple):
-    """Visible pairs: node indices i, j (uint32; to_targets: j indexes the
-    targets) and distance (m)."""
+    """Visible pairs of a pass, returned only with ``edges=True``.
+
+    Attributes
+    ----------
+    i, j : numpy.ndarray of uint32
+        Node indices of each pair (:func:`to_targets`: j indexes the
+        targets).
+    distance : numpy.ndarray of float64
+        Distance between the two ends (m).
+
+    Examples
+    --------
+    >>> from attenuvis import visgraph as vg
+    >>> scene = vg.Scene.layout(2)
+    >>> eyes = vg.node_grid(scene, 5.0)
+    >>> e = vg.all_to_all(scene, eyes[:2], [0.0], edges=True).edges
+    >>> print(e.i, e.j, e.distance)
+    [0] [1] [5.]
+    """
 
     i: np.ndarray
     j: np.ndarray
@@ -135,14 +359,41 @@ class Edges(NamedTuple):
 
 
 class VisibilityResult(NamedTuple):
-    """degree (N,) uint32 or None when pruning withheld it; sum, average
-    (K, N) float64; pruned (N,) uint32; mean_distance, max_distance (N,) or
-    None unless distance_stats; edges (Edges) or None unless edges=True;
-    stats: pairs_total/cast/visible, pairs_culled_visible/blocked (decided
-    without rays by exact culling), coincident_pairs, pruning_radius (m),
-    pruning_note (what pruning dropped and why, or why it was not applied:
-    prune_below prunes only where that is faster than the exact pass),
-    prune_below, seconds."""
+    """Scores of a visibility pass, one column per eye point.
+
+    Returned by :func:`all_to_all` and :func:`to_targets`; N eyes (or
+    sources), K extinction coefficients.
+
+    Attributes
+    ----------
+    degree : numpy.ndarray of uint32, shape (N,), or None
+        Visible partners; None when pruning withheld it.
+    sum : numpy.ndarray of float64, shape (K, N)
+        S_S, the sum over visible partners of exp(-sigma_k d).
+    average : numpy.ndarray of float64, shape (K, N)
+        S_A = S_S / degree (NaN where degree is 0, all NaN without degree).
+    pruned : numpy.ndarray of uint32, shape (N,)
+        Partners skipped by pruning.
+    mean_distance, max_distance : numpy.ndarray of float64, shape (N,), or None
+        Distance statistics of the visible partners (m); None unless
+        ``distance_stats=True``.
+    edges : Edges or None
+        Every visible pair; None unless ``edges=True``.
+    stats : dict
+        pairs_total, pairs_cast, pairs_visible, pairs_culled_visible and
+        pairs_culled_blocked (decided without rays by exact culling),
+        coincident_pairs, pruning_radius (m), pruning_note (what pruning
+        dropped and why, or why it was not applied: prune_below prunes only
+        where that is faster than the exact pass), prune_below, seconds.
+
+    Examples
+    --------
+    >>> from attenuvis import visgraph as vg
+    >>> scene = vg.Scene.layout(2)
+    >>> r = vg.all_to_all(scene, vg.node_grid(scene, 5.0), [1e-3])
+    >>> r.stats["pairs_total"], r.stats["pairs_visible"]
+    (4560, 3405)
+    """
 
     degree: Optional[np.ndarray]
     sum: np.ndarray
@@ -194,19 +445,77 @@ def _prune_below(prune_below: float, tolerance: Optional[float]) -> float:
     return float(tolerance)
 
 
-def all_to_all(scene: Scene, eyes, sigmas, *, prune_below: float = 0.0, max_distance: float = np.inf,
-               distance_stats: bool = False, threads: int = 0,
+def all_to_all(scene: Scene, eyes: ArrayLike, sigmas: ArrayLike, *, prune_below: float = 0.0,
+               max_distance: float = np.inf, distance_stats: bool = False, threads: int = 0,
                progress: Optional[Callable[[int, int], None]] = None, edges: bool = False,
                tolerance: Optional[float] = None) -> VisibilityResult:
-    """Every unordered pair of ``eyes`` ((N, 3), m) once, both ends credited.
+    """Visibility scores of every unordered pair of eye points.
 
-    sigmas: extinction coefficients (1/m), one row of ``sum``/``average``
-    each.  prune_below > 0 prunes pairs whose exp(-sigma_min d) < prune_below
-    (degree then None; ``tolerance=`` is its deprecated former name).
-    max_distance (m): farther pairs are not lines of sight.  threads: 0 = every core.  progress: called about twice a second
-    as progress(pairs_done, pairs_total), on the calling thread; an exception
-    it raises stops the pass.  edges=True also returns every visible pair
-    (O(visible pairs) memory; only then are they kept).
+    Each pair is cast once and both ends are credited.
+
+    Parameters
+    ----------
+    scene : Scene
+        The occluding geometry.
+    eyes : array_like of float, shape (N, 3)
+        Eye points (m), e.g. from :func:`node_grid`.
+    sigmas : float or sequence of float
+        Extinction coefficients (1/m, finite, >= 0), one row of
+        ``sum``/``average`` each.
+    prune_below : float, default 0
+        If > 0, pairs whose exp(-sigma_min d) < prune_below may be pruned
+        (then ``degree`` is None); see ``stats["pruning_note"]``.
+    max_distance : float, default inf
+        Farther pairs (m) are not lines of sight.
+    distance_stats : bool, default False
+        Also return mean_distance and max_distance per eye.
+    threads : int, default 0
+        Worker threads (0 = every core).  Results do not depend on it.
+    progress : callable, optional
+        Called about twice a second as ``progress(pairs_done, pairs_total)``
+        on the calling thread; an exception it raises stops the pass.
+    edges : bool, default False
+        Also return every visible pair (O(visible pairs) memory; only then
+        are they kept).
+    tolerance : float, optional
+        Deprecated former name of ``prune_below``.
+
+    Returns
+    -------
+    VisibilityResult
+
+    Raises
+    ------
+    ValueError
+        If ``eyes`` is not (N, 3) or a sigma is negative or not finite.
+    TypeError
+        If both ``prune_below`` and ``tolerance`` are given.
+    KeyboardInterrupt
+        On Ctrl-C, which also stops the C++ pass.
+
+    Warns
+    -----
+    DeprecationWarning
+        When ``tolerance`` is given.
+
+    Examples
+    --------
+    Behind a wall, across open ground:
+
+    >>> import numpy as np
+    >>> from attenuvis import visgraph as vg
+    >>> scene = vg.Scene.from_arrays(
+    ...     [[0, 0, 0], [20, 0, 0], [20, 20, 0], [0, 20, 0], [10, 0, 0], [10, 8, 0], [10, 8, 3], [10, 0, 3]],
+    ...     [[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]])
+    >>> eyes = [[5, 4, 1.7], [15, 4, 1.7], [15, 12, 1.7]]
+    >>> r = vg.all_to_all(scene, eyes, [0.0, 0.01], edges=True)
+    >>> print(r.degree)
+    [0 1 1]
+    >>> print(np.round(r.sum, 4))
+    [[0.     1.     1.    ]
+     [0.     0.9231 0.9231]]
+    >>> print(r.edges.i, r.edges.j, r.edges.distance)
+    [1] [2] [8.]
     """
     e = _eyes(eyes, "eyes")
     n = len(e)
@@ -217,13 +526,56 @@ def all_to_all(scene: Scene, eyes, sigmas, *, prune_below: float = 0.0, max_dist
     return _result(d)
 
 
-def to_targets(scene: Scene, sources, targets, sigmas, *, prune_below: float = 0.0, max_distance: float = np.inf,
-               distance_stats: bool = False, threads: int = 0,
+def to_targets(scene: Scene, sources: ArrayLike, targets: ArrayLike, sigmas: ArrayLike, *, prune_below: float = 0.0,
+               max_distance: float = np.inf, distance_stats: bool = False, threads: int = 0,
                progress: Optional[Callable[[int, int], None]] = None, edges: bool = False,
                tolerance: Optional[float] = None) -> VisibilityResult:
-    """Every source against every target, the source credited (the seed's
-    single-point analysis: sources = all nodes, one target).  Arguments and
-    result as all_to_all; edges' j indexes the targets."""
+    """Visibility scores of every source against every target.
+
+    The source is credited: the seed's single-point analysis is sources =
+    all nodes, one target.
+
+    Parameters
+    ----------
+    scene : Scene
+        The occluding geometry.
+    sources : array_like of float, shape (N, 3)
+        Eye points credited (m).
+    targets : array_like of float, shape (M, 3)
+        Points they look at (m).
+    sigmas : float or sequence of float
+        Extinction coefficients (1/m).
+    prune_below, max_distance, distance_stats, threads, progress, edges, tolerance
+        As :func:`all_to_all`; progress counts N * M pairs.
+
+    Returns
+    -------
+    VisibilityResult
+        One column per source; the edges' j indexes the targets.
+
+    Raises
+    ------
+    ValueError
+        If ``sources`` or ``targets`` is not (N, 3), or a sigma is negative
+        or not finite.
+    TypeError, KeyboardInterrupt
+        As :func:`all_to_all` (which also says when a DeprecationWarning
+        comes).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from attenuvis import visgraph as vg
+    >>> scene = vg.Scene.from_arrays(
+    ...     [[0, 0, 0], [20, 0, 0], [20, 20, 0], [0, 20, 0], [10, 0, 0], [10, 8, 0], [10, 8, 3], [10, 0, 3]],
+    ...     [[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7]])
+    >>> sources = [[5, 4, 1.7], [15, 4, 1.7], [15, 12, 1.7]]
+    >>> r = vg.to_targets(scene, sources, [[5, 12, 1.7]], [0.01], edges=True)
+    >>> print(r.degree, np.round(r.sum, 4))
+    [1 0 1] [[0.9231 0.     0.9048]]
+    >>> print(r.edges.i, r.edges.j, r.edges.distance)
+    [0 2] [0 0] [ 8. 10.]
+    """
     s = _eyes(sources, "sources")
     t = _eyes(targets, "targets")
     total = len(s) * len(t)

@@ -3,8 +3,6 @@ edges, threads, errors and Ctrl-C."""
 
 import csv
 import subprocess
-import sys
-import textwrap
 
 import numpy as np
 import pytest
@@ -159,27 +157,12 @@ def test_progress_callback_and_its_exception(layout2):
         vg.all_to_all(vg.Scene.layout(0), big, [0.01], progress=stop)
 
 
-INTERRUPT = textwrap.dedent("""
-    import os, signal, sys, threading, time
-    from attenuvis import visgraph as vg
-    scene = vg.Scene.layout(0)
-    eyes = vg.node_grid(scene, 0.2)          # ~60000 eyes: minutes of work
-    sent = []
-    def interrupt():
-        sent.append(time.monotonic())
-        os.kill(os.getpid(), signal.SIGINT)
-    threading.Timer(1.0, interrupt).start()
-    try:
-        vg.all_to_all(scene, eyes, [0.01])
-        print("finished without interruption")
-        sys.exit(2)
-    except KeyboardInterrupt:
-        print(f"interrupted after {time.monotonic() - sent[0]:.3f} s")
-""")
-
-
-def test_ctrl_c_interrupts_a_long_pass():
-    run = subprocess.run([sys.executable, "-c", INTERRUPT], capture_output=True, text=True, timeout=120)
+def test_ctrl_c_interrupts_a_long_pass(interrupted_child):
+    run = interrupted_child("""
+        from attenuvis import visgraph as vg
+        scene = vg.Scene.layout(0)
+        eyes = vg.node_grid(scene, 0.2)          # ~60000 eyes: minutes of work
+        """, "vg.all_to_all(scene, eyes, [0.01])", timeout=120)
     assert run.returncode == 0, run.stdout + run.stderr
     delay = float(run.stdout.split()[2])
     assert delay < 1.0, run.stdout
