@@ -190,36 +190,40 @@ void print_throughput(const std::string& name, double spacing, int threads, cons
   std::fflush(stdout);
 }
 
-int run(const Args& a) {
-  const auto start = std::chrono::steady_clock::now();
+int max_threads(const Args& a) { return *std::max_element(a.threads.begin(), a.threads.end()); }
+
+void print_workload(const Args& a) {
   std::printf("visgraph_throughput: %s; repeats %d (best of), threads", val::machine_line().c_str(), a.repeats);
   for (int t : a.threads) std::printf(" %d", t);
   std::printf("\nworkload: degree + S_S for 4 sigmas (seed paper's printed values 0.00015, 0.0045, 0.02874311, "
               "0.0374 1/m) in one pass\n");
   std::printf("raw16 = rtcOccluded16 loop over the same pairs (coherent rows), raw1 = rtcOccluded1 per pair; "
               "eng/16 = engine speed / raw16 speed\n\n");
+}
 
-  // 3. Memory first, while the process is small (the peak is reset anyway).
-  {
-    const vg::Scene scene(vg::classic_layout(2));
-    const auto eyes = grid_nodes(scene, 0.5, vg::classic_layout_walkable_groups());
-    val::AllocationCounter counter;
-    counter.live_bytes = [] { return g_live.load(); };
-    counter.reset_peak = [] { g_peak.store(g_live.load()); };
-    counter.peak_bytes = [] { return g_peak.load(); };
-    const int th = *std::max_element(a.threads.begin(), a.threads.end());
-    const val::MemoryUse m = val::measure_memory(scene, eyes, val::seed_benchmark_sigmas(), th, counter);
-    std::printf("memory: all-to-all on layout 2 at 0.5 m (%zu nodes), degree + 4 sigmas + distance statistics, no "
-                "edge output, %d thread(s), %.2f s\n",
-                m.nodes, th, m.seconds);
-    std::printf("  peak RSS during the pass - RSS before: %.2f MB (VmHWM %.2f MB - VmRSS %.2f MB; peak %s)\n",
-                m.rss_extra_mb, m.rss_peak_mb, m.rss_before_mb,
-                m.rss_peak_reset ? "reset via /proc/self/clear_refs before the pass"
-                                 : "NOT resettable here: upper bound including earlier peaks");
-    std::printf("  peak live operator-new bytes above the level before the pass: %.2f MB\n\n", m.heap_peak_extra_mb);
-  }
+// 3. The extra memory of an all-to-all on layout 2 at 0.5 m (run first, while
+// the process is small; the peak is reset anyway).
+void memory_study(const Args& a) {
+  const vg::Scene scene(vg::classic_layout(2));
+  const auto eyes = grid_nodes(scene, 0.5, vg::classic_layout_walkable_groups());
+  val::AllocationCounter counter;
+  counter.live_bytes = [] { return g_live.load(); };
+  counter.reset_peak = [] { g_peak.store(g_live.load()); };
+  counter.peak_bytes = [] { return g_peak.load(); };
+  const int th = max_threads(a);
+  const val::MemoryUse m = val::measure_memory(scene, eyes, val::seed_benchmark_sigmas(), th, counter);
+  std::printf("memory: all-to-all on layout 2 at 0.5 m (%zu nodes), degree + 4 sigmas + distance statistics, no "
+              "edge output, %d thread(s), %.2f s\n",
+              m.nodes, th, m.seconds);
+  std::printf("  peak RSS during the pass - RSS before: %.2f MB (VmHWM %.2f MB - VmRSS %.2f MB; peak %s)\n",
+              m.rss_extra_mb, m.rss_peak_mb, m.rss_before_mb,
+              m.rss_peak_reset ? "reset via /proc/self/clear_refs before the pass"
+                               : "NOT resettable here: upper bound including earlier peaks");
+  std::printf("  peak live operator-new bytes above the level before the pass: %.2f MB\n\n", m.heap_peak_extra_mb);
+}
 
-  // 1. Classic layouts.
+// 1. The classic layouts, every spacing and thread count.
+void layout_throughput(const Args& a) {
   const std::vector<double> spacings = a.quick ? std::vector<double>{1.0} : std::vector<double>{1.0, 0.5};
   print_throughput_header();
   for (int k = 0; k < vg::kClassicLayoutCount; ++k) {
@@ -237,20 +241,11 @@ int run(const Args& a) {
       }
     }
   }
+}
 
-  if (!a.city) {
-    std::printf("\n(city skipped: --no-city)\n");
-    return 0;
-  }
-
-  // 1-2. The city.
-  vg::CityOptions copt;
-  copt.rings = a.city_rings;
-  const vg::Scene city(vg::synthetic_city(copt));
-  const auto eyes = grid_nodes(city, 1.0, vg::city_walkable_groups());
-  std::printf("\ncity: make_city seed %llu, %d rings, %zu triangles, %zu nodes at 1 m on sidewalk+crosswalk\n",
-              static_cast<unsigned long long>(copt.seed), copt.rings, city.triangle_count(), eyes.size());
-  const int th_max = *std::max_element(a.threads.begin(), a.threads.end());
+// 1-2. The city, every thread count; its exact all-to-all time on the most.
+void city_throughput(const Args& a, const vg::Scene& city, const std::vector<Eigen::Vector3d>& eyes) {
+  const int th_max = max_threads(a);
   for (int th : a.threads) {
     val::ThroughputOptions o;
     o.threads = th;
@@ -263,12 +258,13 @@ int run(const Args& a) {
       std::printf("city all-to-all exact, degree + 4 sigmas, %d thread(s): %.2f s (target <= 10 s on 2 threads)\n", th,
                   t.engine.best_s);
   }
+}
 
-  if (!a.pruning) return 0;
-
-  // 4. Error against time: S_S for dry snow 4 mm/h (the seed's sigma 0.0374
-  // 1/m: the largest, so the only one whose pruning radius is inside the
-  // city), reference = the exact run with that sigma alone.
+// 4. Error against time: S_S for dry snow 4 mm/h (the seed's sigma 0.0374
+// 1/m: the largest, so the only one whose pruning radius is inside the
+// city), reference = the exact run with that sigma alone.
+void pruning_study(const Args& a, const vg::Scene& city, const std::vector<Eigen::Vector3d>& eyes) {
+  const int th_max = max_threads(a);
   const double sigma = 0.0374;
   vg::VisibilityOptions exact;
   exact.sigmas = {sigma};
@@ -296,6 +292,26 @@ int run(const Args& a) {
     if (eps == 1e-6)
       std::printf("         (city with eps = 1e-6: %.2f s; target <= 2 s on 2 threads)\n", p.seconds);
   }
+}
+
+int run(const Args& a) {
+  const auto start = std::chrono::steady_clock::now();
+  print_workload(a);
+  memory_study(a);
+  layout_throughput(a);
+  if (!a.city) {
+    std::printf("\n(city skipped: --no-city)\n");
+    return 0;
+  }
+  vg::CityOptions copt;
+  copt.rings = a.city_rings;
+  const vg::Scene city(vg::synthetic_city(copt));
+  const auto eyes = grid_nodes(city, 1.0, vg::city_walkable_groups());
+  std::printf("\ncity: make_city seed %llu, %d rings, %zu triangles, %zu nodes at 1 m on sidewalk+crosswalk\n",
+              static_cast<unsigned long long>(copt.seed), copt.rings, city.triangle_count(), eyes.size());
+  city_throughput(a, city, eyes);
+  if (!a.pruning) return 0;
+  pruning_study(a, city, eyes);
   std::printf("\ntotal %.1f s; %s\n",
               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
               val::machine_line().c_str());

@@ -1,7 +1,11 @@
-// Private to the reproduction job: progress of a long parallel loop whose
-// workers must not write to the terminal themselves.  Workers count finished
-// items (done()); a watcher thread reports "what: k of n, T s, about L s left"
-// through the job's progress line every `period`, and stops with the loop.
+// Private to the reproduction job: what keeps its progress line (Progress,
+// sections.hpp) saying what the job is doing while a step runs long.
+//  - Heartbeat: progress of a long parallel loop whose workers must not write
+//    to the terminal themselves.  Workers count finished items (done()); a
+//    watcher thread reports "what: k of n, T s, about L s left" through the
+//    job's progress line every `period`, and stops with the loop.
+//  - ExternalProgress: a library prints its own line meanwhile.
+//  - StallTicker: repeats a silent step's line with the time spent in it.
 #pragma once
 
 #include <atomic>
@@ -56,5 +60,26 @@ class ExternalProgress {
   ExternalProgress& operator=(const ExternalProgress&) = delete;
 };
 bool external_progress_active();
+
+// While a step runs longer than a few seconds without saying anything (a
+// sigma integral, a quadrature study), repeats its line with the time spent
+// in it, so the user always sees what the job is doing.  Quiet while a
+// library prints its own progress line (ExternalProgress).
+class StallTicker {
+ public:
+  StallTicker(Progress& progress, bool enabled);
+  ~StallTicker();
+  StallTicker(const StallTicker&) = delete;
+  StallTicker& operator=(const StallTicker&) = delete;
+
+ private:
+  void run();
+
+  Progress& progress_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::thread thread_;
+};
 
 }  // namespace attenuvis::validation::detail

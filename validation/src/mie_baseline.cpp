@@ -3,6 +3,7 @@
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/validation/mie_baseline.hpp"
 #include "block_timing.hpp"
+#include "core_batch.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -71,14 +72,25 @@ std::vector<double> batch_size_parameters(double x_min, double x_max, std::size_
   return x;
 }
 
+unsigned batch_threads(unsigned requested) {
+  return requested ? requested : std::max(1u, std::thread::hardware_concurrency());
+}
+
+CoreBatch::CoreBatch(const std::vector<double>& x, std::complex<double> m, unsigned threads)
+    : x_(x), m_(m), threads_(threads), out_(x.size()) {}
+
+double CoreBatch::run(unsigned threads) {
+  mie::SpheresOptions o;
+  o.threads = threads;
+  mie::spheres(x_.data(), m_, x_.size(), out_.data(), o);
+  return out_[0].qext;
+}
+
 BatchSpeed mie_batch_vs_baseline(const MieBaseline& baseline, BatchSpeed b, int blocks) {
   const std::vector<double> x = batch_size_parameters(b.x_min, b.x_max, b.count);
-  std::vector<mie::Efficiencies<double>> single(b.count), batch(b.count);
-  mie::SpheresOptions one;
-  one.threads = 1;
-  b.threads = b.threads ? b.threads : std::max(1u, std::thread::hardware_concurrency());
-  mie::SpheresOptions all;
-  all.threads = b.threads;
+  std::vector<mie::Efficiencies<double>> single(b.count);
+  b.threads = batch_threads(b.threads);
+  CoreBatch core(x, b.m, b.threads);
   const double n = static_cast<double>(b.count);
   auto run_base = [&] {
     double acc = 0;
@@ -89,14 +101,8 @@ BatchSpeed mie_batch_vs_baseline(const MieBaseline& baseline, BatchSpeed b, int 
     for (std::size_t i = 0; i < b.count; ++i) single[i] = mie::sphere(x[i], b.m);
     return single[0].qext;
   };
-  auto run_batch = [&] {
-    mie::spheres(x.data(), b.m, b.count, batch.data(), one);
-    return batch[0].qext;
-  };
-  auto run_threads = [&] {
-    mie::spheres(x.data(), b.m, b.count, batch.data(), all);
-    return batch[0].qext;
-  };
+  auto run_batch = [&] { return core.one_thread(); };
+  auto run_threads = [&] { return core.all_threads(); };
   b.ns_baseline = b.ns_single = b.ns_batch = b.ns_batch_threads = std::numeric_limits<double>::infinity();
   b.instruction_sets = mie::spheres_instruction_sets();
   b.ns_batch_by_set.assign(b.instruction_sets.size(), std::numeric_limits<double>::infinity());
@@ -104,7 +110,8 @@ BatchSpeed mie_batch_vs_baseline(const MieBaseline& baseline, BatchSpeed b, int 
   b.identical_by_set = true;
   for (int k = 0; k < std::max(1, blocks); ++k) {
     for (std::size_t s = 0; s < b.instruction_sets.size(); ++s) {
-      mie::SpheresOptions o = one;
+      mie::SpheresOptions o;
+      o.threads = 1;
       o.instruction_set = b.instruction_sets[s];
       auto run_set = [&] {
         mie::spheres(x.data(), b.m, b.count, by_set.data(), o);
@@ -122,7 +129,7 @@ BatchSpeed mie_batch_vs_baseline(const MieBaseline& baseline, BatchSpeed b, int 
     b.ns_batch = std::min(b.ns_batch, block_ns(run_batch, 1) / n);
     b.ns_batch_threads = std::min(b.ns_batch_threads, timing::wall_block_ns(run_threads, 1) / n);
   }
-  b.identical = std::memcmp(single.data(), batch.data(), sizeof(single[0]) * b.count) == 0;
+  b.identical = std::memcmp(single.data(), core.results().data(), sizeof(single[0]) * b.count) == 0;
   return b;
 }
 

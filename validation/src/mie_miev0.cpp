@@ -8,12 +8,12 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/spheres.hpp"
 #include "block_timing.hpp"
+#include "core_batch.hpp"
 
 namespace attenuvis::validation {
 namespace {
@@ -106,11 +106,8 @@ std::string format_speed_vs_miev0(const std::vector<Miev0Cell>& cells) {
 
 Miev0Batch mie_batch_vs_miev0(const Miev0Library& miev0, Miev0Batch b, int blocks) {
   const std::vector<double> x = batch_size_parameters(b.x_min, b.x_max, b.count);
-  std::vector<mie::Efficiencies<double>> out(b.count);
-  mie::SpheresOptions one, all;
-  one.threads = 1;
-  b.threads = b.threads ? b.threads : std::max(1u, std::thread::hardware_concurrency());
-  all.threads = b.threads;
+  b.threads = batch_threads(b.threads);
+  CoreBatch core(x, b.m, b.threads);
   auto run_miev0 = [&] {
     double acc = 0;
     for (double xi : x) acc += miev0.sphere(xi, b.m).qext;
@@ -121,14 +118,8 @@ Miev0Batch mie_batch_vs_miev0(const Miev0Library& miev0, Miev0Batch b, int block
     for (double xi : x) acc += mie::sphere(xi, b.m).qext;
     return acc;
   };
-  auto run_batch = [&] {
-    mie::spheres(x.data(), b.m, b.count, out.data(), one);
-    return out[0].qext;
-  };
-  auto run_threads = [&] {
-    mie::spheres(x.data(), b.m, b.count, out.data(), all);
-    return out[0].qext;
-  };
+  auto run_batch = [&] { return core.one_thread(); };
+  auto run_threads = [&] { return core.all_threads(); };
   const double n = static_cast<double>(b.count);
   b.ns_miev0 = b.ns_single = b.ns_batch = b.ns_batch_threads = std::numeric_limits<double>::infinity();
   for (int k = 0; k < std::max(1, blocks); ++k) {

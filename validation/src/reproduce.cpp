@@ -20,8 +20,6 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
-#include <condition_variable>
-#include <mutex>
 
 #include <unistd.h>
 
@@ -36,94 +34,6 @@ namespace fs = std::filesystem;
 
 namespace attenuvis::validation {
 namespace detail {
-
-namespace {
-
-// What the progress line last said and when, shared by the steps and the
-// ticker that repeats it while a step runs long (Progress's own members are
-// per object; there is one job and one line).
-struct LineState {
-  std::mutex mutex;
-  std::string section, what;
-  std::string repeat;  // the ticker's repetition of `what`, not a new step
-  std::chrono::steady_clock::time_point since, last_print;
-};
-LineState& line_state() {
-  static LineState state;
-  return state;
-}
-
-}  // namespace
-
-Progress::Progress(std::ostream* os, bool tty) : os_(os), tty_(tty), start_(std::chrono::steady_clock::now()) {}
-
-double Progress::elapsed() const { return seconds_since(start_); }
-
-void Progress::step(const std::string& section, const std::string& what) {
-  if (!os_) return;
-  LineState& line = line_state();
-  std::lock_guard<std::mutex> lock(line.mutex);
-  char t[32];
-  std::snprintf(t, sizeof t, "%6.1f s", elapsed());
-  if (tty_) *os_ << "\r\033[K";
-  *os_ << "reproduce [" << t << "] " << section << ": " << what;
-  if (!tty_) *os_ << "\n";
-  os_->flush();
-  line.last_print = std::chrono::steady_clock::now();
-  if (what == line.repeat) return;
-  if (section != line.section || what != line.what) line.since = line.last_print;
-  line.section = section;
-  line.what = what;
-}
-
-void Progress::done() {
-  if (os_ && tty_) *os_ << "\r\033[K";
-  if (os_) os_->flush();
-}
-
-// While a step runs longer than a few seconds without saying anything (a
-// sigma integral, a quadrature study), repeats its line with the time spent
-// in it, so the user always sees what the job is doing.  Quiet while a
-// library prints its own progress line (ExternalProgress).
-class StallTicker {
- public:
-  StallTicker(Progress& progress, bool enabled) : progress_(progress) {
-    if (enabled) thread_ = std::thread([this] { run(); });
-  }
-  ~StallTicker() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
-    }
-    wake_.notify_all();
-    if (thread_.joinable()) thread_.join();
-  }
-
- private:
-  void run() {
-    std::unique_lock<std::mutex> lock(mutex_);
-    while (!wake_.wait_for(lock, std::chrono::seconds(1), [this] { return stop_; })) {
-      std::string section, what;
-      double in_step = 0;
-      {
-        LineState& line = line_state();
-        std::lock_guard<std::mutex> l(line.mutex);
-        if (line.section.empty() || seconds_since(line.last_print) < 3.0 || external_progress_active()) continue;
-        section = line.section, what = line.what, in_step = seconds_since(line.since);
-        char t[48];
-        std::snprintf(t, sizeof t, " (working, %.0f s in this step)", in_step);
-        line.repeat = what + t;
-        what = line.repeat;
-      }
-      progress_.step(section, what);
-    }
-  }
-  Progress& progress_;
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  bool stop_ = false;
-  std::thread thread_;
-};
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -254,62 +164,56 @@ std::string utc_now() {
   return buf;
 }
 
-}  // namespace
-
-ReproduceResult reproduce(const ReproduceOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();
-  // The earlier Mie core to time against is loaded first: a library that
-  // cannot be loaded stops the job before any work and before the output
-  // directory is touched.
-  std::unique_ptr<MieBaseline> mie_baseline;
-  if (!options.mie_baseline.empty()) {
-    try {
-      // An absolute path: dlopen reads a bare file name as a search in the
-      // system's library directories, not in the working directory.
-      mie_baseline = std::make_unique<MieBaseline>(fs::absolute(options.mie_baseline).lexically_normal().string());
-    } catch (const std::exception& e) {
-      throw std::runtime_error(std::string("--mie-baseline: ") + e.what() + " (no report written)");
-    }
+// The earlier Mie core to time against, loaded before any work: a library
+// that cannot be loaded stops the job before the output directory is touched.
+std::unique_ptr<MieBaseline> load_mie_baseline(const std::string& path) {
+  if (path.empty()) return nullptr;
+  try {
+    // An absolute path: dlopen reads a bare file name as a search in the
+    // system's library directories, not in the working directory.
+    return std::make_unique<MieBaseline>(fs::absolute(path).lexically_normal().string());
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("--mie-baseline: ") + e.what() + " (no report written)");
   }
-  const fs::path out = options.out_dir.empty() ? fs::path("out") : fs::path(options.out_dir);
+}
+
+fs::path make_output_directory(const std::string& out_dir) {
+  const fs::path out = out_dir.empty() ? fs::path("out") : fs::path(out_dir);
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec || !fs::is_directory(out))
     throw std::runtime_error("cannot create output directory '" + out.string() + "': " + ec.message());
-  const fs::path staging = out / (".reproduce-staging-" + std::to_string(::getpid()));
-  fs::remove_all(staging);
-  fs::create_directories(staging);
-  // Whatever happens before the final move, the staging directory goes away.
-  struct Cleanup {
-    fs::path dir;
-    ~Cleanup() {
-      std::error_code e;
-      fs::remove_all(dir, e);
-    }
-  } cleanup{staging};
+  return out;
+}
 
-  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+// Every file is written here first, inside the output directory; whatever
+// happens before the final move, the staging directory goes away.
+class StagingDirectory {
+ public:
+  explicit StagingDirectory(const fs::path& out) : path_(out / (".reproduce-staging-" + std::to_string(::getpid()))) {
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~StagingDirectory() {
+    std::error_code e;
+    fs::remove_all(path_, e);
+  }
+  StagingDirectory(const StagingDirectory&) = delete;
+  StagingDirectory& operator=(const StagingDirectory&) = delete;
+  const fs::path& path() const { return path_; }
 
-  detail::Progress progress(options.progress, options.progress == &std::cerr && ::isatty(2));
-  detail::StallTicker ticker(progress, options.progress != nullptr);
-  Report report;
-  report.title = "attenuvis: reproduction of Schwartz, Vinnikov & Federici (SimAUD 2021) and Mie validation";
-  Context ctx;
-  ctx.options = options;
-  ctx.dir = staging.string();
-  ctx.threads = threads;
-  ctx.progress = &progress;
-  ctx.key = &report.key;
-  ctx.closing = &report.closing;
-  ctx.mie_baseline = mie_baseline.get();
+ private:
+  fs::path path_;
+};
 
+// Sections run in the order their inputs need (the sigma values first: the
+// visibility sections use them) and are shown in the seed paper's order:
+// its scenes, the five layouts, the city, then the sigma values behind
+// them, then what the seed does not have (Mie validation, performance).
+// Their verdicts follow the page's order too.
+void run_sections(Context& ctx, Report& report) {
   detail::SeedConditions seed;
   detail::CityPerformance city_perf;
-  // Sections run in the order their inputs need (the sigma values first: the
-  // visibility sections use them) and are shown in the seed paper's order:
-  // its scenes, the five layouts, the city, then the sigma values behind
-  // them, then what the seed does not have (Mie validation, performance).
   struct Step {
     const char* id;
     const char* title;
@@ -353,54 +257,52 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
   }
   std::stable_sort(computed.begin(), computed.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
-  // The verdicts in the page's order too.
   std::map<std::string, int> shown_at;
   for (const auto& step : steps) shown_at[step.id] = step.shown_at;
   std::stable_sort(report.closing.begin(), report.closing.end(), [&](const Paragraph& a, const Paragraph& b) {
     return shown_at[a.section] < shown_at[b.section];
   });
   for (auto& [at, s] : computed) report.sections.push_back(std::move(s));
+}
 
-  // The verdicts open the page: first their count, then one row each (the
-  // lines themselves, with the reasons, come from the sections).
-  {
-    std::size_t agree = 0, disagree = 0, missing = 0;
-    for (const auto& p : report.closing) {
-      if (p.kind == "agree") ++agree;
-      else if (p.kind == "disagree") ++disagree;
-      else if (p.kind == "missing") ++missing;
-    }
-    report.closing.insert(report.closing.begin(),
-                          Paragraph{"text", "Of the " + std::to_string(agree + disagree + missing) + " checks, " +
-                                                std::to_string(agree) + " agree and " + std::to_string(disagree) +
-                                                " differ, each with its reason" +
-                                                (missing ? "; " + std::to_string(missing) +
-                                                               " could not be made in this build"
-                                                         : std::string()) +
-                                                "."});
-    report.key["closing.agree"] = static_cast<double>(agree);
-    report.key["closing.differ"] = static_cast<double>(disagree);
-    report.key["closing.missing"] = static_cast<double>(missing);
+// The verdicts open the page: first their count, then one row each (the
+// lines themselves, with the reasons, come from the sections).
+void open_with_verdict_count(Report& report) {
+  std::size_t agree = 0, disagree = 0, missing = 0;
+  for (const auto& p : report.closing) {
+    if (p.kind == "agree") ++agree;
+    else if (p.kind == "disagree") ++disagree;
+    else if (p.kind == "missing") ++missing;
   }
-  report.guide = reading_guide();
+  report.closing.insert(report.closing.begin(),
+                        Paragraph{"text", "Of the " + std::to_string(agree + disagree + missing) + " checks, " +
+                                              std::to_string(agree) + " agree and " + std::to_string(disagree) +
+                                              " differ, each with its reason" +
+                                              (missing ? "; " + std::to_string(missing) +
+                                                             " could not be made in this build"
+                                                       : std::string()) +
+                                              "."});
+  report.key["closing.agree"] = static_cast<double>(agree);
+  report.key["closing.differ"] = static_cast<double>(disagree);
+  report.key["closing.missing"] = static_cast<double>(missing);
+}
 
-  if (options.figures) draw_figures(report, staging.string(), &progress);
+// How the run was made: when, by which command, on what, in how long.
+std::string preamble(const ReproduceOptions& options, int threads, double seconds) {
+  return std::string("Computed on ") + utc_now() + " by `attenuvis reproduce" + (options.quick ? " --quick" : "") +
+         "` on " + machine_line(threads) + "; total " + format_number(seconds, 3) +
+         " s. Every number below was computed in this run; the only numbers typed in are the "
+         "published values we compare against, each shown with its source." +
+         (options.quick ? " QUICK MODE: coarse grids and a small city; the numbers that depend on "
+                          "grid size are not the seed's configuration."
+                        : "");
+}
 
-  ReproduceResult result;
-  result.seconds = detail::seconds_since(t0);
-  report.key["time.total_s"] = result.seconds;
-  report.preamble = std::string("Computed on ") + utc_now() + " by `attenuvis reproduce" +
-                    (options.quick ? " --quick" : "") + "` on " + machine_line(threads) + "; total " +
-                    format_number(result.seconds, 3) +
-                    " s. Every number below was computed in this run; the only numbers typed in are the "
-                    "published values we compare against, each shown with its source." +
-                    (options.quick ? " QUICK MODE: coarse grids and a small city; the numbers that depend on "
-                                     "grid size are not the seed's configuration."
-                                   : "");
+// The one-screen summary: the run, each section with its own lines, the
+// verdict count; and the sections this build could not compute.
+void summarise(const Report& report, const ReproduceOptions& options, int threads, ReproduceResult& result) {
   for (const auto& s : report.sections)
     if (!s.available) result.missing.push_back(s.title);
-
-  // Summary lines.
   result.summary.push_back("attenuvis reproduce" + std::string(options.quick ? " --quick" : "") + ": " +
                            format_number(result.seconds, 3) + " s on " + std::to_string(threads) + " thread(s)");
   for (const auto& s : report.sections) {
@@ -409,23 +311,62 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
     for (const auto& line : s.summary) result.summary.push_back("  " + line);
   }
   result.summary.push_back("verdict: " + report.closing.front().text);
+}
 
-  write_key_json(report, (staging / "key.json").string());
-  if (options.figures) write_report_html(report, (staging / "report.html").string());
-
-  // Move everything out of staging; report.html last, so its presence means
-  // the whole set is there.
-  progress.step("output", "moving files into " + out.string());
+// Moves everything out of staging into `out`; report.html last, so its
+// presence means the whole set is there.  Every destination is checked
+// before the first move, so a name taken by a directory or a device stops
+// the job with nothing moved.
+void move_out_of_staging(const fs::path& staging, const fs::path& out, bool with_report) {
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(staging))
     if (e.is_regular_file() && e.path().filename() != "report.html") files.push_back(e.path());
-  // Every destination is checked before the first move, so a name taken by a
-  // directory or a device stops the job with nothing moved.
   for (const auto& f : files) io::require_regular_or_absent((out / f.filename()).string());
-  if (options.figures) io::require_regular_or_absent((out / "report.html").string());
+  if (with_report) io::require_regular_or_absent((out / "report.html").string());
   for (const auto& f : files) fs::rename(f, out / f.filename());
+  if (with_report) fs::rename(staging / "report.html", out / "report.html");
+}
+
+}  // namespace
+
+ReproduceResult reproduce(const ReproduceOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::unique_ptr<MieBaseline> mie_baseline = load_mie_baseline(options.mie_baseline);
+  const fs::path out = make_output_directory(options.out_dir);
+  const StagingDirectory staging(out);
+
+  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+
+  detail::Progress progress(options.progress, options.progress == &std::cerr && ::isatty(2));
+  detail::StallTicker ticker(progress, options.progress != nullptr);
+  Report report;
+  report.title = "attenuvis: reproduction of Schwartz, Vinnikov & Federici (SimAUD 2021) and Mie validation";
+  Context ctx;
+  ctx.options = options;
+  ctx.dir = staging.path().string();
+  ctx.threads = threads;
+  ctx.progress = &progress;
+  ctx.key = &report.key;
+  ctx.closing = &report.closing;
+  ctx.mie_baseline = mie_baseline.get();
+
+  run_sections(ctx, report);
+  open_with_verdict_count(report);
+  report.guide = reading_guide();
+  if (options.figures) draw_figures(report, staging.path().string(), &progress);
+
+  ReproduceResult result;
+  result.seconds = detail::seconds_since(t0);
+  report.key["time.total_s"] = result.seconds;
+  report.preamble = preamble(options, threads, result.seconds);
+  summarise(report, options, threads, result);
+  write_key_json(report, (staging.path() / "key.json").string());
+  if (options.figures) write_report_html(report, (staging.path() / "report.html").string());
+
+  progress.step("output", "moving files into " + out.string());
+  move_out_of_staging(staging.path(), out, options.figures);
   if (options.figures) {
-    fs::rename(staging / "report.html", out / "report.html");
     result.report_path = (out / "report.html").string();
     result.summary.push_back("report: " + result.report_path);
   } else {

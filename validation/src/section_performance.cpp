@@ -18,9 +18,10 @@ namespace attenuvis::validation::detail {
 
 namespace {
 namespace vg = attenuvis::visgraph;
-}  // namespace
 
-void section_performance(Context& ctx, Section& s, const CityPerformance& city) {
+// Pairs per second of the engine against the raw Embree loops on the five
+// layouts, for one thread and for the run's threads.
+void layout_throughput(Context& ctx, Section& s) {
   const bool quick = ctx.options.quick;
   const int repeats = quick ? 1 : 3;
   s.text("Speed is reported as a ratio to a raw Embree occlusion loop over the same unordered pairs, measured in "
@@ -78,64 +79,84 @@ void section_performance(Context& ctx, Section& s, const CityPerformance& city) 
   ctx.set("performance.best_engine_mpairs_s", best_rate / 1e6);
   s.summary.push_back("layouts: engine up to " + sig(best_rate / 1e6, 4) + " M pairs/s; engine/raw-Embree ratio >= " +
                       sig(worst_ratio, 3));
+}
 
-  if (city.city_nodes > 0) {
-    s.text("City (see the city section): exact all-to-all over " + std::to_string(city.city_nodes) + " nodes, " +
-           std::to_string(city.city_pairs) + " pairs, degree + 3 conditions: " + sig(city.city_exact_seconds, 3) + " s (" +
-           sig(city.city_pairs / city.city_exact_seconds / 1e6, 4) + " M pairs/s) on " + std::to_string(ctx.threads) +
-           " thread(s); exact culling decided " + sig(100.0 * city.city_culled_visible / city.city_pairs, 3) +
-           "% of the pairs in sight and " + sig(100.0 * city.city_culled_blocked / city.city_pairs, 3) +
-           "% blocked without a ray, and " + sig(100.0 * city.city_cast / city.city_pairs, 3) + "% were cast.");
-    ctx.set("performance.city_cast_fraction", double(city.city_cast) / double(city.city_pairs));
-    Table p{"performance_pruning",
-            "Range pruning on the city: error against run time, S_S for " + city.prune_condition + " (sigma " +
-                sig(city.prune_sigma, 4) + " 1/m); reference = the exact run of the city section",
-            {"tolerance eps", "pruning radius [m]", "pairs cast", "fraction of all pairs", "time [s]",
-             "speed-up vs exact run", "max |S_S error|", "certified bound (max over nodes)", "nodes over the bound"},
-            {},
-            "The bound: every skipped partner lies beyond R = ln(1/eps)/sigma, so contributes at most eps; the "
-            "engine reports pruned partners x eps per node (visgraph/visibility.hpp). The exact run also computed "
-            "degree and two more conditions, so the speed-up slightly flatters pruning."};
-    for (const auto& r : city.prune) {
-      if (r.skipped) {
-        p.add_row({Cell(r.prune_below, 2), Cell(r.radius_m, 4), "-", "-", "not run", "-", "0 (radius > city diagonal " +
-                   format_number(city.city_diameter_m, 4) + " m: nothing to prune)", "0", 0});
-        continue;
-      }
-      if (r.not_applied)
-        p.add_row({Cell(r.prune_below, 2), format_number(r.radius_m, 4) + " (not applied: exact pass run)", r.pairs_cast,
-                   Cell(double(r.pairs_cast) / double(city.city_pairs), 3), Cell(r.seconds, 3), "-",
-                   Cell(r.max_abs_error, 3), Cell(r.max_bound, 3), r.bound_violations});
-      else
-        p.add_row({Cell(r.prune_below, 2), Cell(r.radius_m, 4), r.pairs_cast, Cell(double(r.pairs_cast) / double(city.city_pairs), 3),
-                   Cell(r.seconds, 3), Cell(city.city_exact_seconds / r.seconds, 3), Cell(r.max_abs_error, 3),
-                   Cell(r.max_bound, 3), r.bound_violations});
-      ctx.set("performance.prune_" + format_number(r.prune_below, 2) + ".max_error", r.max_abs_error);
-      ctx.set("performance.prune_" + format_number(r.prune_below, 2) + ".violations", double(r.bound_violations));
+// The city's exact all-to-all, as the city section measured it.
+void city_timing(Context& ctx, Section& s, const CityPerformance& city) {
+  s.text("City (see the city section): exact all-to-all over " + std::to_string(city.city_nodes) + " nodes, " +
+         std::to_string(city.city_pairs) + " pairs, degree + 3 conditions: " + sig(city.city_exact_seconds, 3) + " s (" +
+         sig(city.city_pairs / city.city_exact_seconds / 1e6, 4) + " M pairs/s) on " + std::to_string(ctx.threads) +
+         " thread(s); exact culling decided " + sig(100.0 * city.city_culled_visible / city.city_pairs, 3) +
+         "% of the pairs in sight and " + sig(100.0 * city.city_culled_blocked / city.city_pairs, 3) +
+         "% blocked without a ray, and " + sig(100.0 * city.city_cast / city.city_pairs, 3) + "% were cast.");
+  ctx.set("performance.city_cast_fraction", double(city.city_cast) / double(city.city_pairs));
+}
+
+// Range pruning on the city: error against run time, one row per tolerance.
+void pruning_table(Context& ctx, Section& s, const CityPerformance& city) {
+  Table p{"performance_pruning",
+          "Range pruning on the city: error against run time, S_S for " + city.prune_condition + " (sigma " +
+              sig(city.prune_sigma, 4) + " 1/m); reference = the exact run of the city section",
+          {"tolerance eps", "pruning radius [m]", "pairs cast", "fraction of all pairs", "time [s]",
+           "speed-up vs exact run", "max |S_S error|", "certified bound (max over nodes)", "nodes over the bound"},
+          {},
+          "The bound: every skipped partner lies beyond R = ln(1/eps)/sigma, so contributes at most eps; the "
+          "engine reports pruned partners x eps per node (visgraph/visibility.hpp). The exact run also computed "
+          "degree and two more conditions, so the speed-up slightly flatters pruning."};
+  for (const auto& r : city.prune) {
+    if (r.skipped) {
+      p.add_row({Cell(r.prune_below, 2), Cell(r.radius_m, 4), "-", "-", "not run", "-", "0 (radius > city diagonal " +
+                 format_number(city.city_diameter_m, 4) + " m: nothing to prune)", "0", 0});
+      continue;
     }
-    add_table(ctx, s, p);
-    for (const auto& r : city.prune)
-      if (r.not_applied) {
-        s.text("Where a row says 'not applied', the engine judged pruning slower than the exact culled pass and ran "
-               "that instead, with every column exact (its words: " + r.note + "). Its time is for S_S of this one "
-               "condition, against the exact run's degree and three conditions, so no speed-up is claimed.");
-        break;
-      }
-    std::size_t viol = 0;
-    for (const auto& r : city.prune) viol += r.bound_violations;
-    if (viol == 0)
-      s.agree("at every tolerance the measured S_S error stays within the certified bound at every node.");
+    if (r.not_applied)
+      p.add_row({Cell(r.prune_below, 2), format_number(r.radius_m, 4) + " (not applied: exact pass run)", r.pairs_cast,
+                 Cell(double(r.pairs_cast) / double(city.city_pairs), 3), Cell(r.seconds, 3), "-",
+                 Cell(r.max_abs_error, 3), Cell(r.max_bound, 3), r.bound_violations});
     else
-      s.disagree(std::to_string(viol) + " node results exceed the certified pruning bound: a defect in the engine.");
-    std::string line = "city: exact " + sig(city.city_exact_seconds, 3) + " s";
-    for (const auto& r : city.prune)
-      if (!r.skipped)
-        line += "; eps " + sig(r.prune_below, 2) + ": " + sig(r.seconds, 3) + " s, max err " + sig(r.max_abs_error, 2) +
-                " <= bound " + sig(r.max_bound, 2);
-    s.summary.push_back(line);
-  } else {
-    s.missing("the city section did not run, so there is no city timing or pruning study.");
+      p.add_row({Cell(r.prune_below, 2), Cell(r.radius_m, 4), r.pairs_cast, Cell(double(r.pairs_cast) / double(city.city_pairs), 3),
+                 Cell(r.seconds, 3), Cell(city.city_exact_seconds / r.seconds, 3), Cell(r.max_abs_error, 3),
+                 Cell(r.max_bound, 3), r.bound_violations});
+    ctx.set("performance.prune_" + format_number(r.prune_below, 2) + ".max_error", r.max_abs_error);
+    ctx.set("performance.prune_" + format_number(r.prune_below, 2) + ".violations", double(r.bound_violations));
   }
+  add_table(ctx, s, p);
+  for (const auto& r : city.prune)
+    if (r.not_applied) {
+      s.text("Where a row says 'not applied', the engine judged pruning slower than the exact culled pass and ran "
+             "that instead, with every column exact (its words: " + r.note + "). Its time is for S_S of this one "
+             "condition, against the exact run's degree and three conditions, so no speed-up is claimed.");
+      break;
+    }
+}
+
+// Whether every pruned score stayed within its certified bound.
+void pruning_verdict(Section& s, const CityPerformance& city) {
+  std::size_t viol = 0;
+  for (const auto& r : city.prune) viol += r.bound_violations;
+  if (viol == 0)
+    s.agree("at every tolerance the measured S_S error stays within the certified bound at every node.");
+  else
+    s.disagree(std::to_string(viol) + " node results exceed the certified pruning bound: a defect in the engine.");
+  std::string line = "city: exact " + sig(city.city_exact_seconds, 3) + " s";
+  for (const auto& r : city.prune)
+    if (!r.skipped)
+      line += "; eps " + sig(r.prune_below, 2) + ": " + sig(r.seconds, 3) + " s, max err " + sig(r.max_abs_error, 2) +
+              " <= bound " + sig(r.max_bound, 2);
+  s.summary.push_back(line);
+}
+
+}  // namespace
+
+void section_performance(Context& ctx, Section& s, const CityPerformance& city) {
+  layout_throughput(ctx, s);
+  if (city.city_nodes == 0) {
+    s.missing("the city section did not run, so there is no city timing or pruning study.");
+    return;
+  }
+  city_timing(ctx, s, city);
+  pruning_table(ctx, s, city);
+  pruning_verdict(s, city);
 }
 
 }  // namespace attenuvis::validation::detail

@@ -221,146 +221,146 @@ void fog_moments(Context& ctx, Section& s) {
          " g/m^3; the seed's table prints 0.02, a rounding of this value (exact: 4/3 pi rho a 9!/b^10).");
 }
 
-// P.1817-style charts.
-void charts(Context& ctx, Section& s) {
-  const bool quick = ctx.options.quick;
-  // sigma against wavelength for the fog presets.
-  {
-    ctx.step("weather", "fog sigma against wavelength");
-    std::vector<double> lambdas;
-    for (double l = 0.4; l <= 1.6 + 1e-9; l += quick ? 0.2 : 0.05) lambdas.push_back(l);
-    Table t{"weather_fog_wavelength", "Fog sigma against wavelength (Mie, Hale & Querry water)",
-            {"wavelength [um]", "advection [1/m]", "advection [dB/km]", "radiation [1/m]", "radiation [dB/km]"}, {}, ""};
-    nlohmann::json adv_x = nlohmann::json::array(), adv_y = adv_x, rad_y = adv_x;
-    auto add = [&](double l) {
-      std::vector<double> v;
-      for (const wx::FogPreset f : {wx::FogPreset::advection, wx::FogPreset::radiation})
-        v.push_back(wx::sigma(mie_fog(f), l * 1e-6, kItu).per_m);
-      t.add_row({Cell(l, 4), Cell(v[0], 6), Cell(dbkm(v[0]), 6), Cell(v[1], 6), Cell(dbkm(v[1]), 6)});
-      return v;
-    };
-    for (double l : lambdas) {
-      const auto v = add(l);
-      adv_x.push_back(l), adv_y.push_back(dbkm(v[0])), rad_y.push_back(dbkm(v[1]));
-    }
-    const auto far = add(10.6);
-    add_table(ctx, s, t);
-    s.figure({"weather_fog_wavelength",
-              "Fog attenuation against wavelength, 0.4-1.6 um and 10.6 um (stars), Mie over the P.1817-1 presets, "
-              "in dB/km as in ITU-R P.1817-1's charts.",
-              {{"kind", "lines"},
-               {"series", {{{"label", "heavy advection fog"}, {"x", adv_x}, {"y", adv_y}, {"style", "-o"}},
-                           {{"label", "moderate radiation fog"}, {"x", adv_x}, {"y", rad_y}, {"style", "-s"}},
-                           {{"label", "10.6 um"}, {"x", {10.6, 10.6}}, {"y", {dbkm(far[0]), dbkm(far[1])}}, {"style", "k*"}}}},
-               {"xlog", true},
-               {"ylog", true},
-               {"xlabel", "wavelength [um]"},
-               {"ylabel", "specific attenuation [dB/km]"}}});
-    ctx.set("weather.fog.advection.sigma_10p6um", far[0]);
+// P.1817-style chart (a table and its figure): fog sigma against wavelength
+// for the two presets.
+void fog_wavelength_chart(Context& ctx, Section& s) {
+  ctx.step("weather", "fog sigma against wavelength");
+  std::vector<double> lambdas;
+  for (double l = 0.4; l <= 1.6 + 1e-9; l += ctx.options.quick ? 0.2 : 0.05) lambdas.push_back(l);
+  Table t{"weather_fog_wavelength", "Fog sigma against wavelength (Mie, Hale & Querry water)",
+          {"wavelength [um]", "advection [1/m]", "advection [dB/km]", "radiation [1/m]", "radiation [dB/km]"}, {}, ""};
+  nlohmann::json adv_x = nlohmann::json::array(), adv_y = adv_x, rad_y = adv_x;
+  auto add = [&](double l) {
+    std::vector<double> v;
+    for (const wx::FogPreset f : {wx::FogPreset::advection, wx::FogPreset::radiation})
+      v.push_back(wx::sigma(mie_fog(f), l * 1e-6, kItu).per_m);
+    t.add_row({Cell(l, 4), Cell(v[0], 6), Cell(dbkm(v[0]), 6), Cell(v[1], 6), Cell(dbkm(v[1]), 6)});
+    return v;
+  };
+  for (double l : lambdas) {
+    const auto v = add(l);
+    adv_x.push_back(l), adv_y.push_back(dbkm(v[0])), rad_y.push_back(dbkm(v[1]));
   }
-  // sigma against rain rate.
-  {
-    ctx.step("weather", "rain sigma against rate (incl. Mie over Marshall-Palmer)");
-    const std::vector<double> rates = {1, 2, 5, 10, 20, 50, 100};
-    // Mie over Marshall-Palmer costs seconds per rate (drops up to x ~ 1e5):
-    // fewer rates, and one in quick mode.
-    const std::vector<double> mie_rates = quick ? std::vector<double>{10} : std::vector<double>{1, 10, 100};
-    Table t{"weather_rain_rate", "Rain attenuation at 550 nm against rain rate [dB/km]",
-            {"rain rate [mm/h]", "seed (k=1.17, a=0.65)", "carbonneau", "p1814", "mie (Marshall-Palmer)",
-             "mie error estimate [dB/km]", "seed law read as 1/km, in dB/km"}, {}, "ITU-R P.1817-1 rain power laws as named by the weather module; Mie over Marshall & Palmer (1948)."};
-    std::vector<nlohmann::json> ys(5, nlohmann::json::array());
-    nlohmann::json xs = nlohmann::json::array();
-    for (double r : rates) {
-      std::vector<double> v;
-      for (const wx::RainLaw law : {wx::RainLaw::seed, wx::RainLaw::carbonneau, wx::RainLaw::p1814})
-        v.push_back(dbkm(wx::sigma(wx::RainPowerLaw{r, law}, 550e-9, kItu).per_m));
-      const bool do_mie = std::find(mie_rates.begin(), mie_rates.end(), r) != mie_rates.end();
-      const double nan = std::numeric_limits<double>::quiet_NaN();
-      wx::Sigma mie;
-      mie.per_m = mie.error_per_m = nan;
-      if (do_mie) {
-        ctx.step("weather", "rain " + format_number(r, 4) + " mm/h, Mie over Marshall-Palmer");
-        mie = wx::sigma(wx::MieCondition{wx::MarshallPalmerRain{r}, wx::SettingsWaterTable{}, wx::AsGiven{}}, 550e-9,
-                        kItu);
-      }
-      const double seed_reading = dbkm(wx::sigma(wx::RainPowerLaw{r, wx::RainLaw::seed}, 550e-9, kSeed).per_m);
-      t.add_row({r, Cell(v[0], 5), Cell(v[1], 5), Cell(v[2], 5), do_mie ? Cell(dbkm(mie.per_m), 5) : Cell("not computed"),
-                 do_mie ? Cell(dbkm(mie.error_per_m), 2) : Cell("-"), Cell(seed_reading, 5)});
-      xs.push_back(r);
-      ys[0].push_back(v[0]), ys[1].push_back(v[1]), ys[2].push_back(v[2]), ys[3].push_back(do_mie ? nlohmann::json(dbkm(mie.per_m)) : nlohmann::json(nullptr)),
-          ys[4].push_back(seed_reading);
-      if (r == 10) ctx.set("weather.rain10.mie_dbkm", dbkm(mie.per_m));
+  const auto far = add(10.6);
+  add_table(ctx, s, t);
+  s.figure({"weather_fog_wavelength",
+            "Fog attenuation against wavelength, 0.4-1.6 um and 10.6 um (stars), Mie over the P.1817-1 presets, "
+            "in dB/km as in ITU-R P.1817-1's charts.",
+            {{"kind", "lines"},
+             {"series", {{{"label", "heavy advection fog"}, {"x", adv_x}, {"y", adv_y}, {"style", "-o"}},
+                         {{"label", "moderate radiation fog"}, {"x", adv_x}, {"y", rad_y}, {"style", "-s"}},
+                         {{"label", "10.6 um"}, {"x", {10.6, 10.6}}, {"y", {dbkm(far[0]), dbkm(far[1])}}, {"style", "k*"}}}},
+             {"xlog", true},
+             {"ylog", true},
+             {"xlabel", "wavelength [um]"},
+             {"ylabel", "specific attenuation [dB/km]"}}});
+  ctx.set("weather.fog.advection.sigma_10p6um", far[0]);
+}
+
+// P.1817-style chart: rain sigma against rain rate.
+void rain_rate_chart(Context& ctx, Section& s) {
+  ctx.step("weather", "rain sigma against rate (incl. Mie over Marshall-Palmer)");
+  const std::vector<double> rates = {1, 2, 5, 10, 20, 50, 100};
+  // Mie over Marshall-Palmer costs seconds per rate (drops up to x ~ 1e5):
+  // fewer rates, and one in quick mode.
+  const std::vector<double> mie_rates = ctx.options.quick ? std::vector<double>{10} : std::vector<double>{1, 10, 100};
+  Table t{"weather_rain_rate", "Rain attenuation at 550 nm against rain rate [dB/km]",
+          {"rain rate [mm/h]", "seed (k=1.17, a=0.65)", "carbonneau", "p1814", "mie (Marshall-Palmer)",
+           "mie error estimate [dB/km]", "seed law read as 1/km, in dB/km"}, {}, "ITU-R P.1817-1 rain power laws as named by the weather module; Mie over Marshall & Palmer (1948)."};
+  std::vector<nlohmann::json> ys(5, nlohmann::json::array());
+  nlohmann::json xs = nlohmann::json::array();
+  for (double r : rates) {
+    std::vector<double> v;
+    for (const wx::RainLaw law : {wx::RainLaw::seed, wx::RainLaw::carbonneau, wx::RainLaw::p1814})
+      v.push_back(dbkm(wx::sigma(wx::RainPowerLaw{r, law}, 550e-9, kItu).per_m));
+    const bool do_mie = std::find(mie_rates.begin(), mie_rates.end(), r) != mie_rates.end();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    wx::Sigma mie;
+    mie.per_m = mie.error_per_m = nan;
+    if (do_mie) {
+      ctx.step("weather", "rain " + format_number(r, 4) + " mm/h, Mie over Marshall-Palmer");
+      mie = wx::sigma(wx::MieCondition{wx::MarshallPalmerRain{r}, wx::SettingsWaterTable{}, wx::AsGiven{}}, 550e-9,
+                      kItu);
     }
-    add_table(ctx, s, t);
-    s.figure({"weather_rain_rate", "Rain attenuation at 550 nm against rain rate (P.1817-1 style).",
-              {{"kind", "lines"},
-               {"series", {{{"label", "seed k=1.17, alpha=0.65 (dB/km)"}, {"x", xs}, {"y", ys[0]}, {"style", "-o"}},
-                           {{"label", "Carbonneau"}, {"x", xs}, {"y", ys[1]}, {"style", "-s"}},
-                           {{"label", "P.1814 (mu=0)"}, {"x", xs}, {"y", ys[2]}, {"style", "-^"}},
-                           {{"label", "Mie over Marshall-Palmer"}, {"x", xs}, {"y", ys[3]}, {"style", "D"}},
-                           {{"label", "seed law read as 1/km (seed convention)"}, {"x", xs}, {"y", ys[4]}, {"style", "--"}}}},
-               {"xlog", true}, {"ylog", true}, {"xlabel", "rain rate [mm/h]"}, {"ylabel", "attenuation [dB/km]"}}});
+    const double seed_reading = dbkm(wx::sigma(wx::RainPowerLaw{r, wx::RainLaw::seed}, 550e-9, kSeed).per_m);
+    t.add_row({r, Cell(v[0], 5), Cell(v[1], 5), Cell(v[2], 5), do_mie ? Cell(dbkm(mie.per_m), 5) : Cell("not computed"),
+               do_mie ? Cell(dbkm(mie.error_per_m), 2) : Cell("-"), Cell(seed_reading, 5)});
+    xs.push_back(r);
+    ys[0].push_back(v[0]), ys[1].push_back(v[1]), ys[2].push_back(v[2]), ys[3].push_back(do_mie ? nlohmann::json(dbkm(mie.per_m)) : nlohmann::json(nullptr)),
+        ys[4].push_back(seed_reading);
+    if (r == 10) ctx.set("weather.rain10.mie_dbkm", dbkm(mie.per_m));
   }
-  // sigma against snowfall rate.
-  {
-    ctx.step("weather", "snow sigma against rate");
-    Table t{"weather_snow_rate", "Snow attenuation at 550 nm against snowfall rate (P.1817-1 a S^b) [dB/km]",
-            {"snowfall rate [mm/h]", "wet [dB/km]", "dry [dB/km]", "wet, seed convention [1/m]", "dry, seed convention [1/m]"},
-            {}, "ITU-R P.1817-1 snow coefficients as printed in the seed's Table 'Wet and Dry Snow'."};
-    nlohmann::json xs = nlohmann::json::array(), wet = xs, dry = xs;
-    for (double r : {0.1, 0.2, 0.5, 1.0, 2.0, 4.0, 5.0, 10.0}) {
-      std::vector<double> v;
-      for (const wx::SnowType k : {wx::SnowType::wet, wx::SnowType::dry})
-        for (const wx::Settings* c : {&kItu, &kSeed}) v.push_back(wx::sigma(wx::Snow{k, r}, 550e-9, *c).per_m);
-      t.add_row({r, Cell(dbkm(v[0]), 5), Cell(dbkm(v[2]), 5), Cell(v[1], 5), Cell(v[3], 5)});
-      xs.push_back(r), wet.push_back(dbkm(v[0])), dry.push_back(dbkm(v[2]));
-    }
-    add_table(ctx, s, t);
-    s.figure({"weather_snow_rate", "Snow attenuation at 550 nm against snowfall rate, wet and dry (P.1817-1 style).",
-              {{"kind", "lines"},
-               {"series", {{{"label", "wet snow"}, {"x", xs}, {"y", wet}, {"style", "-o"}},
-                           {{"label", "dry snow"}, {"x", xs}, {"y", dry}, {"style", "-s"}}}},
-               {"xlog", true}, {"ylog", true}, {"xlabel", "snowfall rate [mm/h]"}, {"ylabel", "attenuation [dB/km]"}}});
+  add_table(ctx, s, t);
+  s.figure({"weather_rain_rate", "Rain attenuation at 550 nm against rain rate (P.1817-1 style).",
+            {{"kind", "lines"},
+             {"series", {{{"label", "seed k=1.17, alpha=0.65 (dB/km)"}, {"x", xs}, {"y", ys[0]}, {"style", "-o"}},
+                         {{"label", "Carbonneau"}, {"x", xs}, {"y", ys[1]}, {"style", "-s"}},
+                         {{"label", "P.1814 (mu=0)"}, {"x", xs}, {"y", ys[2]}, {"style", "-^"}},
+                         {{"label", "Mie over Marshall-Palmer"}, {"x", xs}, {"y", ys[3]}, {"style", "D"}},
+                         {{"label", "seed law read as 1/km (seed convention)"}, {"x", xs}, {"y", ys[4]}, {"style", "--"}}}},
+             {"xlog", true}, {"ylog", true}, {"xlabel", "rain rate [mm/h]"}, {"ylabel", "attenuation [dB/km]"}}});
+}
+
+// P.1817-style chart: snow sigma against snowfall rate.
+void snow_rate_chart(Context& ctx, Section& s) {
+  ctx.step("weather", "snow sigma against rate");
+  Table t{"weather_snow_rate", "Snow attenuation at 550 nm against snowfall rate (P.1817-1 a S^b) [dB/km]",
+          {"snowfall rate [mm/h]", "wet [dB/km]", "dry [dB/km]", "wet, seed convention [1/m]", "dry, seed convention [1/m]"},
+          {}, "ITU-R P.1817-1 snow coefficients as printed in the seed's Table 'Wet and Dry Snow'."};
+  nlohmann::json xs = nlohmann::json::array(), wet = xs, dry = xs;
+  for (double r : {0.1, 0.2, 0.5, 1.0, 2.0, 4.0, 5.0, 10.0}) {
+    std::vector<double> v;
+    for (const wx::SnowType k : {wx::SnowType::wet, wx::SnowType::dry})
+      for (const wx::Settings* c : {&kItu, &kSeed}) v.push_back(wx::sigma(wx::Snow{k, r}, 550e-9, *c).per_m);
+    t.add_row({r, Cell(dbkm(v[0]), 5), Cell(dbkm(v[2]), 5), Cell(v[1], 5), Cell(v[3], 5)});
+    xs.push_back(r), wet.push_back(dbkm(v[0])), dry.push_back(dbkm(v[2]));
   }
-  // sigma against visibility for the empirical fog models.
-  {
-    ctx.step("weather", "empirical fog models against visibility");
-    Table t{"weather_fog_visibility", "Empirical fog models: attenuation [dB/km] against visibility, 550 and 1550 nm",
-            {"visibility [km]"}, {}, "Kruse et al. (1962), Kim et al. (2001), Al Naboulsi et al. (2004) as implemented by the weather module (formulas in weather/empirical_models.hpp)."};
-    const std::vector<std::pair<wx::VisibilityFogModel, const char*>> models = {
-        {wx::VisibilityFogModel::kruse, "Kruse"},
-        {wx::VisibilityFogModel::kim, "Kim"},
-        {wx::VisibilityFogModel::naboulsi_advection, "Al Naboulsi adv."},
-        {wx::VisibilityFogModel::naboulsi_radiation, "Al Naboulsi rad."}};
-    for (double l : {550.0, 1550.0})
-      for (auto& m : models) t.header.push_back(std::string(m.second) + " " + format_number(l, 4) + " nm");
-    const std::vector<double> vis = {0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50};
-    std::vector<nlohmann::json> ys(8, nlohmann::json::array());
-    for (double v : vis) {
-      std::vector<Cell> row = {v};
-      int k = 0;
-      for (double l : {550.0, 1550.0})
-        for (auto& m : models) {
-          const double sv = dbkm(wx::sigma(wx::FogFromVisibility{m.first, v * 1e3}, l * 1e-9, kItu).per_m);
-          row.push_back(Cell(sv, 5));
-          ys[k++].push_back(sv);
-        }
-      t.add_row(row);
-    }
-    add_table(ctx, s, t);
-    nlohmann::json series = nlohmann::json::array();
+  add_table(ctx, s, t);
+  s.figure({"weather_snow_rate", "Snow attenuation at 550 nm against snowfall rate, wet and dry (P.1817-1 style).",
+            {{"kind", "lines"},
+             {"series", {{{"label", "wet snow"}, {"x", xs}, {"y", wet}, {"style", "-o"}},
+                         {{"label", "dry snow"}, {"x", xs}, {"y", dry}, {"style", "-s"}}}},
+             {"xlog", true}, {"ylog", true}, {"xlabel", "snowfall rate [mm/h]"}, {"ylabel", "attenuation [dB/km]"}}});
+}
+
+// P.1817-style chart: sigma of the empirical fog models against visibility.
+void fog_visibility_chart(Context& ctx, Section& s) {
+  ctx.step("weather", "empirical fog models against visibility");
+  Table t{"weather_fog_visibility", "Empirical fog models: attenuation [dB/km] against visibility, 550 and 1550 nm",
+          {"visibility [km]"}, {}, "Kruse et al. (1962), Kim et al. (2001), Al Naboulsi et al. (2004) as implemented by the weather module (formulas in weather/empirical_models.hpp)."};
+  const std::vector<std::pair<wx::VisibilityFogModel, const char*>> models = {
+      {wx::VisibilityFogModel::kruse, "Kruse"},
+      {wx::VisibilityFogModel::kim, "Kim"},
+      {wx::VisibilityFogModel::naboulsi_advection, "Al Naboulsi adv."},
+      {wx::VisibilityFogModel::naboulsi_radiation, "Al Naboulsi rad."}};
+  for (double l : {550.0, 1550.0})
+    for (auto& m : models) t.header.push_back(std::string(m.second) + " " + format_number(l, 4) + " nm");
+  const std::vector<double> vis = {0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50};
+  std::vector<nlohmann::json> ys(8, nlohmann::json::array());
+  for (double v : vis) {
+    std::vector<Cell> row = {v};
     int k = 0;
     for (double l : {550.0, 1550.0})
-      for (auto& m : models)
-        series.push_back({{"label", std::string(m.second) + " " + format_number(l, 4) + " nm"}, {"x", vis}, {"y", ys[k++]},
-                          {"style", l == 550.0 ? "-" : "--"}});
-    s.figure({"weather_fog_visibility",
-              "Fog attenuation against visibility for the Kruse, Kim and Al Naboulsi models at 550 nm (solid) and "
-              "1550 nm (dashed), P.1817-1 style. Al Naboulsi is stated for 690-1550 nm: at 550 nm it is outside "
-              "its validity (the weather module warns).",
-              {{"kind", "lines"}, {"series", series}, {"xlog", true}, {"ylog", true}, {"xlabel", "visibility [km]"},
-               {"ylabel", "attenuation [dB/km]"}}});
+      for (auto& m : models) {
+        const double sv = dbkm(wx::sigma(wx::FogFromVisibility{m.first, v * 1e3}, l * 1e-9, kItu).per_m);
+        row.push_back(Cell(sv, 5));
+        ys[k++].push_back(sv);
+      }
+    t.add_row(row);
   }
+  add_table(ctx, s, t);
+  nlohmann::json series = nlohmann::json::array();
+  int k = 0;
+  for (double l : {550.0, 1550.0})
+    for (auto& m : models)
+      series.push_back({{"label", std::string(m.second) + " " + format_number(l, 4) + " nm"}, {"x", vis}, {"y", ys[k++]},
+                        {"style", l == 550.0 ? "-" : "--"}});
+  s.figure({"weather_fog_visibility",
+            "Fog attenuation against visibility for the Kruse, Kim and Al Naboulsi models at 550 nm (solid) and "
+            "1550 nm (dashed), P.1817-1 style. Al Naboulsi is stated for 690-1550 nm: at 550 nm it is outside "
+            "its validity (the weather module warns).",
+            {{"kind", "lines"}, {"series", series}, {"xlog", true}, {"ylog", true}, {"xlabel", "visibility [km]"},
+             {"ylabel", "attenuation [dB/km]"}}});
 }
 
 void quadrature(Context& ctx, Section& s) {
@@ -401,7 +401,10 @@ void section_weather(Context& ctx, Section& s, SeedConditions& seed) {
   fog_refractive_index(ctx, s, seed);
   fog_seed_quadrature(ctx, s, seed);
   fog_moments(ctx, s);
-  charts(ctx, s);
+  fog_wavelength_chart(ctx, s);
+  rain_rate_chart(ctx, s);
+  snow_rate_chart(ctx, s);
+  fog_visibility_chart(ctx, s);
   quadrature(ctx, s);
 }
 

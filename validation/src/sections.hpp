@@ -22,7 +22,7 @@ class MieBaseline;
 namespace attenuvis::validation::detail {
 
 // A single progress line on a terminal (rewritten in place), one line per
-// step otherwise, so logs stay readable.
+// step otherwise, so logs stay readable (heartbeat.cpp).
 class Progress {
  public:
   Progress(std::ostream* os, bool tty);
