@@ -1,5 +1,5 @@
 // Scene files by content (scene_file.hpp).
-#include <attenuvis/visgraph/gltf.hpp>
+#include <attenuvis/visgraph/detail/gltf.hpp>
 #include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/obj.hpp>
 #include <attenuvis/visgraph/scene_file.hpp>

@@ -21,10 +21,10 @@
 //    after it, filtered by exact distance (no tree search, no per-row sort);
 //  - to_targets with a finite radius: a kd-tree radius search (nanoflann),
 //    sorted.
+#include <attenuvis/visgraph/detail/contrast_kernel.hpp>
 #include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/visibility.hpp>
 
-#include "contrast_kernel.hpp"
 #include "node_points.hpp"
 #include "pair_culling.hpp"
 #include "pair_packet.hpp"
