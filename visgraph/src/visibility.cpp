@@ -52,6 +52,7 @@ namespace attenuvis::visgraph {
 
 namespace {
 using detail::kCoincident;
+using detail::kPruneWorthFraction;
 using detail::kContrastScale;
 using detail::kDistanceScale;
 using detail::check_pass_input;
@@ -196,10 +197,6 @@ void process_row(const Pass& pass, std::size_t i, const std::uint32_t* cand, std
   }
   end_row(pass, i, ts);
 }
-
-// Pruning is chosen over the exact pass only when at most this fraction of
-// the pairs lie within its radius (see drop_pruning_unless_worth_it).
-constexpr double kPruneWorthFraction = 0.1;
 
 // How a pass finds each row's partners (see the file comment).
 struct Plan {
@@ -478,11 +475,10 @@ void collect_results(const tbb::enumerable_thread_specific<ThreadState>& states,
   result.pruned = std::move(pruned);
 }
 
-// Pruning pays only when the radius leaves out most pairs: a pruned pass
-// casts every pair within it, the exact pass culls.  When more than
-// kPruneWorthFraction of the pairs lie within the radius along x, the pass
-// runs exact instead (options.prune_below set to 0): nothing is pruned and
-// every column is exact.  Returns the note that says so, else "".
+// Pruning pays only when the radius leaves out most pairs (pruning_pays in
+// node_points.hpp).  When it does not, the pass runs exact instead
+// (options.prune_below set to 0): nothing is pruned and every column is
+// exact.  Returns the note that says so, else "".
 std::string drop_pruning_unless_worth_it(VisibilityOptions& options, const Points& sources, const Points& partners,
                                          bool symmetric) {
   const Plan asked = plan_pass(options, symmetric);
@@ -490,7 +486,7 @@ std::string drop_pruning_unless_worth_it(VisibilityOptions& options, const Point
   const double total = symmetric ? 0.5 * sources.size() * (sources.size() - 1.0)
                                  : static_cast<double>(sources.size()) * partners.size();
   const double within = pairs_within_x(sources, partners, symmetric, asked.prune_radius);
-  if (!(within > kPruneWorthFraction * total)) return "";
+  if (detail::pruning_pays(within, total)) return "";
   options.prune_below = 0;
   return "nothing pruned: " + std::to_string(static_cast<int>(100 * within / total + 0.5)) +
          "% of the pairs lie within the pruning radius " + std::to_string(asked.prune_radius) + " m, more than the " +
