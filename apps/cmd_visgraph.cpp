@@ -248,15 +248,10 @@ vg::NodeSet place_nodes(const VgArguments& a, SceneInput& input, std::unique_ptr
   return grid;
 }
 
-// Under mpirun every process reads the same input and runs the same checks
-// (so bad input fails identically everywhere); each accumulates its share of
-// the pass, the shares are summed exactly, and only the first process
-// reports and writes the outputs.
-void run_vg(const VgArguments& given) {
-  const auto start = std::chrono::steady_clock::now();
-  VgArguments a = given;
-  const bool root = is_root_process();
-  if (!root) a.quiet = true;
+// Refuses, before any work, options that contradict each other or lie
+// outside their ranges, outputs that would overwrite an input or each other,
+// and existing outputs that are not regular files (a device, a directory).
+void check_arguments(const VgArguments& a) {
   if (!a.targets_file.empty() && !a.target_point.empty())
     throw std::invalid_argument("give --targets or --target-point, not both");
   if (!a.edges.empty() && process_count() > 1)
@@ -268,36 +263,42 @@ void run_vg(const VgArguments& given) {
                        {"--nodes", a.nodes_file},
                        {"--targets", a.targets_file}});
   check_option_ranges(a);
-  // Existing outputs that are not regular files (a device, a directory) are
-  // refused before any work; every output is staged and renamed only when
-  // all of them were written.
   for (const std::string* path : {&a.out, &a.ply, &a.heatmap, &a.summary, &a.edges, &a.geojson})
     if (!path->empty()) io::require_regular_or_absent(*path);
+}
+
+// What a run's outputs are made of, gathered step by step by run_vg.
+struct VgRun {
+  std::chrono::steady_clock::time_point start;
+  std::vector<vg::ConditionInfo> conditions;
   double wavelength_m = 0;
-  const std::vector<vg::ConditionInfo> conditions = conditions_to_sigma(a, wavelength_m);
+  SceneInput input;
+  std::unique_ptr<vg::Scene> scene;
+  std::unique_ptr<vg::NodeSet> grid;  // null for nodes given in a file
+  std::vector<Eigen::Vector3d> eyes, targets;
+  vg::VisibilityResult result;
+};
 
-  SceneInput input = read_scene(a);
-  std::unique_ptr<vg::Scene> scene = std::make_unique<vg::Scene>(input.mesh);
-  if (!a.quiet) std::cerr << "scene " << a.scene << ": " << vg::describe(*scene) << "\n";
-
-  std::unique_ptr<vg::NodeSet> grid;
-  std::vector<Eigen::Vector3d> eyes;
+// Eyes from --nodes or the node grid (which may give the scene a ground
+// plane), and targets from --targets or --target-point.
+void read_or_place_nodes(const VgArguments& a, VgRun& run) {
   if (!a.nodes_file.empty()) {
-    eyes = read_node_file(a.nodes_file, input, a.quiet);
+    run.eyes = read_node_file(a.nodes_file, run.input, a.quiet);
   } else {
     // The spacing is chosen only for an unbounded all-to-all run; with a
     // radius (--max-distance, --prune-below) or targets the pair count is not
-    // N^2/2 and the user's 1 m stands, checked by check_work below.
+    // N^2/2 and the user's 1 m stands, checked by check_work.
     SpacingChoice choice;
     choice.automatic = !a.spacing_given && !a.allow_large && a.targets_file.empty() && a.target_point.empty() &&
                        std::isinf(a.max_distance) && a.prune_below == 0;
-    grid = std::make_unique<vg::NodeSet>(place_nodes(a, input, scene, choice));
-    eyes = grid->eyes;
+    run.grid = std::make_unique<vg::NodeSet>(place_nodes(a, run.input, run.scene, choice));
+    run.eyes = run.grid->eyes;
   }
-  std::vector<Eigen::Vector3d> targets;
-  if (!a.targets_file.empty()) targets = read_node_file(a.targets_file, input, a.quiet);
-  if (!a.target_point.empty()) targets.push_back(vg::parse_point(a.target_point));
+  if (!a.targets_file.empty()) run.targets = read_node_file(a.targets_file, run.input, a.quiet);
+  if (!a.target_point.empty()) run.targets.push_back(vg::parse_point(a.target_point));
+}
 
+vg::VisibilityOptions pass_options(const VgArguments& a, const std::vector<vg::ConditionInfo>& conditions) {
   vg::VisibilityOptions options;
   for (const vg::ConditionInfo& c : conditions) options.sigmas.push_back(c.sigma);
   options.distance_stats = a.distances;
@@ -307,45 +308,61 @@ void run_vg(const VgArguments& given) {
   options.progress = !a.quiet;
   options.culling = !a.no_culling;
   options.share = process_share();
+  return options;
+}
 
-  const vg::WorkEstimate work = vg::estimate_work(eyes, targets.empty() ? nullptr : &targets, options);
+// The visibility pass, once its work is known to fit (check_work).  With
+// --edges the edge list streams into its staged temporary (never held
+// whole).
+void run_pass(const VgArguments& a, VgRun& run, io::StagedFiles& staged) {
+  vg::VisibilityOptions options = pass_options(a, run.conditions);
+  const vg::WorkEstimate work = vg::estimate_work(run.eyes, run.targets.empty() ? nullptr : &run.targets, options);
   check_work(a, work);
   if (!a.quiet)
     std::cerr << "work: " << io::significant(work.pairs, 3) << " pairs to consider, "
               << io::significant(work.bytes / 1e6, 3) << " MB of accumulators\n";
-
-  io::StagedFiles staged;
-  vg::VisibilityResult result;
-  auto run = [&] {
-    result = targets.empty() ? vg::all_to_all(*scene, eyes, options) : vg::to_targets(*scene, eyes, targets, options);
+  auto pass = [&] {
+    run.result = run.targets.empty() ? vg::all_to_all(*run.scene, run.eyes, options)
+                                     : vg::to_targets(*run.scene, run.eyes, run.targets, options);
   };
   if (a.edges.empty()) {
-    run();
-  } else {
-    // The edge list streams into its staged temporary (never held whole).
-    const std::string edges_temporary = staged.add(a.edges).temporary_path();
-    std::ofstream out(edges_temporary, std::ios::binary | std::ios::trunc);
-    out << (targets.empty() ? "i,j,distance\n" : "node,target,distance\n");
-    out.precision(std::numeric_limits<double>::max_digits10);
-    options.edge_sink = [&out](const std::vector<vg::Edge>& edges) {
-      for (const vg::Edge& e : edges) out << e.i << "," << e.j << "," << e.distance << "\n";
-    };
-    run();
-    out.close();
-    if (!out) throw std::runtime_error("error while writing '" + a.edges + "' (disk full?)");
+    pass();
+    return;
   }
+  const std::string edges_temporary = staged.add(a.edges).temporary_path();
+  std::ofstream out(edges_temporary, std::ios::binary | std::ios::trunc);
+  out << (run.targets.empty() ? "i,j,distance\n" : "node,target,distance\n");
+  out.precision(std::numeric_limits<double>::max_digits10);
+  options.edge_sink = [&out](const std::vector<vg::Edge>& edges) {
+    for (const vg::Edge& e : edges) out << e.i << "," << e.j << "," << e.distance << "\n";
+  };
+  pass();
+  out.close();
+  if (!out) throw std::runtime_error("error while writing '" + a.edges + "' (disk full?)");
+}
 
-  vg::ScoreTable table;
-  table.eyes = &eyes;
-  table.result = &result;
-  for (const vg::ConditionInfo& c : conditions) table.labels.push_back(c.label);
-  // The sum score by default: the average is highest in closed courtyards
-  // and lowest in open streets, the opposite of a visibility map's reading.
-  const std::vector<std::string> panels =
-      a.color_by.empty() ? vg::default_heatmap_columns(table) : std::vector<std::string>{a.color_by};
-  if (!a.ply.empty() || !a.heatmap.empty()) vg::score_values(table, panels.front());  // check the name before writing
-  synchronize_processes();  // every check passed everywhere: nothing can end the writer midway
-  if (!root) return;        // every process holds the totals; the first one writes them
+vg::RunInfo run_info(const VgArguments& a, const VgRun& run) {
+  vg::RunInfo info;
+  info.scene = a.scene;
+  info.scene_report = vg::describe(*run.scene);
+  info.scene_format = run.input.format;
+  info.crs = run.input.mesh.crs;
+  info.warnings = run.input.warnings;
+  info.mode = run.targets.empty() ? "all-to-all" : "to-targets";
+  info.targets = run.targets.size();
+  info.grid = run.grid.get();
+  info.wavelength_m = run.wavelength_m;
+  info.threads = a.threads;
+  info.conditions = run.conditions;
+  info.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run.start).count();
+  return info;
+}
+
+// Stages every output beside its destination (the edge list is already
+// there); the caller renames them all into place.  `panels`: the columns
+// the PLY (the first) and the heatmap show.
+void stage_outputs(const VgArguments& a, const VgRun& run, const vg::ScoreTable& table,
+                   const std::vector<std::string>& panels, io::StagedFiles& staged) {
   const auto stage_text = [&staged](const std::string& path, const std::string& text) {
     io::StagedFile& file = staged.add(path);
     file.write(text);
@@ -354,7 +371,7 @@ void run_vg(const VgArguments& given) {
   std::ostringstream csv;
   vg::write_csv(csv, table);
   const std::string csv_temporary = stage_text(a.out, csv.str());
-  if (!a.geojson.empty()) stage_text(a.geojson, vg::geojson_text(table, input.mesh.crs));
+  if (!a.geojson.empty()) stage_text(a.geojson, vg::geojson_text(table, run.input.mesh.crs));
   if (!a.ply.empty()) {
     std::ostringstream ply;
     vg::write_ply(ply, table, panels.front());
@@ -364,37 +381,59 @@ void run_vg(const VgArguments& given) {
     vg::HeatmapOptions heatmap;
     heatmap.columns = panels;
     heatmap.title = std::filesystem::path(a.scene).filename().string();
-    if (grid) heatmap.covered_cells = grid->covered_cells;
-    heatmap.crs = vg::short_crs_name(input.mesh.crs);
+    if (run.grid) heatmap.covered_cells = run.grid->covered_cells;
+    heatmap.crs = vg::short_crs_name(run.input.mesh.crs);
     vg::draw_heatmap(staged.add(a.heatmap).temporary_path(), csv_temporary, heatmap);
   }
-  if (!a.summary.empty()) {
-    vg::RunInfo info;
-    info.scene = a.scene;
-    info.scene_report = vg::describe(*scene);
-    info.scene_format = input.format;
-    info.crs = input.mesh.crs;
-    info.warnings = input.warnings;
-    info.mode = targets.empty() ? "all-to-all" : "to-targets";
-    info.targets = targets.size();
-    info.grid = grid.get();
-    info.wavelength_m = wavelength_m;
-    info.threads = a.threads;
-    info.conditions = conditions;
-    info.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const std::string json = vg::summary_json(table, info);
-    stage_text(a.summary, json);
-  }
+  if (!a.summary.empty()) stage_text(a.summary, vg::summary_json(table, run_info(a, run)));
+}
+
+void report_pass(const vg::VisibilityResult& result) {
+  if (!result.pruning_note.empty()) std::cerr << "pruning: " << result.pruning_note << "\n";
+  std::cerr << "visibility: " << result.nodes << " nodes, " << result.pairs_total << " pairs ("
+            << result.pairs_cast << " cast, " << result.pairs_culled_visible << " culled in sight, "
+            << result.pairs_culled_blocked << " culled blocked, " << result.pairs_visible << " visible) in "
+            << result.seconds << " s (clustering and classifying " << result.culling_seconds << " s)"
+            << (process_count() > 1 ? " on " + std::to_string(process_count()) + " processes" : std::string())
+            << " = " << (result.seconds > 0 ? result.pairs_total / result.seconds / 1e6 : 0.0) << " M pairs/s\n";
+}
+
+// Under mpirun every process reads the same input and runs the same checks
+// (so bad input fails identically everywhere); each accumulates its share of
+// the pass, the shares are summed exactly, and only the first process
+// reports and writes the outputs.  Every output is staged and renamed into
+// place only when all of them were written.
+void run_vg(const VgArguments& given) {
+  VgRun run;
+  run.start = std::chrono::steady_clock::now();
+  VgArguments a = given;
+  const bool root = is_root_process();
+  if (!root) a.quiet = true;
+  check_arguments(a);
+  run.conditions = conditions_to_sigma(a, run.wavelength_m);
+
+  run.input = read_scene(a);
+  run.scene = std::make_unique<vg::Scene>(run.input.mesh);
+  if (!a.quiet) std::cerr << "scene " << a.scene << ": " << vg::describe(*run.scene) << "\n";
+  read_or_place_nodes(a, run);
+
+  io::StagedFiles staged;
+  run_pass(a, run, staged);
+
+  vg::ScoreTable table;
+  table.eyes = &run.eyes;
+  table.result = &run.result;
+  for (const vg::ConditionInfo& c : run.conditions) table.labels.push_back(c.label);
+  // The sum score by default: the average is highest in closed courtyards
+  // and lowest in open streets, the opposite of a visibility map's reading.
+  const std::vector<std::string> panels =
+      a.color_by.empty() ? vg::default_heatmap_columns(table) : std::vector<std::string>{a.color_by};
+  if (!a.ply.empty() || !a.heatmap.empty()) vg::score_values(table, panels.front());  // check the name before writing
+  synchronize_processes();  // every check passed everywhere: nothing can end the writer midway
+  if (!root) return;        // every process holds the totals; the first one writes them
+  stage_outputs(a, run, table, panels, staged);
   staged.commit_all();
-  if (!a.quiet && !result.pruning_note.empty()) std::cerr << "pruning: " << result.pruning_note << "\n";
-  if (!a.quiet)
-    std::cerr << "visibility: " << result.nodes << " nodes, " << result.pairs_total << " pairs ("
-              << result.pairs_cast << " cast, " << result.pairs_culled_visible << " culled in sight, "
-              << result.pairs_culled_blocked << " culled blocked, " << result.pairs_visible << " visible) in " << result.seconds
-              << " s (clustering and classifying " << result.culling_seconds << " s)"
-              << (process_count() > 1 ? " on " + std::to_string(process_count()) + " processes" : std::string())
-              << " = " << (result.seconds > 0 ? result.pairs_total / result.seconds / 1e6 : 0.0)
-              << " M pairs/s\n";
+  if (!a.quiet) report_pass(run.result);
 }
 }  // namespace
 

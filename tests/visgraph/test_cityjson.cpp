@@ -4,7 +4,7 @@
 // Expected triangle counts follow from ear clipping: a simple n-gon gives
 // n - 2 triangles, a quad with one quad hole 8.
 #include <attenuvis/visgraph/cityjson.hpp>
-#include <attenuvis/visgraph/polygon.hpp>
+#include <attenuvis/visgraph/detail/polygon.hpp>
 
 #include <catch2/catch.hpp>
 

@@ -8,7 +8,7 @@
 // boundary: the test allows a difference of one unit there and nowhere else.
 #include <catch2/catch.hpp>
 
-#include "../../visgraph/src/contrast_kernel.hpp"
+#include <attenuvis/visgraph/detail/contrast_kernel.hpp>
 
 #include <cmath>
 #include <cstdint>

@@ -8,7 +8,7 @@
 
 #include <attenuvis/visgraph/city.hpp>
 #include <attenuvis/visgraph/geojson.hpp>
-#include <attenuvis/visgraph/gltf.hpp>
+#include <attenuvis/visgraph/detail/gltf.hpp>
 #include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/nodes.hpp>
 #include <attenuvis/visgraph/obj.hpp>

@@ -1,6 +1,7 @@
 // Shared measurements of the visibility-graph engine (see
 // attenuvis/validation/visgraph_benchmark.hpp).
 #include <attenuvis/validation/visgraph_benchmark.hpp>
+#include <attenuvis/visgraph/detail/raw_occlusion.hpp>
 
 #include <algorithm>
 #include <chrono>

@@ -208,6 +208,231 @@ std::pair<double, double> terrain_range(const HeightField& terrain, const std::a
   return {lo, hi};
 }
 
+// The street network of the centre-line hexagons: junctions (shared by up
+// to three blocks), the streets between them, and each block's six corners
+// as junction indices (corner k in direction e_k).
+struct StreetNetwork {
+  JunctionIndex junctions;
+  std::map<std::pair<int, int>, Street> streets;
+  std::vector<std::array<int, 6>> block_corners;
+};
+
+// The city's plan-view bounding box: its junctions grown by `grow` metres.
+struct PlanBox {
+  Vec2 lower, upper;
+};
+
+// Mesh group of each kind of surface (names in scene_spec.hpp).
+struct CityGroups {
+  std::uint32_t sidewalk, crosswalk, road, ground, building, terrain;
+};
+
+// Blocks: axial coordinates (q, r) within hex distance `rings` of the centre.
+void place_blocks(const CityOptions& o, double block_apothem, City& city) {
+  const double L = o.hex_size;
+  for (int r = -o.rings; r <= o.rings; ++r)
+    for (int q = -o.rings; q <= o.rings; ++q) {
+      if (std::abs(q + r) > o.rings) continue;
+      const Vec2 centre(L * kSqrt3 * (q + 0.5 * r), L * 1.5 * r);
+      city.blocks.push_back({centre, block_apothem, block_apothem - o.sidewalk_width, false});
+    }
+}
+
+StreetNetwork street_network(const std::vector<CityBlock>& blocks, double L) {
+  StreetNetwork network;
+  network.block_corners.resize(blocks.size());
+  for (std::size_t b = 0; b < blocks.size(); ++b)
+    for (int k = 0; k < 6; ++k)
+      network.block_corners[b][k] = network.junctions.find_or_add(blocks[b].centre + L * corner_direction(k));
+  for (std::size_t b = 0; b < blocks.size(); ++b)
+    for (int k = 0; k < 6; ++k) {
+      int u = network.block_corners[b][k], v = network.block_corners[b][(k + 1) % 6];
+      if (u > v) std::swap(u, v);
+      Street& s = network.streets[{u, v}];
+      s.from = u;
+      s.to = v;
+      s.blocks.push_back(static_cast<int>(b));
+    }
+  return network;
+}
+
+PlanBox plan_box(const std::vector<Vec2>& junctions, double grow) {
+  PlanBox box{junctions.front(), junctions.front()};
+  for (const Vec2& p : junctions) {
+    box.lower = box.lower.cwiseMin(p);
+    box.upper = box.upper.cwiseMax(p);
+  }
+  box.lower -= Vec2::Constant(grow);
+  box.upper += Vec2::Constant(grow);
+  return box;
+}
+
+// Terrain: random bumps and tilt over the box (the engine's first draws),
+// then scaled so that its range on a 10 m grid over the box is `relief`,
+// with minimum 0.
+HeightField random_terrain(std::mt19937_64& engine, const PlanBox& box, double relief) {
+  const Vec2& lower = box.lower;
+  const Vec2& upper = box.upper;
+  const double half_extent = 0.5 * (upper - lower).maxCoeff();
+  HeightField terrain;
+  for (int k = 0; k < 6; ++k) {
+    HeightField::Bump bump;
+    bump.x = uniform(engine, lower.x(), upper.x());
+    bump.y = uniform(engine, lower.y(), upper.y());
+    bump.radius = uniform(engine, 0.3, 0.7) * half_extent;
+    bump.amplitude = uniform(engine, -1.0, 1.0);
+    terrain.bumps.push_back(bump);
+  }
+  terrain.tilt_x = uniform(engine, -0.5, 0.5) / half_extent;
+  terrain.tilt_y = uniform(engine, -0.5, 0.5) / half_extent;
+  double lo = INFINITY, hi = -INFINITY;
+  const int nx = segments(upper.x() - lower.x(), 10.0), ny = segments(upper.y() - lower.y(), 10.0);
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      const double z = raw_height(terrain, lower.x() + (upper.x() - lower.x()) * i / nx,
+                                  lower.y() + (upper.y() - lower.y()) * j / ny);
+      lo = std::min(lo, z);
+      hi = std::max(hi, z);
+    }
+  terrain.scale = hi > lo ? relief / (hi - lo) : 0.0;
+  terrain.offset = -terrain.scale * lo;
+  return terrain;
+}
+
+CityGroups add_city_groups(Mesh& mesh) {
+  CityGroups g;
+  g.sidewalk = static_cast<std::uint32_t>(mesh.add_group(scene_group::sidewalk));
+  g.crosswalk = static_cast<std::uint32_t>(mesh.add_group(scene_group::crosswalk));
+  g.road = static_cast<std::uint32_t>(mesh.add_group(scene_group::road));
+  g.ground = static_cast<std::uint32_t>(mesh.add_group(scene_group::ground));
+  g.building = static_cast<std::uint32_t>(mesh.add_group(scene_group::building));
+  g.terrain = static_cast<std::uint32_t>(mesh.add_group(scene_group::terrain));
+  return g;
+}
+
+// Junctions: the road triangle around each.  Its corners point to the
+// three hexagon centres around V: e_{k+1}, e_{k+3}, e_{k+5} for a junction
+// that is corner k of some block (the parity of k fixes the set).
+void add_junctions(const CityOptions& o, const StreetNetwork& network, std::uint32_t g_road, Builder& build,
+                   City& city) {
+  const double W = o.road_width;
+  const std::vector<Vec2>& points = network.junctions.points;
+  std::vector<int> degree(points.size(), 0);
+  for (const auto& [key, s] : network.streets) {
+    ++degree[s.from];
+    ++degree[s.to];
+  }
+  std::vector<int> junction_parity(points.size(), -1);
+  for (const std::array<int, 6>& corners : network.block_corners)
+    for (int k = 0; k < 6; ++k) junction_parity[corners[k]] = k % 2;
+  for (std::size_t j = 0; j < points.size(); ++j) {
+    const Vec2& V = points[j];
+    const int k = junction_parity[j];
+    const double reach = W / kSqrt3;
+    build.subdivided_triangle(V + reach * corner_direction(k + 1), V + reach * corner_direction(k + 3),
+                              V + reach * corner_direction(k + 5), segments(W, o.paved_max_edge), g_road);
+    city.intersections.push_back({Eigen::Vector3d(V.x(), V.y(), city.terrain(V.x(), V.y())), degree[j]});
+  }
+}
+
+// Streets: road rectangle between the junction triangles, crosswalks at
+// both ends where the street separates two blocks.
+void add_streets(const CityOptions& o, const StreetNetwork& network, const CityGroups& groups, Builder& build,
+                 City& city) {
+  const double W = o.road_width, edge = o.paved_max_edge;
+  for (const auto& [key, s] : network.streets) {
+    const Vec2 A = network.junctions.points[s.from], B = network.junctions.points[s.to];
+    const Vec2 t = (B - A).normalized();
+    const Vec2 n(-t.y(), t.x());
+    const double start = W / (2 * kSqrt3), end = (B - A).norm() - start;
+    auto piece = [&](double s0, double s1, std::uint32_t group) {
+      build.quad(A + s0 * t - 0.5 * W * n, A + s1 * t - 0.5 * W * n, A + s1 * t + 0.5 * W * n,
+                 A + s0 * t + 0.5 * W * n, segments(s1 - s0, edge), segments(W, edge), group);
+    };
+    if (s.blocks.size() < 2) {
+      piece(start, end, groups.road);
+      continue;
+    }
+    const double cw = o.crosswalk_width;
+    piece(start, start + cw, groups.crosswalk);
+    piece(start + cw, end - cw, groups.road);
+    piece(end - cw, end, groups.crosswalk);
+    for (const auto& [along, junction] : {std::pair<double, int>{start + 0.5 * cw, s.from},
+                                          std::pair<double, int>{end - 0.5 * cw, s.to}}) {
+      const Vec2 c = A + along * t;
+      city.crosswalks.push_back({Eigen::Vector3d(c.x(), c.y(), city.terrain(c.x(), c.y())), n, W, cw,
+                                 {s.blocks[0], s.blocks[1]}, junction});
+    }
+  }
+}
+
+// Block b's sidewalk ring (one trapezoid per side) and lot (six triangles
+// from the centre), and the sidewalk corners where pedestrians wait.
+void add_block_surface(const CityOptions& o, const StreetNetwork& network, std::size_t b, double block_radius,
+                       double lot_radius, const CityGroups& groups, Builder& build, City& city) {
+  const double w = o.sidewalk_width, edge = o.paved_max_edge;
+  const double mid_radius = block_radius - w / kSqrt3;  // sidewalk mid-line corner
+  const Vec2 c = city.blocks[b].centre;
+  for (int k = 0; k < 6; ++k) {
+    const Vec2 e0 = corner_direction(k), e1 = corner_direction(k + 1);
+    build.quad(c + block_radius * e0, c + block_radius * e1, c + lot_radius * e1, c + lot_radius * e0,
+               segments(block_radius, edge), segments(w, edge), groups.sidewalk);
+    build.subdivided_triangle(c, c + lot_radius * e0, c + lot_radius * e1, segments(lot_radius, o.ground_max_edge),
+                              groups.ground);
+    const Vec2 p = c + mid_radius * e0;
+    city.sidewalk_corners.push_back({Eigen::Vector3d(p.x(), p.y(), city.terrain(p.x(), p.y())), e0,
+                                     static_cast<int>(b), network.block_corners[b][k]});
+  }
+}
+
+// The buildings of block b: a ring between apothems a1 (after a setback
+// from the sidewalk) and a2 (courtyard side), at least 5 m of courtyard
+// apothem left; 1 to 3 buildings per side, sometimes with a 3 m alley
+// between them.  The engine's draws, in this order, make the city's
+// fingerprint: keep it.
+void add_buildings(const CityOptions& o, std::mt19937_64& engine, std::size_t b, std::uint32_t g_building,
+                   Builder& build, City& city) {
+  const CityBlock& block = city.blocks[b];
+  const Vec2 c = block.centre;
+  const double setback = uniform(engine, 0.0, 3.0);
+  const double a1 = block.lot_apothem - setback;
+  const double a2 = std::max(5.0, a1 - uniform(engine, 10.0, 18.0));
+  const double r1 = 2 * a1 / kSqrt3, r2 = 2 * a2 / kSqrt3;
+  for (int k = 0; k < 6; ++k) {
+    const Vec2 o0 = c + r1 * corner_direction(k), o1 = c + r1 * corner_direction(k + 1);
+    const Vec2 i0 = c + r2 * corner_direction(k), i1 = c + r2 * corner_direction(k + 1);
+    const int count = 1 + static_cast<int>(3 * uniform01(engine));
+    const double gap = 3.0 / (o1 - o0).norm();  // alley width as a fraction of the side
+    std::vector<double> cuts{0.0};
+    for (int i = 1; i < count; ++i) cuts.push_back((i + uniform(engine, -0.15, 0.15)) / count);
+    cuts.push_back(1.0);
+    std::vector<bool> alley(count + 1, false);
+    for (int i = 1; i < count; ++i) alley[i] = uniform01(engine) < 0.4;
+    for (int i = 0; i < count; ++i) {
+      const double t0 = cuts[i] + (alley[i] ? 0.5 * gap : 0.0);
+      const double t1 = cuts[i + 1] - (alley[i + 1] ? 0.5 * gap : 0.0);
+      const std::array<Vec2, 4> f{(1 - t0) * o0 + t0 * o1, (1 - t1) * o0 + t1 * o1, (1 - t1) * i0 + t1 * i1,
+                                  (1 - t0) * i0 + t0 * i1};
+      const double u = uniform01(engine);
+      const double height = o.building_height_min + (o.building_height_max - o.building_height_min) * u * u;
+      const auto [lo, hi] = terrain_range(city.terrain, f);
+      const CityBuilding building{f, lo - o.foundation, hi + height, static_cast<int>(b)};
+      build.prism(f, building.base_z, building.top_z, g_building);
+      city.buildings.push_back(building);
+    }
+  }
+}
+
+// Natural terrain under and around the city, `subgrade` below the pavement.
+void add_natural_terrain(const CityOptions& o, const PlanBox& box, std::uint32_t g_terrain, Builder& build) {
+  const Vec2& lower = box.lower;
+  const Vec2& upper = box.upper;
+  const double extent_x = upper.x() - lower.x(), extent_y = upper.y() - lower.y();
+  const int nx = segments(extent_x, o.terrain_spacing), ny = segments(extent_y, o.terrain_spacing);
+  if (static_cast<double>(nx) * ny > 4e6) throw std::invalid_argument("city options: terrain grid over 4e6 cells");
+  build.quad(lower, {upper.x(), lower.y()}, upper, {lower.x(), upper.y()}, nx, ny, g_terrain, o.subgrade);
+}
+
 }  // namespace
 
 double HeightField::operator()(double x, double y) const { return scale * raw_height(*this, x, y) + offset; }
@@ -223,6 +448,9 @@ double city_walkable_area_estimate(const CityOptions& o) {
   return blocks * 2 * kSqrt3 * w * (2 * a - w) + interior_streets * 2 * o.road_width * o.crosswalk_width;
 }
 
+// The pieces in a fixed order (the mesh's vertex and triangle order, and the
+// engine's draws: terrain first, then block by block), which the fingerprint
+// test in tests/visgraph/test_generators.cpp holds to.
 City make_city(const CityOptions& o) {
   check_options(o);
   City city;
@@ -230,177 +458,20 @@ City make_city(const CityOptions& o) {
   const double L = o.hex_size, W = o.road_width, w = o.sidewalk_width;
   const double block_radius = L - W / kSqrt3;                   // block circumradius
   const double lot_radius = block_radius - 2 * w / kSqrt3;      // inside the sidewalk
-  const double block_apothem = block_radius * kSqrt3 / 2;
-
-  // Blocks: axial coordinates (q, r) within hex distance `rings` of the centre.
-  for (int r = -o.rings; r <= o.rings; ++r)
-    for (int q = -o.rings; q <= o.rings; ++q) {
-      if (std::abs(q + r) > o.rings) continue;
-      const Vec2 centre(L * kSqrt3 * (q + 0.5 * r), L * 1.5 * r);
-      city.blocks.push_back({centre, block_apothem, block_apothem - w, false});
-    }
-
-  // Street network: junctions and streets from the centre-line hexagons.
-  JunctionIndex junctions;
-  std::map<std::pair<int, int>, Street> streets;
-  std::vector<std::array<int, 6>> block_corners(city.blocks.size());
-  for (std::size_t b = 0; b < city.blocks.size(); ++b)
-    for (int k = 0; k < 6; ++k) block_corners[b][k] = junctions.find_or_add(city.blocks[b].centre + L * corner_direction(k));
-  for (std::size_t b = 0; b < city.blocks.size(); ++b)
-    for (int k = 0; k < 6; ++k) {
-      int u = block_corners[b][k], v = block_corners[b][(k + 1) % 6];
-      if (u > v) std::swap(u, v);
-      Street& s = streets[{u, v}];
-      s.from = u;
-      s.to = v;
-      s.blocks.push_back(static_cast<int>(b));
-    }
-
-  // Terrain: random bumps over the city's bounding box, then scaled to `relief`.
-  Vec2 lower = junctions.points.front(), upper = lower;
-  for (const Vec2& p : junctions.points) {
-    lower = lower.cwiseMin(p);
-    upper = upper.cwiseMax(p);
-  }
-  lower -= Vec2::Constant(W + o.margin);
-  upper += Vec2::Constant(W + o.margin);
-  const double half_extent = 0.5 * (upper - lower).maxCoeff();
-  HeightField& terrain = city.terrain;
-  for (int k = 0; k < 6; ++k) {
-    HeightField::Bump bump;
-    bump.x = uniform(engine, lower.x(), upper.x());
-    bump.y = uniform(engine, lower.y(), upper.y());
-    bump.radius = uniform(engine, 0.3, 0.7) * half_extent;
-    bump.amplitude = uniform(engine, -1.0, 1.0);
-    terrain.bumps.push_back(bump);
-  }
-  terrain.tilt_x = uniform(engine, -0.5, 0.5) / half_extent;
-  terrain.tilt_y = uniform(engine, -0.5, 0.5) / half_extent;
-  {
-    double lo = INFINITY, hi = -INFINITY;
-    const int nx = segments(upper.x() - lower.x(), 10.0), ny = segments(upper.y() - lower.y(), 10.0);
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) {
-        const double z = raw_height(terrain, lower.x() + (upper.x() - lower.x()) * i / nx,
-                                    lower.y() + (upper.y() - lower.y()) * j / ny);
-        lo = std::min(lo, z);
-        hi = std::max(hi, z);
-      }
-    terrain.scale = hi > lo ? o.relief / (hi - lo) : 0.0;
-    terrain.offset = -terrain.scale * lo;
-  }
-
-  Mesh& mesh = city.mesh;
-  const auto g_sidewalk = static_cast<std::uint32_t>(mesh.add_group(scene_group::sidewalk));
-  const auto g_crosswalk = static_cast<std::uint32_t>(mesh.add_group(scene_group::crosswalk));
-  const auto g_road = static_cast<std::uint32_t>(mesh.add_group(scene_group::road));
-  const auto g_ground = static_cast<std::uint32_t>(mesh.add_group(scene_group::ground));
-  const auto g_building = static_cast<std::uint32_t>(mesh.add_group(scene_group::building));
-  const auto g_terrain = static_cast<std::uint32_t>(mesh.add_group(scene_group::terrain));
-  Builder build(mesh, terrain);
-  const double edge = o.paved_max_edge;
-
-  // Junctions: the road triangle around each.  Its corners point to the
-  // three hexagon centres around V: e_{k+1}, e_{k+3}, e_{k+5} for a junction
-  // that is corner k of some block (the parity of k fixes the set).
-  std::vector<int> degree(junctions.points.size(), 0);
-  for (const auto& [key, s] : streets) {
-    ++degree[s.from];
-    ++degree[s.to];
-  }
-  std::vector<int> junction_parity(junctions.points.size(), -1);
-  for (std::size_t b = 0; b < city.blocks.size(); ++b)
-    for (int k = 0; k < 6; ++k) junction_parity[block_corners[b][k]] = k % 2;
-  for (std::size_t j = 0; j < junctions.points.size(); ++j) {
-    const Vec2& V = junctions.points[j];
-    const int k = junction_parity[j];
-    const double reach = W / kSqrt3;
-    build.subdivided_triangle(V + reach * corner_direction(k + 1), V + reach * corner_direction(k + 3),
-                              V + reach * corner_direction(k + 5), segments(W, edge), g_road);
-    city.intersections.push_back({Eigen::Vector3d(V.x(), V.y(), terrain(V.x(), V.y())), degree[j]});
-  }
-
-  // Streets: road rectangle between the junction triangles, crosswalks at
-  // both ends where the street separates two blocks.
-  for (const auto& [key, s] : streets) {
-    const Vec2 A = junctions.points[s.from], B = junctions.points[s.to];
-    const Vec2 t = (B - A).normalized();
-    const Vec2 n(-t.y(), t.x());
-    const double start = W / (2 * kSqrt3), end = (B - A).norm() - start;
-    auto piece = [&](double s0, double s1, std::uint32_t group) {
-      build.quad(A + s0 * t - 0.5 * W * n, A + s1 * t - 0.5 * W * n, A + s1 * t + 0.5 * W * n,
-                 A + s0 * t + 0.5 * W * n, segments(s1 - s0, edge), segments(W, edge), group);
-    };
-    if (s.blocks.size() < 2) {
-      piece(start, end, g_road);
-      continue;
-    }
-    const double cw = o.crosswalk_width;
-    piece(start, start + cw, g_crosswalk);
-    piece(start + cw, end - cw, g_road);
-    piece(end - cw, end, g_crosswalk);
-    for (const auto& [along, junction] : {std::pair<double, int>{start + 0.5 * cw, s.from},
-                                          std::pair<double, int>{end - 0.5 * cw, s.to}}) {
-      const Vec2 c = A + along * t;
-      city.crosswalks.push_back({Eigen::Vector3d(c.x(), c.y(), terrain(c.x(), c.y())), n, W, cw,
-                                 {s.blocks[0], s.blocks[1]}, junction});
-    }
-  }
-
-  // Blocks: sidewalk ring, lot, buildings.
-  const double mid_radius = block_radius - w / kSqrt3;  // sidewalk mid-line corner
+  place_blocks(o, block_radius * kSqrt3 / 2, city);
+  const StreetNetwork network = street_network(city.blocks, L);
+  const PlanBox box = plan_box(network.junctions.points, W + o.margin);
+  city.terrain = random_terrain(engine, box, o.relief);
+  const CityGroups groups = add_city_groups(city.mesh);
+  Builder build(city.mesh, city.terrain);
+  add_junctions(o, network, groups.road, build, city);
+  add_streets(o, network, groups, build, city);
   for (std::size_t b = 0; b < city.blocks.size(); ++b) {
-    CityBlock& block = city.blocks[b];
-    const Vec2 c = block.centre;
-    for (int k = 0; k < 6; ++k) {
-      const Vec2 e0 = corner_direction(k), e1 = corner_direction(k + 1);
-      build.quad(c + block_radius * e0, c + block_radius * e1, c + lot_radius * e1, c + lot_radius * e0,
-                 segments(block_radius, edge), segments(w, edge), g_sidewalk);
-      build.subdivided_triangle(c, c + lot_radius * e0, c + lot_radius * e1, segments(lot_radius, o.ground_max_edge),
-                                g_ground);
-      const Vec2 p = c + mid_radius * e0;
-      city.sidewalk_corners.push_back(
-          {Eigen::Vector3d(p.x(), p.y(), terrain(p.x(), p.y())), e0, static_cast<int>(b), block_corners[b][k]});
-    }
-
-    block.park = uniform01(engine) < o.park_fraction;
-    if (block.park) continue;
-    // Building ring between apothems a1 (after a setback from the sidewalk)
-    // and a2 (courtyard side), at least 5 m of courtyard apothem left.
-    const double setback = uniform(engine, 0.0, 3.0);
-    const double a1 = block.lot_apothem - setback;
-    const double a2 = std::max(5.0, a1 - uniform(engine, 10.0, 18.0));
-    const double r1 = 2 * a1 / kSqrt3, r2 = 2 * a2 / kSqrt3;
-    for (int k = 0; k < 6; ++k) {
-      const Vec2 o0 = c + r1 * corner_direction(k), o1 = c + r1 * corner_direction(k + 1);
-      const Vec2 i0 = c + r2 * corner_direction(k), i1 = c + r2 * corner_direction(k + 1);
-      const int count = 1 + static_cast<int>(3 * uniform01(engine));
-      const double gap = 3.0 / (o1 - o0).norm();  // alley width as a fraction of the side
-      std::vector<double> cuts{0.0};
-      for (int i = 1; i < count; ++i) cuts.push_back((i + uniform(engine, -0.15, 0.15)) / count);
-      cuts.push_back(1.0);
-      std::vector<bool> alley(count + 1, false);
-      for (int i = 1; i < count; ++i) alley[i] = uniform01(engine) < 0.4;
-      for (int i = 0; i < count; ++i) {
-        const double t0 = cuts[i] + (alley[i] ? 0.5 * gap : 0.0);
-        const double t1 = cuts[i + 1] - (alley[i + 1] ? 0.5 * gap : 0.0);
-        const std::array<Vec2, 4> f{(1 - t0) * o0 + t0 * o1, (1 - t1) * o0 + t1 * o1, (1 - t1) * i0 + t1 * i1,
-                                    (1 - t0) * i0 + t0 * i1};
-        const double u = uniform01(engine);
-        const double height = o.building_height_min + (o.building_height_max - o.building_height_min) * u * u;
-        const auto [lo, hi] = terrain_range(terrain, f);
-        const CityBuilding building{f, lo - o.foundation, hi + height, static_cast<int>(b)};
-        build.prism(f, building.base_z, building.top_z, g_building);
-        city.buildings.push_back(building);
-      }
-    }
+    add_block_surface(o, network, b, block_radius, lot_radius, groups, build, city);
+    city.blocks[b].park = uniform01(engine) < o.park_fraction;
+    if (!city.blocks[b].park) add_buildings(o, engine, b, groups.building, build, city);
   }
-
-  // Natural terrain under and around the city, `subgrade` below the pavement.
-  const double extent_x = upper.x() - lower.x(), extent_y = upper.y() - lower.y();
-  const int nx = segments(extent_x, o.terrain_spacing), ny = segments(extent_y, o.terrain_spacing);
-  if (static_cast<double>(nx) * ny > 4e6) throw std::invalid_argument("city options: terrain grid over 4e6 cells");
-  build.quad(lower, {upper.x(), lower.y()}, upper, {lower.x(), upper.y()}, nx, ny, g_terrain, o.subgrade);
+  add_natural_terrain(o, box, groups.terrain, build);
   return city;
 }
 

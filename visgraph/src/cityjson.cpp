@@ -8,7 +8,7 @@
 // (an integer into semantics.surfaces, or null).
 #include <attenuvis/visgraph/cityjson.hpp>
 #include <attenuvis/visgraph/limits.hpp>
-#include <attenuvis/visgraph/polygon.hpp>
+#include <attenuvis/visgraph/detail/polygon.hpp>
 
 #include <attenuvis/io/input_file.hpp>
 #include <attenuvis/io/number_text.hpp>

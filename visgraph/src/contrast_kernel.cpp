@@ -12,7 +12,7 @@
 #pragma GCC optimize("fp-contract=off")
 #endif
 
-#include "contrast_kernel.hpp"
+#include <attenuvis/visgraph/detail/contrast_kernel.hpp>
 
 #include <cstring>
 

@@ -8,6 +8,8 @@
 #include <numeric>
 #include <stdexcept>
 #include <unordered_map>
+#include <utility>
+#include <vector>
 
 namespace attenuvis::visgraph::detail {
 
@@ -86,6 +88,53 @@ bool boxes_overlap(const double* alo, const double* ahi, const double* blo, cons
     if (ahi[c] < blo[c] || alo[c] > bhi[c]) return false;
   return true;
 }
+
+// A triangle's unit normal (v1 - v0) x (v2 - v0) / |...| and that length
+// (twice its area); the normal is left unnormalised when the length is 0.
+std::pair<V3, double> unit_normal(const double (*v)[3]) {
+  const V3 e1 = sub(v[1], v[0]), e2 = sub(v[2], v[0]);
+  V3 n = cross(e1.data(), e2.data());
+  const double l = norm(n);
+  if (l > 0) n = {n[0] / l, n[1] / l, n[2] / l};
+  return std::make_pair(n, l);
+}
+
+// No quad partner (build_occluders), or no occluder yet.
+constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+
+// An undirected edge between two vertex indices, as one key.
+std::uint64_t edge_key(unsigned a, unsigned b) { return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b); }
+
+// The sets of triangles connected through shared vertex indices (union-find
+// over the vertex indices), keyed by a root vertex.
+std::unordered_map<unsigned, std::vector<std::uint32_t>> connected_triangles(const unsigned* index, std::size_t T) {
+  unsigned max_vertex = 0;
+  for (std::size_t k = 0; k < 3 * T; ++k) max_vertex = std::max(max_vertex, index[k]);
+  std::vector<unsigned> parent(static_cast<std::size_t>(max_vertex) + 1);
+  std::iota(parent.begin(), parent.end(), 0u);
+  const auto find = [&](unsigned v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (std::size_t t = 0; t < T; ++t) {
+    const unsigned a = find(index[3 * t]), b = find(index[3 * t + 1]), c = find(index[3 * t + 2]);
+    parent[b] = a;
+    parent[find(c)] = a;
+  }
+  std::unordered_map<unsigned, std::vector<std::uint32_t>> sets;
+  for (std::size_t t = 0; t < T; ++t) sets[find(index[3 * t])].push_back(static_cast<std::uint32_t>(t));
+  return sets;
+}
+
+// True when every edge of the triangles belongs to exactly two of them.
+bool is_closed(const std::vector<std::uint32_t>& tris, const unsigned* index) {
+  std::unordered_map<std::uint64_t, int> edge_uses;
+  for (std::uint32_t t : tris)
+    for (int k = 0; k < 3; ++k) ++edge_uses[edge_key(index[3 * t + k], index[3 * t + (k + 1) % 3])];
+  bool closed = true;
+  for (const auto& [edge, uses] : edge_uses) closed &= uses == 2;
+  return closed;
+}
 }  // namespace
 
 CullGeometry::CullGeometry(RTCScene scene, std::size_t triangle_count) {
@@ -118,90 +167,74 @@ CullGeometry::CullGeometry(RTCScene scene, std::size_t triangle_count) {
 // and obstacles made as closed boxes are such solids.
 void CullGeometry::build_solids(const unsigned* index) {
   constexpr std::size_t kMaxSolidTriangles = 64;
-  const std::size_t T = tris_.size();
-  solid_of_.assign(T, -1);
-  // Union-find over vertex indices.
-  unsigned max_vertex = 0;
-  for (std::size_t k = 0; k < 3 * T; ++k) max_vertex = std::max(max_vertex, index[k]);
-  std::vector<unsigned> parent(static_cast<std::size_t>(max_vertex) + 1);
-  std::iota(parent.begin(), parent.end(), 0u);
-  const auto find = [&](unsigned v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (std::size_t t = 0; t < T; ++t) {
-    const unsigned a = find(index[3 * t]), b = find(index[3 * t + 1]), c = find(index[3 * t + 2]);
-    parent[b] = a;
-    parent[find(c)] = a;
-  }
-  std::unordered_map<unsigned, std::vector<std::uint32_t>> groups;
-  for (std::size_t t = 0; t < T; ++t) groups[find(index[3 * t])].push_back(static_cast<std::uint32_t>(t));
-  for (auto& [root, tris] : groups) {
+  solid_of_.assign(tris_.size(), -1);
+  std::unordered_map<unsigned, std::vector<std::uint32_t>> sets = connected_triangles(index, tris_.size());
+  for (auto& [root, tris] : sets) {
     (void)root;
-    if (tris.size() < 4 || tris.size() > kMaxSolidTriangles) continue;
-    std::unordered_map<std::uint64_t, int> edge_uses;
-    for (std::uint32_t t : tris)
-      for (int k = 0; k < 3; ++k) {
-        const unsigned a = index[3 * t + k], b = index[3 * t + (k + 1) % 3];
-        ++edge_uses[(std::uint64_t{std::min(a, b)} << 32) | std::max(a, b)];
-      }
-    bool closed = true;
-    for (const auto& [edge, uses] : edge_uses) closed &= uses == 2;
-    if (!closed) continue;
+    if (tris.size() < 4 || tris.size() > kMaxSolidTriangles || !is_closed(tris, index)) continue;
     Solid solid;
-    double centre[3] = {0, 0, 0}, size = 0;
-    for (std::uint32_t t : tris)
-      for (int v = 0; v < 3; ++v)
-        for (int c = 0; c < 3; ++c) centre[c] += tris_[t].v[v][c] / (3.0 * static_cast<double>(tris.size()));
-    for (std::uint32_t t : tris)
-      for (int v = 0; v < 3; ++v) size = std::max(size, norm(sub(tris_[t].v[v], centre)));
-    bool convex = size > 0;
-    for (std::uint32_t t : tris) {
-      const V3 e1 = sub(tris_[t].v[1], tris_[t].v[0]), e2 = sub(tris_[t].v[2], tris_[t].v[0]);
-      V3 n = cross(e1.data(), e2.data());
-      const double l = norm(n);
-      if (l == 0) continue;  // a degenerate triangle bounds nothing
-      n = {n[0] / l, n[1] / l, n[2] / l};
-      double c = dot(n.data(), tris_[t].v[0]);
-      if (dot(n.data(), centre) - c > 0) n = {-n[0], -n[1], -n[2]}, c = -c;
-      if (!(dot(n.data(), centre) - c < -1e-6 * size)) convex = false;  // centre on a face: flat, not a solid
-      for (std::uint32_t u : tris)
-        for (int v = 0; v < 3; ++v) {
-          const double beyond = dot(n.data(), tris_[u].v[v]) - c;
-          if (beyond > 1e-6 * size) convex = false;
-          solid.slack = std::max(solid.slack, beyond);
-        }
-      solid.faces.push_back({n[0], n[1], n[2], c});
-    }
-    if (!convex) continue;
-    // The two triangles of a quad face give (nearly) one plane: keep one.
-    // A plane dropped this way lies within `deviation` of the kept one at
-    // every vertex, which the slack covers.
-    std::vector<std::array<double, 4>> kept;
-    for (const auto& f : solid.faces) {
-      bool duplicate = false;
-      for (const auto& k : kept) {
-        if (f[0] * k[0] + f[1] * k[1] + f[2] * k[2] < 1 - 1e-9) continue;
-        double deviation = 0;
-        for (std::uint32_t u : tris)
-          for (int v = 0; v < 3; ++v) {
-            const double* p = tris_[u].v[v];
-            deviation = std::max(deviation, std::abs((f[0] * p[0] + f[1] * p[1] + f[2] * p[2] - f[3]) -
-                                                     (k[0] * p[0] + k[1] * p[1] + k[2] * p[2] - k[3])));
-          }
-        if (deviation > 1e-6 * size) continue;
-        solid.slack = std::max(solid.slack, deviation);
-        duplicate = true;
-        break;
-      }
-      if (!duplicate) kept.push_back(f);
-    }
-    solid.faces = std::move(kept);
-    std::copy(centre, centre + 3, solid.centre);
+    if (!convex_solid(tris, solid)) continue;
     const auto id = static_cast<std::int32_t>(solids_.size());
     solids_.push_back(std::move(solid));
     for (std::uint32_t t : tris) solid_of_[t] = id;
   }
+}
+
+// The face planes of a closed set of triangles, outward, if every vertex
+// lies behind every one of them (to within 1e-6 of the set's size, the
+// excess kept as slack) and the centre strictly inside: a convex solid.
+bool CullGeometry::convex_solid(const std::vector<std::uint32_t>& tris, Solid& solid) const {
+  double centre[3] = {0, 0, 0}, size = 0;
+  for (std::uint32_t t : tris)
+    for (int v = 0; v < 3; ++v)
+      for (int c = 0; c < 3; ++c) centre[c] += tris_[t].v[v][c] / (3.0 * static_cast<double>(tris.size()));
+  for (std::uint32_t t : tris)
+    for (int v = 0; v < 3; ++v) size = std::max(size, norm(sub(tris_[t].v[v], centre)));
+  bool convex = size > 0;
+  for (std::uint32_t t : tris) {
+    auto [n, l] = unit_normal(tris_[t].v);
+    if (l == 0) continue;  // a degenerate triangle bounds nothing
+    double c = dot(n.data(), tris_[t].v[0]);
+    if (dot(n.data(), centre) - c > 0) n = {-n[0], -n[1], -n[2]}, c = -c;
+    if (!(dot(n.data(), centre) - c < -1e-6 * size)) convex = false;  // centre on a face: flat, not a solid
+    for (std::uint32_t u : tris)
+      for (int v = 0; v < 3; ++v) {
+        const double beyond = dot(n.data(), tris_[u].v[v]) - c;
+        if (beyond > 1e-6 * size) convex = false;
+        solid.slack = std::max(solid.slack, beyond);
+      }
+    solid.faces.push_back({n[0], n[1], n[2], c});
+  }
+  if (!convex) return false;
+  merge_coplanar_faces(tris, size, solid);
+  std::copy(centre, centre + 3, solid.centre);
+  return true;
+}
+
+// The two triangles of a quad face give (nearly) one plane: keep one.  A
+// plane dropped this way lies within `deviation` of the kept one at every
+// vertex, which the slack covers.
+void CullGeometry::merge_coplanar_faces(const std::vector<std::uint32_t>& tris, double size, Solid& solid) const {
+  std::vector<std::array<double, 4>> kept;
+  for (const auto& f : solid.faces) {
+    bool duplicate = false;
+    for (const auto& k : kept) {
+      if (f[0] * k[0] + f[1] * k[1] + f[2] * k[2] < 1 - 1e-9) continue;
+      double deviation = 0;
+      for (std::uint32_t u : tris)
+        for (int v = 0; v < 3; ++v) {
+          const double* p = tris_[u].v[v];
+          deviation = std::max(deviation, std::abs((f[0] * p[0] + f[1] * p[1] + f[2] * p[2] - f[3]) -
+                                                   (k[0] * p[0] + k[1] * p[1] + k[2] * p[2] - k[3])));
+        }
+      if (deviation > 1e-6 * size) continue;
+      solid.slack = std::max(solid.slack, deviation);
+      duplicate = true;
+      break;
+    }
+    if (!duplicate) kept.push_back(f);
+  }
+  solid.faces = std::move(kept);
 }
 
 bool CullGeometry::solid_blocks(std::uint32_t triangle, const Box3& a, const Box3& b, double margin) const {
@@ -283,28 +316,35 @@ std::uint32_t CullGeometry::build(std::uint32_t first, std::uint32_t count, std:
 // plane (used as an extra margin).
 void CullGeometry::build_occluders(const unsigned* index) {
   const std::size_t T = tris_.size();
-  occluder_of_.assign(T, 0xFFFFFFFFu);
-  std::unordered_map<std::uint64_t, std::uint32_t> first_on_edge;
-  std::vector<std::uint32_t> partner(T, 0xFFFFFFFFu);
+  occluder_of_.assign(T, kNone);
+  std::vector<std::uint32_t> partner(T, kNone);
   std::vector<std::uint8_t> shared_edge(T, 0);  // edge k = (v_k, v_k+1) shared with the partner
-  const auto key = [](unsigned a, unsigned b) { return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b); };
-  const auto unit_normal = [&](std::size_t t) {
-    const V3 e1 = sub(tris_[t].v[1], tris_[t].v[0]), e2 = sub(tris_[t].v[2], tris_[t].v[0]);
-    V3 n = cross(e1.data(), e2.data());
-    const double l = norm(n);
-    if (l > 0) n = {n[0] / l, n[1] / l, n[2] / l};
-    return std::make_pair(n, l);
-  };
+  pair_quad_triangles(index, partner, shared_edge);
   for (std::size_t t = 0; t < T; ++t) {
+    if (occluder_of_[t] != kNone) continue;
+    occluder_of_[t] = static_cast<std::uint32_t>(occluders_.size());
+    if (partner[t] != kNone) occluder_of_[partner[t]] = occluder_of_[t];
+    occluders_.push_back(occluder(t, partner[t], shared_edge));
+  }
+}
+
+// Pairs each triangle with at most one neighbour across a shared edge that
+// lies in its plane and makes a convex quad with it: partner[t] (or
+// kNone) and shared_edge[t], the index k of t's edge (v_k, v_k+1)
+// they share.
+void CullGeometry::pair_quad_triangles(const unsigned* index, std::vector<std::uint32_t>& partner,
+                                       std::vector<std::uint8_t>& shared_edge) const {
+  std::unordered_map<std::uint64_t, std::uint32_t> first_on_edge;
+  for (std::size_t t = 0; t < tris_.size(); ++t) {
     for (int k = 0; k < 3; ++k) {
-      const std::uint64_t e = key(index[3 * t + k], index[3 * t + (k + 1) % 3]);
+      const std::uint64_t e = edge_key(index[3 * t + k], index[3 * t + (k + 1) % 3]);
       const auto [it, fresh] = first_on_edge.emplace(e, static_cast<std::uint32_t>(t));
       if (fresh) continue;
       const std::uint32_t u = it->second;
-      if (partner[t] != 0xFFFFFFFFu || partner[u] != 0xFFFFFFFFu || u == t) continue;
+      if (partner[t] != kNone || partner[u] != kNone || u == t) continue;
       // Coplanar and convex?
-      const auto [nt, at] = unit_normal(t);
-      const auto [nu, au] = unit_normal(u);
+      const auto [nt, at] = unit_normal(tris_[t].v);
+      const auto [nu, au] = unit_normal(tris_[u].v);
       if (at == 0 || au == 0 || std::abs(dot(nt.data(), nu.data())) < 1 - 1e-12) continue;
       int apex_u = 0;
       for (int j = 0; j < 3; ++j)
@@ -328,54 +368,53 @@ void CullGeometry::build_occluders(const unsigned* index) {
         if (j != apex_u && (j + 1) % 3 != apex_u) shared_edge[u] = static_cast<std::uint8_t>(j);
     }
   }
-  for (std::size_t t = 0; t < T; ++t) {
-    if (occluder_of_[t] != 0xFFFFFFFFu) continue;
-    Occluder o;
-    const auto [n, area] = unit_normal(t);
-    occluder_of_[t] = static_cast<std::uint32_t>(occluders_.size());
-    if (area == 0) {  // degenerate: never an occluder
-      occluders_.push_back(o);
-      continue;
-    }
-    std::copy(n.begin(), n.end(), o.n);
-    o.c = dot(o.n, tris_[t].v[0]);
-    std::vector<V3> poly = {V3{tris_[t].v[0][0], tris_[t].v[0][1], tris_[t].v[0][2]},
-                            V3{tris_[t].v[1][0], tris_[t].v[1][1], tris_[t].v[1][2]},
-                            V3{tris_[t].v[2][0], tris_[t].v[2][1], tris_[t].v[2][2]}};
-    double depth = 0;
-    if (partner[t] != 0xFFFFFFFFu) {
-      const std::uint32_t u = partner[t];
-      occluder_of_[u] = occluder_of_[t];
-      // The quad in order: u's apex (opposite its shared edge) between the
-      // shared edge's ends (k, k + 1) of t: v_k, apex, v_k+1, v_k+2.
-      const double* p = tris_[u].v[(shared_edge[u] + 2) % 3];
-      const double s = dot(o.n, p) - o.c;
-      depth = std::abs(s);
-      const V3 projected = {p[0] - s * o.n[0], p[1] - s * o.n[1], p[2] - s * o.n[2]};
-      poly.insert(poly.begin() + static_cast<std::ptrdiff_t>(shared_edge[t] + 1), projected);
-    }
-    o.edges = static_cast<int>(poly.size());
-    V3 centre = {0, 0, 0};
-    for (const V3& p : poly)
-      for (int c = 0; c < 3; ++c) centre[c] += p[c] / static_cast<double>(poly.size());
-    for (int k = 0; k < o.edges; ++k) {
-      const V3& p0 = poly[static_cast<std::size_t>(k)];
-      const V3& p1 = poly[static_cast<std::size_t>((k + 1) % o.edges)];
-      const V3 e = sub(p1.data(), p0.data());
-      V3 w = cross(o.n, e.data());
-      const double l = norm(w);
-      if (l == 0) {
-        o.edges = 0;  // degenerate edge
-        break;
-      }
-      w = {w[0] / l, w[1] / l, w[2] / l};
-      if (dot(w.data(), sub(centre.data(), p0.data()).data()) < 0) w = {-w[0], -w[1], -w[2]};
-      std::copy(w.begin(), w.end(), o.u[k]);
-      o.o[k] = dot(w.data(), p0.data());
-    }
-    o.depth = depth;
-    occluders_.push_back(o);
+}
+
+// The occluder of triangle t and its quad partner u (kNone: none):
+// the polygon in t's plane, with u's apex projected onto it, and its
+// inward edge normals.  A degenerate triangle or edge gives an occluder of
+// no edges, which blocks nothing.
+CullGeometry::Occluder CullGeometry::occluder(std::size_t t, std::uint32_t u,
+                                              const std::vector<std::uint8_t>& shared_edge) const {
+  Occluder o;
+  const auto [n, area] = unit_normal(tris_[t].v);
+  if (area == 0) return o;  // degenerate: never an occluder
+  std::copy(n.begin(), n.end(), o.n);
+  o.c = dot(o.n, tris_[t].v[0]);
+  std::vector<V3> poly = {V3{tris_[t].v[0][0], tris_[t].v[0][1], tris_[t].v[0][2]},
+                          V3{tris_[t].v[1][0], tris_[t].v[1][1], tris_[t].v[1][2]},
+                          V3{tris_[t].v[2][0], tris_[t].v[2][1], tris_[t].v[2][2]}};
+  double depth = 0;
+  if (u != kNone) {
+    // The quad in order: u's apex (opposite its shared edge) between the
+    // shared edge's ends (k, k + 1) of t: v_k, apex, v_k+1, v_k+2.
+    const double* p = tris_[u].v[(shared_edge[u] + 2) % 3];
+    const double s = dot(o.n, p) - o.c;
+    depth = std::abs(s);
+    const V3 projected = {p[0] - s * o.n[0], p[1] - s * o.n[1], p[2] - s * o.n[2]};
+    poly.insert(poly.begin() + static_cast<std::ptrdiff_t>(shared_edge[t] + 1), projected);
   }
+  o.edges = static_cast<int>(poly.size());
+  V3 centre = {0, 0, 0};
+  for (const V3& p : poly)
+    for (int c = 0; c < 3; ++c) centre[c] += p[c] / static_cast<double>(poly.size());
+  for (int k = 0; k < o.edges; ++k) {
+    const V3& p0 = poly[static_cast<std::size_t>(k)];
+    const V3& p1 = poly[static_cast<std::size_t>((k + 1) % o.edges)];
+    const V3 e = sub(p1.data(), p0.data());
+    V3 w = cross(o.n, e.data());
+    const double l = norm(w);
+    if (l == 0) {
+      o.edges = 0;  // degenerate edge
+      break;
+    }
+    w = {w[0] / l, w[1] / l, w[2] / l};
+    if (dot(w.data(), sub(centre.data(), p0.data()).data()) < 0) w = {-w[0], -w[1], -w[2]};
+    std::copy(w.begin(), w.end(), o.u[k]);
+    o.o[k] = dot(w.data(), p0.data());
+  }
+  o.depth = depth;
+  return o;
 }
 
 bool CullGeometry::hull_is_empty(const Box3& a, const Box3& b, double margin) const {

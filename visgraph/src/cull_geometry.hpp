@@ -65,7 +65,12 @@ class CullGeometry {
   };
   std::uint32_t build(std::uint32_t first, std::uint32_t count, std::vector<double>& centroid);
   void build_occluders(const unsigned* index);
+  void pair_quad_triangles(const unsigned* index, std::vector<std::uint32_t>& partner,
+                           std::vector<std::uint8_t>& shared_edge) const;
+  Occluder occluder(std::size_t t, std::uint32_t u, const std::vector<std::uint8_t>& shared_edge) const;
   void build_solids(const unsigned* index);
+  bool convex_solid(const std::vector<std::uint32_t>& tris, Solid& solid) const;
+  void merge_coplanar_faces(const std::vector<std::uint32_t>& tris, double size, Solid& solid) const;
 
   std::vector<Triangle> tris_;
   std::vector<std::uint32_t> order_;

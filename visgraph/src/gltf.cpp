@@ -1,6 +1,6 @@
-// glTF reader (gltf.hpp) on tinygltf (Debian's libtinygltf, which carries
+// glTF reader (detail/gltf.hpp) on tinygltf (Debian's libtinygltf, which carries
 // the implementation; images are never decoded: attenuvis needs geometry only).
-#include <attenuvis/visgraph/gltf.hpp>
+#include <attenuvis/visgraph/detail/gltf.hpp>
 #include <attenuvis/visgraph/limits.hpp>
 
 #include <attenuvis/io/input_file.hpp>

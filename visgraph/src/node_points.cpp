@@ -49,12 +49,18 @@ double pairs_within_x(const Points& sources, const Points& partners, bool symmet
   std::vector<double> s = sources.x, t = symmetric ? std::vector<double>() : partners.x;
   std::sort(s.begin(), s.end());
   std::sort(t.begin(), t.end());
-  const std::vector<double>& p = symmetric ? s : t;
+  return pairs_within_sorted_x(s, symmetric ? nullptr : &t, radius);
+}
+
+double pairs_within_sorted_x(const std::vector<double>& sources_x, const std::vector<double>* partners_x,
+                             double radius) {
+  const std::vector<double>& s = sources_x;
+  const std::vector<double>& p = partners_x ? *partners_x : s;
   double count = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
     const auto hi = std::upper_bound(p.begin(), p.end(), s[i] + radius);
-    const auto lo = symmetric ? p.begin() + static_cast<std::ptrdiff_t>(i + 1)
-                              : std::lower_bound(p.begin(), p.end(), s[i] - radius);
+    const auto lo = partners_x ? std::lower_bound(p.begin(), p.end(), s[i] - radius)
+                               : p.begin() + static_cast<std::ptrdiff_t>(i + 1);
     if (hi > lo) count += static_cast<double>(hi - lo);
   }
   return count;

@@ -35,5 +35,17 @@ Points sorted_by_x(const Points& p, std::vector<std::uint32_t>& order);
 // Pairs whose x coordinates lie within `radius` of each other (an upper
 // bound on the pairs a pruned pass casts), O((N + M) log(N + M)).
 double pairs_within_x(const Points& sources, const Points& partners, bool symmetric, double radius);
+// The same from x coordinates sorted increasing; partners_x null: every
+// unordered pair of the sources.
+double pairs_within_sorted_x(const std::vector<double>& sources_x, const std::vector<double>* partners_x,
+                             double radius);
+
+// Pruning is chosen over the exact pass only when at most this fraction of
+// the pairs lie within its radius along x (visibility.hpp, "Pruning"): a
+// pruned pass casts every pair within the radius, the exact pass culls.
+constexpr double kPruneWorthFraction = 0.1;
+inline bool pruning_pays(double pairs_within_x, double pairs_total) {
+  return !(pairs_within_x > kPruneWorthFraction * pairs_total);
+}
 
 }  // namespace attenuvis::visgraph::detail

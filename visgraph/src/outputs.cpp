@@ -47,10 +47,6 @@ Eigen::Vector3d viridis(double t) {
 }
 }  // namespace
 
-void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& fill) {
-  io::write_file_atomically(path, fill);
-}
-
 std::vector<std::string> score_columns(const ScoreTable& table) {
   const VisibilityResult& r = *table.result;
   std::vector<std::string> columns = {"x", "y", "z"};
@@ -101,7 +97,7 @@ std::vector<double> score_values(const ScoreTable& table, const std::string& col
 }
 
 void write_csv(const std::string& path, const ScoreTable& table) {
-  write_atomically(path, [&](std::ostream& out) { write_csv(out, table); });
+  io::write_file_atomically(path, [&](std::ostream& out) { write_csv(out, table); });
 }
 
 void write_csv(std::ostream& out, const ScoreTable& table) {
@@ -126,7 +122,7 @@ void write_csv(std::ostream& out, const ScoreTable& table) {
 }
 
 void write_ply(const std::string& path, const ScoreTable& table, const std::string& column) {
-  write_atomically(path, [&](std::ostream& out) { write_ply(out, table, column); });
+  io::write_file_atomically(path, [&](std::ostream& out) { write_ply(out, table, column); });
 }
 
 void write_ply(std::ostream& out, const ScoreTable& table, const std::string& column) {

@@ -52,28 +52,29 @@ PairCulling::PairCulling(RTCScene scene, std::size_t triangle_count, const std::
   nodes_.reserve(4 * (n / kLeafNodes + 1));
   build(0, n, -1);
   records_.resize(nodes_.size());
-  if (share_count > 1) {
-    if (classify) {
-      geometry_ = std::make_unique<CullGeometry>(scene, triangle_count);
-      margin_ = margin_for(*geometry_, x, y, z);
-    }
-    tbb::enumerable_thread_specific<Local> locals;
-    traverse_share(classify, share_index, share_count, locals);
-    collect(locals);
-    seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return;
-  }
-  if (!classify) {  // every pair cast: one record, the root with itself
-    records_[0].push_back({0, Verdict::cast});
-    seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return;
-  }
-  geometry_ = std::make_unique<CullGeometry>(scene, triangle_count);
-  margin_ = margin_for(*geometry_, x, y, z);
-  tbb::enumerable_thread_specific<Local> locals;
-  traverse(0, 0, locals);
-  collect(locals);
+  decide(triangle_count, classify, share_index, share_count);
   seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// The records of the pairs of clusters: without `classify` one record, every
+// pair cast (the root with itself; with shares, traverse_share deals the
+// pairs unclassified); with it the verdicts of the dual-tree traversal, all
+// of them or this share's.
+void PairCulling::decide(std::size_t triangle_count, bool classify, int share_index, int share_count) {
+  if (!classify && share_count == 1) {
+    records_[0].push_back({0, Verdict::cast});
+    return;
+  }
+  if (classify) {
+    geometry_ = std::make_unique<CullGeometry>(scene_, triangle_count);
+    margin_ = margin_for(*geometry_, x_, y_, z_);
+  }
+  tbb::enumerable_thread_specific<Local> locals;
+  if (share_count > 1)
+    traverse_share(classify, share_index, share_count, locals);
+  else
+    traverse(0, 0, locals);
+  collect(locals);
 }
 
 double PairCulling::margin_for(const CullGeometry& geometry, const std::vector<double>& x,

@@ -121,6 +121,7 @@ class PairCulling {
 
  private:
   std::uint32_t build(std::uint32_t begin, std::uint32_t end, std::int32_t parent);
+  void decide(std::size_t triangle_count, bool classify, int share_index, int share_count);
   struct Local;
   enum class Step { empty, visible, blocked, cast, split };
   double pairs_of(std::uint32_t a, std::uint32_t b) const;

@@ -191,7 +191,10 @@ void accumulate_packet(const PairPacket& p, const std::int64_t* c_fixed, const s
   for (int k = 0; k < K; ++k)
     for (int l = 0; l < kLanes; ++l) row_lanes[(2 + k) * kLanes + l] += c_fixed[k * kLanes + l];
   if (!acc) return;
-  if (n == kLanes) {  // the common case: fixed trip count, no epilogue
+  // The same adds twice on purpose: a full packet (the common case) gets
+  // loops of constant trip count, which the compiler vectorises without an
+  // epilogue; the last packet of a row takes the general loops below.
+  if (n == kLanes) {
     std::int64_t* a = acc + j0;
     for (int l = 0; l < kLanes; ++l) a[l] += visible[l];
     a = acc + N + j0;

@@ -5,7 +5,7 @@
 // build their packets here, so their speed ratio measures scoring alone.
 #pragma once
 
-#include "contrast_kernel.hpp"
+#include <attenuvis/visgraph/detail/contrast_kernel.hpp>
 
 #include <embree3/rtcore.h>
 

@@ -1,7 +1,7 @@
 // The checks every visibility pass runs on its input (pass_input.hpp).
 #include "pass_input.hpp"
 
-#include "contrast_kernel.hpp"
+#include <attenuvis/visgraph/detail/contrast_kernel.hpp>
 
 #include <algorithm>
 #include <cmath>

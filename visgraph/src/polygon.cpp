@@ -7,7 +7,7 @@
 // rightmost vertex to the nearest outline vertex it can see, then ears are
 // clipped one at a time.  O(n^2) per polygon, which suits the tens of
 // vertices of a building face.
-#include <attenuvis/visgraph/polygon.hpp>
+#include <attenuvis/visgraph/detail/polygon.hpp>
 
 #include <Eigen/Geometry>
 

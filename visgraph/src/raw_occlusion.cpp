@@ -1,6 +1,6 @@
-// The raw Embree ceiling of the benchmarks (visibility.hpp): the engine's
-// rays, occlusion only, no scoring.
-#include <attenuvis/visgraph/visibility.hpp>
+// The raw Embree ceiling of the benchmarks (detail/raw_occlusion.hpp): the
+// engine's rays, occlusion only, no scoring.
+#include <attenuvis/visgraph/detail/raw_occlusion.hpp>
 
 #include "node_points.hpp"
 #include "pair_packet.hpp"

@@ -1,5 +1,5 @@
 // Scene files by content (scene_file.hpp).
-#include <attenuvis/visgraph/gltf.hpp>
+#include <attenuvis/visgraph/detail/gltf.hpp>
 #include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/obj.hpp>
 #include <attenuvis/visgraph/scene_file.hpp>
@@ -18,10 +18,17 @@ UpAxis parse_up_axis(const std::string& text) {
   throw std::invalid_argument("up axis: expected z or y, got '" + text + "'");
 }
 
+namespace {
+
+// (x, y, z) -> (x, -z, y): a y-up model turned z-up (right-handed both).
 void turn_y_up_to_z_up(Mesh& mesh) {
   for (Eigen::Vector3d& v : mesh.vertices) v = Eigen::Vector3d(v.x(), -v.z(), v.y());
 }
 
+// A warning when the mesh (already in attenuvis's z-up frame) looks like a
+// model of the other convention read as it was: its vertical extent is not
+// its smallest one and a horizontal axis is less than half as long, as a city
+// exported y-up and read z-up would be.  Empty when the frame looks right.
 std::string up_axis_warning(const Mesh& mesh, const std::string& how_to_fix) {
   const MeshStats stats = mesh_stats(mesh);
   const Eigen::Vector3d extent = stats.upper - stats.lower;
@@ -32,6 +39,8 @@ std::string up_axis_warning(const Mesh& mesh, const std::string& how_to_fix) {
          std::to_string(static_cast<long>(horizontal_min)) + " m along " + axis +
          ": it looks like a model of the other up-axis convention (" + how_to_fix + ")";
 }
+
+}  // namespace
 
 SceneFile load_scene_file(const std::string& path, const SceneFileOptions& options) {
   // A device or FIFO (/dev/zero, /dev/urandom) would be read for ever: only

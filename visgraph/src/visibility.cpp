@@ -21,10 +21,10 @@
 //    after it, filtered by exact distance (no tree search, no per-row sort);
 //  - to_targets with a finite radius: a kd-tree radius search (nanoflann),
 //    sorted.
+#include <attenuvis/visgraph/detail/contrast_kernel.hpp>
 #include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/visibility.hpp>
 
-#include "contrast_kernel.hpp"
 #include "node_points.hpp"
 #include "pair_culling.hpp"
 #include "pair_packet.hpp"
@@ -52,6 +52,7 @@ namespace attenuvis::visgraph {
 
 namespace {
 using detail::kCoincident;
+using detail::kPruneWorthFraction;
 using detail::kContrastScale;
 using detail::kDistanceScale;
 using detail::check_pass_input;
@@ -197,10 +198,6 @@ void process_row(const Pass& pass, std::size_t i, const std::uint32_t* cand, std
   end_row(pass, i, ts);
 }
 
-// Pruning is chosen over the exact pass only when at most this fraction of
-// the pairs lie within its radius (see run_pass).
-constexpr double kPruneWorthFraction = 0.1;
-
 // How a pass finds each row's partners (see the file comment).
 struct Plan {
   double prune_radius = std::numeric_limits<double>::infinity();  // R = ln(1/eps)/sigma_min
@@ -295,33 +292,32 @@ void run_row(const Pass& pass, const Plan& plan, const KdTree* tree, std::size_t
   }
 }
 
-// Every row, in parallel.  Edge output goes block by block, in row order, so
-// the list never sits whole in memory.
-void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const VisibilityOptions& options,
-              tbb::enumerable_thread_specific<ThreadState>& states, std::vector<std::uint32_t>& pruned,
-              std::uint64_t pairs_total) {
-  const std::size_t N = pass.N;
-  const std::size_t M = pass.symmetric ? N : pass.partners->size();
+// The pass's worker threads: options.threads, 0 = all cores.
+int worker_threads(const VisibilityOptions& options) {
+  return options.threads > 0 ? options.threads : tbb::task_arena::automatic;
+}
+
+// The edges of each row of a block, while the block runs.
+using RowEdges = std::vector<std::vector<Edge>>;
+
+// Rows [0, N) in blocks, inside the pass's task arena: `run_block(block,
+// block_end, row_edges)` runs the rows of one block; with an edge sink,
+// row_edges holds one edge list per row of the block (row r at r - block),
+// handed to the sink in row order once the block is done, so that the edge
+// list never sits whole in memory (a block is sized to ~4M partner slots).
+// Without a sink row_edges is null and the rows form one block.
+template <class RunBlock>
+void run_row_blocks(const VisibilityOptions& options, std::size_t N, std::size_t partners_per_row,
+                    RunBlock&& run_block) {
   const std::size_t block_rows =
-      options.edge_sink ? std::max<std::size_t>(1, (std::size_t{1} << 22) / std::max<std::size_t>(M, 1)) : N;
-  std::vector<std::vector<Edge>> row_edges(options.edge_sink ? block_rows : 0);
-  Progress progress(options.progress, options.on_progress, pairs_total, "vg", options.pairs_done, options.cancel);
-  progress.set_scale(options.share.count);
-  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+      options.edge_sink ? std::max<std::size_t>(1, (std::size_t{1} << 22) / std::max<std::size_t>(partners_per_row, 1))
+                        : N;
+  RowEdges row_edges(options.edge_sink ? block_rows : 0);
+  tbb::task_arena arena(worker_threads(options));
   arena.execute([&] {
     for (std::size_t block = 0; block < N; block += block_rows) {
       const std::size_t block_end = std::min(N, block + block_rows);
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(block, block_end, 1),
-                        [&](const tbb::blocked_range<std::size_t>& range) {
-                          ThreadState& ts = states.local();
-                          for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                            if (!row_in_share(options.share, i)) continue;
-                            std::vector<Edge>* edges = options.edge_sink ? &row_edges[i - block] : nullptr;
-                            if (edges) edges->clear();
-                            run_row(pass, plan, tree, i, ts, edges, pruned);
-                            progress.add(pass.symmetric ? N - 1 - i : M);
-                          }
-                        });
+      run_block(block, block_end, options.edge_sink ? &row_edges : nullptr);
       if (options.edge_sink) {
         std::vector<Edge> out;
         for (std::size_t i = block; i < block_end; ++i)
@@ -329,6 +325,29 @@ void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const Visi
         options.edge_sink(out);
       }
     }
+  });
+}
+
+// Every row, in parallel (run_row_blocks).
+void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const VisibilityOptions& options,
+              tbb::enumerable_thread_specific<ThreadState>& states, std::vector<std::uint32_t>& pruned,
+              std::uint64_t pairs_total) {
+  const std::size_t N = pass.N;
+  const std::size_t M = pass.symmetric ? N : pass.partners->size();
+  Progress progress(options.progress, options.on_progress, pairs_total, "vg", options.pairs_done, options.cancel);
+  progress.set_scale(options.share.count);
+  run_row_blocks(options, N, M, [&](std::size_t block, std::size_t block_end, RowEdges* row_edges) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(block, block_end, 1),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        ThreadState& ts = states.local();
+                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                          if (!row_in_share(options.share, i)) continue;
+                          std::vector<Edge>* edges = row_edges ? &(*row_edges)[i - block] : nullptr;
+                          if (edges) edges->clear();
+                          run_row(pass, plan, tree, i, ts, edges, pruned);
+                          progress.add(pass.symmetric ? N - 1 - i : M);
+                        }
+                      });
   });
   progress.finish();
 }
@@ -339,7 +358,7 @@ void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const Visi
 // the rest are cast.  Edges of a row are put in partner order, as in the
 // row-by-row pass.
 void run_leaf_rows(const Pass& pass, const detail::PairCulling& culling, std::size_t leaf, std::size_t row_begin,
-                   std::size_t row_end, ThreadState& ts, std::vector<std::vector<Edge>>* row_edges,
+                   std::size_t row_end, ThreadState& ts, RowEdges* row_edges,
                    const std::vector<std::uint32_t>& rank_of, Progress& progress) {
   std::size_t count = 0;
   const std::uint32_t* rows = culling.leaf_rows(leaf, count);
@@ -373,36 +392,36 @@ void run_leaf_rows(const Pass& pass, const detail::PairCulling& culling, std::si
   }
 }
 
-// All-to-all with culling: rows grouped by leaf cluster (each leaf's
-// partner list is expanded once), in blocks of rows when edges are written
-// so that the edge list goes out in row order without being held whole.
-void run_rows_culled(const Pass& pass, const detail::PairCulling& culling, const VisibilityOptions& options,
-                     tbb::enumerable_thread_specific<ThreadState>& states, Progress& progress) {
+// All-to-all without a candidate radius: rows against leaf clusters, with
+// or without culling (the same packets either way: pair_culling.hpp).  Rows
+// are grouped by leaf cluster (each leaf's partner list is expanded once),
+// in the blocks of run_row_blocks.  The culling's counts go to `result`.
+void run_rows_culled(const Scene& scene, const Pass& pass, const VisibilityOptions& options,
+                     tbb::enumerable_thread_specific<ThreadState>& states, VisibilityResult& result) {
   const std::size_t N = pass.N;
-  const std::size_t block_rows =
-      options.edge_sink ? std::max<std::size_t>(1, (std::size_t{1} << 22) / std::max<std::size_t>(N, 1)) : N;
-  std::vector<std::vector<Edge>> row_edges(options.edge_sink ? block_rows : 0);
+  Progress progress(options.progress, options.on_progress, result.pairs_total, "vg", options.pairs_done,
+                    options.cancel);
+  tbb::task_arena arena(worker_threads(options));
+  std::unique_ptr<detail::PairCulling> culling;
+  arena.execute([&] {
+    culling = std::make_unique<detail::PairCulling>(pass.rtc, scene.triangle_count(), pass.sources->x,
+                                                    pass.sources->y, pass.sources->z, options.culling, &progress,
+                                                    options.share.index, options.share.count);
+  });
+  result.pairs_culled_visible = culling->pairs_visible();
+  result.pairs_culled_blocked = culling->pairs_blocked();
+  result.culling_seconds = culling->seconds();
   std::vector<std::uint32_t> rank_of(options.edge_sink ? N : 0);
   for (std::size_t r = 0; r < rank_of.size(); ++r) rank_of[pass.caller[r]] = static_cast<std::uint32_t>(r);
-  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-  arena.execute([&] {
-    for (std::size_t block = 0; block < N; block += block_rows) {
-      const std::size_t block_end = std::min(N, block + block_rows);
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, culling.leaf_count(), 1),
-                        [&](const tbb::blocked_range<std::size_t>& range) {
-                          ThreadState& ts = states.local();
-                          for (std::size_t leaf = range.begin(); leaf != range.end(); ++leaf)
-                            run_leaf_rows(pass, culling, leaf, block, block_end, ts,
-                                          options.edge_sink ? &row_edges : nullptr, rank_of, progress);
-                        });
-      if (options.edge_sink) {
-        std::vector<Edge> out;
-        for (std::size_t i = block; i < block_end; ++i)
-          out.insert(out.end(), row_edges[i - block].begin(), row_edges[i - block].end());
-        options.edge_sink(out);
-      }
-    }
+  run_row_blocks(options, N, N, [&](std::size_t block, std::size_t block_end, RowEdges* row_edges) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, culling->leaf_count(), 1),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        ThreadState& ts = states.local();
+                        for (std::size_t leaf = range.begin(); leaf != range.end(); ++leaf)
+                          run_leaf_rows(pass, *culling, leaf, block, block_end, ts, row_edges, rank_of, progress);
+                      });
   });
+  progress.finish();
 }
 
 // Exact reduction of the per-thread integer accumulators into `result`, in
@@ -456,32 +475,28 @@ void collect_results(const tbb::enumerable_thread_specific<ThreadState>& states,
   result.pruned = std::move(pruned);
 }
 
-VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const Points& partners, bool symmetric,
-                          const VisibilityOptions& requested) {
-  check_pass_input(given_sources, partners, symmetric, requested);
-  const auto start_time = std::chrono::steady_clock::now();
-  // Pruning pays only when the radius leaves out most pairs: a pruned pass
-  // casts every pair within it, the exact pass culls.  When more than
-  // kPruneWorthFraction of the pairs lie within the radius along x, run
-  // exact instead: nothing is pruned and every column is exact.
-  VisibilityOptions options = requested;
-  std::string pruning_note;
+// Pruning pays only when the radius leaves out most pairs (pruning_pays in
+// node_points.hpp).  When it does not, the pass runs exact instead
+// (options.prune_below set to 0): nothing is pruned and every column is
+// exact.  Returns the note that says so, else "".
+std::string drop_pruning_unless_worth_it(VisibilityOptions& options, const Points& sources, const Points& partners,
+                                         bool symmetric) {
   const Plan asked = plan_pass(options, symmetric);
-  if (asked.pruning && !options.always_prune) {
-    const double total = symmetric ? 0.5 * given_sources.size() * (given_sources.size() - 1.0)
-                                   : static_cast<double>(given_sources.size()) * partners.size();
-    const double within = pairs_within_x(given_sources, partners, symmetric, asked.prune_radius);
-    if (within > kPruneWorthFraction * total) {
-      options.prune_below = 0;
-      pruning_note = "nothing pruned: " + std::to_string(static_cast<int>(100 * within / total + 0.5)) +
-                     "% of the pairs lie within the pruning radius " + std::to_string(asked.prune_radius) +
-                     " m, more than the " + std::to_string(static_cast<int>(100 * kPruneWorthFraction)) +
-                     "% for which pruning is faster than the exact pass; every column is exact";
-    }
-  }
-  const Plan plan = plan_pass(options, symmetric);
-  const std::size_t N = given_sources.size(), M = symmetric ? N : partners.size();
-  const int K = static_cast<int>(options.sigmas.size());
+  if (!asked.pruning || options.always_prune) return "";
+  const double total = symmetric ? 0.5 * sources.size() * (sources.size() - 1.0)
+                                 : static_cast<double>(sources.size()) * partners.size();
+  const double within = pairs_within_x(sources, partners, symmetric, asked.prune_radius);
+  if (detail::pruning_pays(within, total)) return "";
+  options.prune_below = 0;
+  return "nothing pruned: " + std::to_string(static_cast<int>(100 * within / total + 0.5)) +
+         "% of the pairs lie within the pruning radius " + std::to_string(asked.prune_radius) + " m, more than the " +
+         std::to_string(static_cast<int>(100 * kPruneWorthFraction)) +
+         "% for which pruning is faster than the exact pass; every column is exact";
+}
+
+// A result before the pass: its size and the pruning as applied.
+VisibilityResult new_result(const VisibilityOptions& options, const Plan& plan, std::size_t N, std::size_t M,
+                            bool symmetric, const std::string& pruning_note) {
   VisibilityResult result;
   result.nodes = N;
   result.prune_below = options.prune_below;
@@ -489,65 +504,73 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
   result.pruning_note = pruning_note;
   result.degree_exact = !plan.pruning;
   result.pairs_total = symmetric ? static_cast<std::uint64_t>(N) * (N - 1) / 2 : static_cast<std::uint64_t>(N) * M;
+  return result;
+}
 
-  std::vector<std::uint32_t> order;
-  Points sorted;
-  if (plan.x_order) sorted = sorted_by_x(given_sources, order);
-  const Points& sources = plan.x_order ? sorted : given_sources;
-
+// `sources` are the rows (x-sorted for all-to-all, `order` mapping them to
+// the caller's indices); all-to-all rows are their own partners.
+Pass make_pass(const Scene& scene, const Points& sources, const Points& partners, bool symmetric,
+               const VisibilityOptions& options, const std::vector<std::uint32_t>& order) {
   Pass pass;
   pass.rtc = detail::SceneAccess::embree(scene);
   pass.sources = &sources;
   pass.partners = symmetric ? &sources : &partners;
   pass.symmetric = symmetric;
-  pass.N = N;
-  pass.K = K;
+  pass.N = sources.size();
+  pass.K = static_cast<int>(options.sigmas.size());
   for (double s : options.sigmas) pass.neg_sigma.push_back(-s);
   pass.max_distance = options.max_distance;
   pass.keep_max = options.distance_stats;
   pass.caller = order.empty() ? nullptr : order.data();
   pass.share = &options.share;
+  return pass;
+}
+
+ThreadState new_thread_state(const Pass& pass, const Plan& plan) {
+  ThreadState ts;
+  ts.acc.assign(pass.N * plan.slots, 0);
+  if (pass.keep_max) ts.max_distance.assign(pass.N, 0.0);
+  ts.c_fixed.assign(static_cast<std::size_t>(std::max(pass.K, 1)) * kLanes, 0);
+  ts.row.assign((2 + static_cast<std::size_t>(pass.K)) * kLanes, 0);
+  return ts;
+}
+
+// What a pruned pass dropped, for a result whose degrees it withheld.
+std::string pruned_note(const VisibilityResult& result, const Plan& plan, const VisibilityOptions& options) {
+  std::uint64_t dropped = 0, nodes_with_drops = 0;
+  for (std::uint32_t p : result.pruned) dropped += p, nodes_with_drops += p > 0;
+  return "pruned " + std::to_string(dropped) + " partner slots (pairs farther than " +
+         std::to_string(plan.prune_radius) + " m, each contributing < " + std::to_string(options.prune_below) +
+         " to every S_S) at " + std::to_string(nodes_with_drops) +
+         " nodes; degree, averages and distances need every pair and are left out";
+}
+
+VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const Points& partners, bool symmetric,
+                          const VisibilityOptions& requested) {
+  check_pass_input(given_sources, partners, symmetric, requested);
+  const auto start_time = std::chrono::steady_clock::now();
+  VisibilityOptions options = requested;
+  const std::string pruning_note = drop_pruning_unless_worth_it(options, given_sources, partners, symmetric);
+  const Plan plan = plan_pass(options, symmetric);
+  const std::size_t N = given_sources.size(), M = symmetric ? N : partners.size();
+  VisibilityResult result = new_result(options, plan, N, M, symmetric, pruning_note);
+
+  std::vector<std::uint32_t> order;
+  Points sorted;
+  if (plan.x_order) sorted = sorted_by_x(given_sources, order);
+  const Points& sources = plan.x_order ? sorted : given_sources;
+  const Pass pass = make_pass(scene, sources, partners, symmetric, options, order);
 
   std::unique_ptr<KdTree> tree;
   if (plan.use_tree) tree = std::make_unique<KdTree>(3, *pass.partners, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  tbb::enumerable_thread_specific<ThreadState> states([&] {
-    ThreadState ts;
-    ts.acc.assign(N * plan.slots, 0);
-    if (pass.keep_max) ts.max_distance.assign(N, 0.0);
-    ts.c_fixed.assign(static_cast<std::size_t>(std::max(K, 1)) * kLanes, 0);
-    ts.row.assign((2 + static_cast<std::size_t>(K)) * kLanes, 0);
-    return ts;
-  });
+  tbb::enumerable_thread_specific<ThreadState> states([&] { return new_thread_state(pass, plan); });
   std::vector<std::uint32_t> pruned(N, 0);
-  if (symmetric && !plan.slab) {
-    // All-to-all without a candidate radius: rows against leaf clusters, with
-    // or without culling (the same packets either way: pair_culling.hpp).
-    Progress progress(options.progress, options.on_progress, result.pairs_total, "vg", options.pairs_done,
-                      options.cancel);
-    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-    std::unique_ptr<detail::PairCulling> culling;
-    arena.execute([&] {
-      culling = std::make_unique<detail::PairCulling>(pass.rtc, scene.triangle_count(), sources.x, sources.y,
-                                                      sources.z, options.culling, &progress, options.share.index,
-                                                      options.share.count);
-    });
-    result.pairs_culled_visible = culling->pairs_visible();
-    result.pairs_culled_blocked = culling->pairs_blocked();
-    result.culling_seconds = culling->seconds();
-    run_rows_culled(pass, *culling, options, states, progress);
-    progress.finish();
-  } else {
+  if (symmetric && !plan.slab)
+    run_rows_culled(scene, pass, options, states, result);
+  else
     run_rows(pass, plan, tree.get(), options, states, pruned, result.pairs_total);
-  }
   collect_results(states, plan, pass, order, std::move(pruned), result);
-  if (plan.pruning && result.degree.empty()) {
-    std::uint64_t dropped = 0, nodes_with_drops = 0;
-    for (std::uint32_t p : result.pruned) dropped += p, nodes_with_drops += p > 0;
-    result.pruning_note = "pruned " + std::to_string(dropped) + " partner slots (pairs farther than " +
-                          std::to_string(plan.prune_radius) + " m, each contributing < " +
-                          std::to_string(options.prune_below) + " to every S_S) at " + std::to_string(nodes_with_drops) +
-                          " nodes; degree, averages and distances need every pair and are left out";
-  }
+  if (plan.pruning && result.degree.empty()) result.pruning_note = pruned_note(result, plan, options);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;
 }

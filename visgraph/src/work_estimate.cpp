@@ -1,6 +1,8 @@
 // Work and memory of a visibility pass before it runs (work_estimate.hpp).
 #include <attenuvis/visgraph/work_estimate.hpp>
 
+#include "node_points.hpp"
+
 #include <tbb/info.h>
 
 #include <algorithm>
@@ -17,8 +19,6 @@ namespace {
 double candidate_radius(const VisibilityOptions& o) {
   return std::min(pruning_radius(o.prune_below, o.sigmas), o.max_distance);
 }
-
-double o_max_distance(const VisibilityOptions& o) { return o.max_distance; }
 
 std::vector<double> sorted_x(const std::vector<Eigen::Vector3d>& p) {
   std::vector<double> x;
@@ -47,22 +47,13 @@ WorkEstimate estimate_work(const std::vector<Eigen::Vector3d>& sources, const st
   const std::vector<double> s = sorted_x(sources);
   const std::vector<double> t = targets ? sorted_x(*targets) : std::vector<double>();
   const auto slab_pairs = [&](double radius) {
-    if (!std::isfinite(radius)) return all;
-    const std::vector<double>& partners = targets ? t : s;
-    double pairs = 0;
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      const auto hi = std::upper_bound(partners.begin(), partners.end(), s[i] + radius);
-      const auto lo = targets ? std::lower_bound(partners.begin(), partners.end(), s[i] - radius)
-                              : partners.begin() + static_cast<std::ptrdiff_t>(i + 1);
-      if (hi > lo) pairs += static_cast<double>(hi - lo);
-    }
-    return pairs;
+    return std::isfinite(radius) ? detail::pairs_within_sorted_x(s, targets ? &t : nullptr, radius) : all;
   };
   e.pairs = slab_pairs(e.radius);
-  // The pass runs exact instead of pruning when more than a tenth of the
-  // pairs lie within the pruning radius (visibility.hpp): count its pairs.
-  const bool pruning = e.radius < o_max_distance(options);
-  if (pruning && !options.always_prune && e.pairs > 0.1 * all) {
+  // The pass runs exact instead of pruning where pruning does not pay
+  // (visibility.hpp): count its pairs.
+  const bool pruning = e.radius < options.max_distance;
+  if (pruning && !options.always_prune && !detail::pruning_pays(e.pairs, all)) {
     e.radius = options.max_distance;
     e.pairs = slab_pairs(e.radius);
   }

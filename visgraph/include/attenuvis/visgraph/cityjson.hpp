@@ -6,7 +6,7 @@
 // Geometry types: MultiSurface, CompositeSurface, Solid, MultiSolid,
 // CompositeSolid and GeometryInstance (templates placed by their reference
 // point and 4x4 transformation).  Every surface is triangulated as a polygon
-// with holes (polygon.hpp); surfaces of zero area are counted and skipped.
+// with holes (detail/polygon.hpp); surfaces of zero area are counted and skipped.
 // Coordinates: vertices x scale + translate (the file's `transform`), metres.
 #pragma once
 

@@ -5,8 +5,8 @@
 //  - |coordinate| <= 1e7 m holds every projected CRS in use (UTM northings
 //    reach 1e7 m, Web Mercator 2e7 m only at its edge: shift such data) and
 //    bounds every distance by sqrt(3) * 2e7 m < 3.5e7 m, which keeps the
-//    fixed-point sums of visibility.cpp far from 2^63 (see max_partners_
-//    without_overflow) and Embree's rays finite.
+//    fixed-point sums of the visibility pass far from 2^63 (see
+//    check_fixed_point_range in src/pass_input.cpp) and Embree's rays finite.
 //  - spacing in [1e-3, 1e4] m, eye height in [0, 1e3] m: a millimetre grid or a
 //    kilometre eye is already beyond any street-level analysis; outside them
 //    the grid arithmetic (cells = extent / spacing) and Embree's ray bounds

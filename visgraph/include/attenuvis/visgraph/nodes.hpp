@@ -85,7 +85,9 @@ struct NodeSet {
 };
 
 // Throws std::invalid_argument for a spacing, eye height or slope outside
-// the ranges of limits.hpp, a grid of more than max_cells cells, or a walkable name that is neither a group nor a class of the scene.
+// the ranges of limits.hpp, a grid of more than max_cells cells or of more
+// memory than the machine has, or a walkable name that is neither a group
+// nor a class of the scene.
 NodeSet generate_nodes(const Scene& scene, const NodeGridOptions& options);
 
 // True when the grid stood on the scene's own ground.  In a scene with classes:

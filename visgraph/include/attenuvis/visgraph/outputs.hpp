@@ -9,7 +9,6 @@
 
 #include <Eigen/Core>
 
-#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -92,10 +91,5 @@ struct RunInfo {
 // bound, time, pairs/s.  A few kB whatever the scene: lists of groups are
 // cut to their first entries.
 std::string summary_json(const ScoreTable& table, const RunInfo& info);
-
-// Writes through `fill` into a temporary file beside `path`, renamed into
-// place on success; removed (and the error rethrown) on failure
-// (attenuvis::io::write_file_atomically, kept here for the CLI's edge list).
-void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& fill);
 
 }  // namespace attenuvis::visgraph

@@ -28,15 +28,10 @@ struct SceneFile {
   std::vector<std::string> warnings;  // e.g. the up axis looks wrong, faces skipped
 };
 
+// An OBJ file read with obj_up_axis y is turned z-up, (x, y, z) -> (x, -z,
+// y); either way `warnings` says when its extents look like the other
+// convention's (a vertical extent that is not its smallest and a horizontal
+// axis less than half as long, as a city exported y-up and read z-up).
 SceneFile load_scene_file(const std::string& path, const SceneFileOptions& options = {});
-
-// (x, y, z) -> (x, -z, y): a y-up model turned z-up (right-handed both).
-void turn_y_up_to_z_up(Mesh& mesh);
-
-// A warning when the mesh (already in attenuvis's z-up frame) looks like a
-// model of the other convention read as it was: its vertical extent is not
-// its smallest one and a horizontal axis is less than half as long, as a city
-// exported y-up and read z-up would be.  Empty when the frame looks right.
-std::string up_axis_warning(const Mesh& mesh, const std::string& how_to_fix);
 
 }  // namespace attenuvis::visgraph

@@ -185,11 +185,4 @@ VisibilityResult all_to_all(const Scene& scene, const std::vector<Eigen::Vector3
 VisibilityResult to_targets(const Scene& scene, const std::vector<Eigen::Vector3d>& sources,
                             const std::vector<Eigen::Vector3d>& targets, const VisibilityOptions& options);
 
-// The ceiling for benchmarks: the same unordered pairs as all_to_all, cast as
-// the same rays (same end, same epsilon policy), occlusion only, no scoring.
-// Returns visible pairs.
-enum class RawMethod { single_rays, packets16 };
-std::uint64_t raw_visible_pairs(const Scene& scene, const std::vector<Eigen::Vector3d>& eyes, int threads,
-                                RawMethod method);
-
 }  // namespace attenuvis::visgraph

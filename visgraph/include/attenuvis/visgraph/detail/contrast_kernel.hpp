@@ -1,6 +1,6 @@
 // Vectorised contrast-ratio kernel: C = exp(-sigma d) for 16 lanes and K
-// extinction coefficients, returned in 64-bit fixed point.  Internal to the
-// visgraph library.
+// extinction coefficients, returned in 64-bit fixed point.  Not part of the
+// public interface: the visibility pass's kernel, here for its test.
 #pragma once
 
 #include <cstdint>

@@ -4,7 +4,9 @@
 // turned to attenuvis's z-up frame as (x, y, z) -> (x, -z, y).  Node
 // transforms (matrix or translation/rotation/scale) of the default scene are
 // applied.  One group per node (its name, else its mesh's name, else
-// "node N"); no classes, no CRS.
+// "node N"); no classes, no CRS.  Not part of the public interface: users
+// read glTF through load_scene_file (scene_file.hpp); the tests and the
+// fuzzer call the reader directly.
 #pragma once
 
 #include <attenuvis/visgraph/mesh.hpp>

@@ -1,6 +1,8 @@
 // Triangulation of one planar polygon with holes, as city models store their
 // faces (CityJSON surfaces, glTF/OBJ n-gons): concave outlines, collinear and
 // repeated vertices, holes.  Degenerate input is reported, never fatal.
+// Not part of the public interface: the CityJSON reader's, here for its
+// tests.
 #pragma once
 
 #include <Eigen/Core>
