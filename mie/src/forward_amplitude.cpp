@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "attenuvis/mie/complex_ops.hpp"
-#include "attenuvis/mie/lentz.hpp"
+#include "attenuvis/mie/detail/complex_ops.hpp"
+#include "attenuvis/mie/detail/lentz.hpp"
 
 namespace attenuvis::mie {
 namespace {

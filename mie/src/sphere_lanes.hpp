@@ -2,7 +2,7 @@
 // (private to the mie library; used by spheres.cpp).
 //
 // Every lane performs exactly the operations, in the same order, of the
-// double-precision series of attenuvis/mie/series.hpp (Work = Real = double,
+// double-precision series of series.hpp (Work = Real = double,
 // Dₙ(mx) downward) for its own sphere: the same Lentz start at its own table
 // length, the same downward, Hankel-ratio and product recurrences, the same
 // term formulas (term_block.hpp), the same compensated sums and convergence

@@ -1,6 +1,6 @@
 // The double instances of the per-block Mie term loops (see
-// attenuvis/mie/term_block.hpp), one clone per instruction set.
-#include "attenuvis/mie/term_block.hpp"
+// term_block.hpp), one clone per instruction set.
+#include "term_block.hpp"
 #include "instruction_set_clones.hpp"
 
 #include <algorithm>

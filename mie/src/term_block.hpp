@@ -20,7 +20,7 @@
 #include <cstddef>
 
 #include "attenuvis/mie.hpp"
-#include "attenuvis/mie/log_derivative.hpp"
+#include "attenuvis/mie/detail/log_derivative.hpp"
 
 namespace attenuvis::mie::detail {
 

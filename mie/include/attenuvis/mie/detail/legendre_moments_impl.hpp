@@ -46,7 +46,7 @@
 #include <vector>
 
 #include "attenuvis/mie.hpp"
-#include "attenuvis/mie/gauss_legendre.hpp"
+#include "attenuvis/mie/detail/gauss_legendre.hpp"
 #include "attenuvis/mie/legendre_moments.hpp"
 
 namespace attenuvis::mie::detail {
@@ -427,4 +427,4 @@ std::vector<Real> legendre_moments(const std::vector<Complex<Real>>& a, const st
 
 }  // namespace attenuvis::mie::detail
 
-#include "attenuvis/mie/gsf_coefficients_impl.hpp"
+#include "attenuvis/mie/detail/gsf_coefficients_impl.hpp"

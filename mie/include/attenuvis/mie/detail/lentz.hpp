@@ -22,7 +22,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "attenuvis/mie/complex_ops.hpp"
+#include "attenuvis/mie/detail/complex_ops.hpp"
 
 namespace attenuvis::mie::detail {
 

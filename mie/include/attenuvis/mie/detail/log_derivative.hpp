@@ -34,9 +34,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "attenuvis/mie/complex_ops.hpp"
-#include "attenuvis/mie/lentz.hpp"
-#include "attenuvis/mie/scratch.hpp"
+#include "attenuvis/mie.hpp"
+#include "attenuvis/mie/detail/complex_ops.hpp"
+#include "attenuvis/mie/detail/lentz.hpp"
+#include "attenuvis/mie/detail/scratch.hpp"
 
 namespace attenuvis::mie::detail {
 
@@ -166,8 +167,8 @@ struct HankelRatio {
 
 // Downward pass from index N: fills y[n] = yₙ(x) for n = 0..N, rho[n] = ρₙ
 // for n = 1..N and, according to `slot`, w[n] = δₙ or yₙ(mx).
-// W is the stored complex type: it may be narrower than C (see SlotStore in
-// series.hpp), since each wₙ is used once and not fed into a product.
+// W is the stored complex type: it may be narrower than C (see SlotStore
+// below), since each wₙ is used once and not fed into a product.
 //
 // In Slot::difference mode, entry n holds δₙ only where yₙ(mx) = yₙ(x) + δₙ
 // does not cancel (|yₙ(mx)| >= |yₙ(x)|/8); near a pole of yₙ(x) (ψₙ(x) ≈ 0)
@@ -251,6 +252,43 @@ void downward_ratios(const ScaledInverse<Real>& over_x_in, const ScaledInverseCo
     step_down(n, slot == Slot::difference);
   }
 }
+
+// Storage of the per-term complex slot of the downward pass (w below): a
+// trivial pair of doubles for the double product, also where its recurrences
+// run in long double (use_extended(), mie/src/sphere_checks.hpp) — 16 instead
+// of 32 bytes per term, and each entry is used once.
+template <class Real>
+struct SlotStore {
+  using type = Complex<Real>;
+};
+template <>
+struct SlotStore<long double> {
+  using type = StoredComplex<double>;
+};
+template <>
+struct SlotStore<double> {
+  using type = StoredComplex<double>;
+};
+
+// The tables downward_ratios fills, per thread and reused between calls
+// (sum_series, mie/src/series.hpp): a fresh ~33·N-byte allocation per call
+// costs more in page faults than the series itself for x ≳ 1e4.  Tables above
+// 8 MB (x ≳ 2.5e5) are given back after each call so a single x = 1e6 call
+// does not pin 33 MB per thread (see scratch.hpp).
+template <class Work>
+struct DownwardTables {
+  Scratch<Work> y;
+  Scratch<StoredComplex<Work>> rho;
+  Scratch<typename SlotStore<Work>::type> w;
+  Scratch<unsigned char> is_value;
+  void release_large() {
+    constexpr std::size_t kKeep = std::size_t(8) << 20;
+    if (y.capacity_bytes() > kKeep) y.release();
+    if (rho.capacity_bytes() > kKeep) rho.release();
+    if (is_value.capacity_bytes() > kKeep) is_value.release();
+    if (w.capacity_bytes() > kKeep) w.release();
+  }
+};
 
 // cot z for Im z >= 0 without overflow: cot z = i(E+1)/(E−1), E = e^{2iz},
 // |E| = e^{−2 Im z} <= 1.

@@ -84,11 +84,11 @@
 #include <vector>
 
 #include "attenuvis/mie.hpp"
-#include "attenuvis/mie/angular_sums.hpp"
-#include "attenuvis/mie/log_derivative.hpp"
-#include "attenuvis/mie/scratch.hpp"
-#include "attenuvis/mie/term_count.hpp"
-#include "attenuvis/mie/term_block.hpp"
+#include "attenuvis/mie/detail/log_derivative.hpp"
+#include "attenuvis/mie/detail/scratch.hpp"
+#include "attenuvis/mie/detail/term_count.hpp"
+#include "angular_sums.hpp"
+#include "term_block.hpp"
 
 namespace attenuvis::mie::detail {
 
@@ -102,22 +102,6 @@ struct KahanSum {
     sum = t;
   }
   Real value() const { return sum - carry; }
-};
-
-// Storage of the per-term complex slot of the downward pass.  The double
-// product runs in long double (see sphere_double.cpp) but keeps this array in
-// double: 16 instead of 32 bytes per term, and each entry is used once.
-template <class Real>
-struct SlotStore {
-  using type = Complex<Real>;
-};
-template <>
-struct SlotStore<long double> {
-  using type = StoredComplex<double>;
-};
-template <>
-struct SlotStore<double> {
-  using type = StoredComplex<double>;
 };
 
 enum class DMethod { downward, upward };
@@ -145,26 +129,6 @@ DMethod choose_method(double x, std::complex<double> m, std::size_t N) {
   if (k <= 0.5 * n + 1000.0) return DMethod::downward;
   return E <= 3.0 ? DMethod::upward : DMethod::downward;
 }
-
-// Per-thread tables of the downward pass, reused between calls: a fresh
-// ~33·N-byte allocation per call costs more in page faults than the series
-// itself for x ≳ 1e4.  Tables above 8 MB (x ≳ 2.5e5) are given back after
-// each call so a single x = 1e6 call does not pin 33 MB per thread (see
-// scratch.hpp).
-template <class Work>
-struct DownwardTables {
-  Scratch<Work> y;
-  Scratch<StoredComplex<Work>> rho;
-  Scratch<typename SlotStore<Work>::type> w;
-  Scratch<unsigned char> is_value;
-  void release_large() {
-    constexpr std::size_t kKeep = std::size_t(8) << 20;
-    if (y.capacity_bytes() > kKeep) y.release();
-    if (rho.capacity_bytes() > kKeep) rho.release();
-    if (is_value.capacity_bytes() > kKeep) is_value.release();
-    if (w.capacity_bytes() > kKeep) w.release();
-  }
-};
 
 // The per-block term loops: the run-time dispatched clones for double
 // (term_block_double.cpp), the templates otherwise.
