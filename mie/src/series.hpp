@@ -1,8 +1,10 @@
 // The Mie series for a homogeneous sphere, templated on the floating type.
 //
-// Template implementation detail; included only by mie/src/sphere_double.cpp
-// (Real = double) and mie/src/sphere_referee.cpp (Real = 50-digit), so the
-// code that weather/ and the CLI include stays template-free.
+// Private to the library: instantiated by sphere_double.cpp (Real = double)
+// and sphere_referee.cpp (Real = 50-digit); sphere_lanes.cpp takes its
+// choose_method() and riccati_psi1(), so that the lanes of spheres() decide
+// and start as sphere() does.  What weather/, apps/ and python/ include
+// (attenuvis/mie.hpp and its siblings) stays free of these templates.
 //
 // Method (B&H ch. 4 rewritten in ratios, cf. Wiscombe 1979 NCAR/TN-140+STR §3):
 //   aₙ = Rₙ (Dₙ(mx)/m − Dₙ(x)) / (Dₙ(mx)/m − Gₙ(x))
@@ -23,8 +25,8 @@
 //     even when Qabs ≪ Qsca, where Qext − Qsca would cancel.  1/|ξₙ|² =
 //     Π|ρ_k|² (|ξ₀| = 1) is carried as a product, so it underflows harmlessly
 //     instead of overflowing.
-//   * Dₙ(mx): downward from a Lentz start (log_derivative.hpp, with the Δ
-//     difference for trap m-near-1), or — when the continued fraction would
+//   * Dₙ(mx): downward from a Lentz or Miller start (log_derivative.hpp, with
+//     the δ difference for trap m-near-1), or — when the continued fraction would
 //     need far more steps than the series has terms and the upward recurrence
 //     is provably stable — upward from cot(mx); see choose_method().
 //   * Sums are compensated (Kahan) so that 1e6 terms of alternating sign
@@ -32,15 +34,18 @@
 //
 // The Mie traps: numerical pitfalls, each seen in widely used Mie codes, that
 // this core is built to avoid.  Comments and tests refer to them by name
-// ("trap m-near-1"); tests/mie/test_mie_traps.cpp holds one test per trap
-// against the 50-digit referee.
+// ("trap m-near-1"); tests/mie/test_mie_traps.cpp tests truncation,
+// start-value, small-x, sin-zero, m-near-1, psi-zero and large-kx against the
+// 50-digit referee, tests/mie/test_mie_referee.cpp back-cancellation.
 //   truncation          Stopping at Wiscombe's N = x + 4.05 x^{1/3} + 2 leaves
 //                       ~1e-10 in Qext and up to ~1e-5 in Qback; the series is
 //                       summed until the terms stop changing the sums.
 //   start-value         Dₙ(mx) downward from an arbitrary start (0 at
 //                       max(N, |mx|) + 15) is not forgotten for large, weakly
 //                       absorbing spheres; every downward recurrence starts
-//                       from Lentz's continued fraction (lentz.hpp).
+//                       from Lentz's continued fraction (lentz.hpp), or from
+//                       0 only as far above N as miller_depth() proves enough
+//                       (log_derivative.hpp).
 //   upward-instability  Dₙ(mx) upward from cot(mx) amplifies rounding errors by
 //                       ~exp(N² Im z/|z|²) and is unstable for n > |z|; it is
 //                       used only where choose_method() proves it stable.
@@ -402,7 +407,7 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
 // ρₙ, Rₙ, 1/|ξₙ|², upward Dₙ), whose rounding errors accumulate like √N·ε;
 // Real: the type of each term's own arithmetic (aₙ, bₙ, sums), whose errors do
 // not accumulate.  The double product chooses Work per call (see
-// Options::precision in mie.hpp and use_extended() in sphere_double.cpp).
+// Options::precision in mie.hpp and use_extended() in sphere_checks.hpp).
 //
 // The converged rule first fills tables of first_terms(x) entries; in the
 // rare case the series has not converged by then, it is summed again from

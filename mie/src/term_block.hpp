@@ -8,7 +8,7 @@
 //   2. here: every order independently — no value flows from n to n+1 — so
 //      the loops are plain arithmetic on arrays that the compiler vectorises
 //      (two lanes with SSE2; four or eight where the CPU has AVX2 or AVX-512,
-//      chosen at run time in sphere_double.cpp);
+//      chosen at run time: term_block_double.cpp);
 //   3. serial: the compensated sums and the convergence test (series.hpp).
 // The formulas are those of series.hpp's header (B&H 4.88 in ratios), written
 // out in real and imaginary parts, in the same order of operations as the
@@ -189,9 +189,9 @@ ATTENUVIS_MIE_INLINE void sum_terms(const TermInputs<Real>& in, std::size_t coun
 template <class Real>
 struct SeriesSums;
 
-// Pass 3 of series.hpp for double without extras: its seven compensated
-// (Kahan) sums, lane c of `sum`/`carry` the sum c of SeriesSums (ext, sca,
-// abs, back_re, back_im, g_cross, g_self; lane 7 unused).  Two 4-wide vector
+// Pass 3 of series.hpp for double (with or without extras): its seven
+// compensated (Kahan) sums, lane c of `sum`/`carry` the sum c of SeriesSums
+// (ext, sca, abs, back_re, back_im, g_cross, g_self; lane 7 unused).  Two 4-wide vector
 // operations advance all seven — the same IEEE operations per sum as
 // KahanSum::add, so the same bits — where the scalar loop took seven.
 struct VectorSums {

@@ -1,7 +1,9 @@
 // Logarithmic derivatives of Riccati–Bessel functions for the Mie series.
 //
-// Template implementation detail of the Mie core; included only by the
-// translation units that instantiate it (mie/src/sphere_*.cpp).
+// Template detail of the Mie core: the recurrences of the series
+// (mie/src/series.hpp, term_block.hpp), whose split constants the lanes of
+// spheres() copy (sphere_lanes.cpp); tests and benchmarks run its start
+// values and downward pass on their own.
 //
 // Notation (B&H ch. 4): ψₙ(z) = z jₙ(z), Dₙ(z) = ψₙ'(z)/ψₙ(z).  The core
 // carries yₙ(z) = ψ_{n+1}(z)/ψₙ(z), which is small (≈ z/(2n+3)) for small z:
@@ -22,7 +24,9 @@
 // factor Π yₖ(x) (≪ 1 above n ≈ x) damps long before it matters.
 //
 // Trap start-value.  Both recurrences start at the top index N from the
-// exact values given by Lentz's continued fraction (lentz.hpp), never from 0.
+// exact values given by Lentz's continued fraction (lentz.hpp), or from 0 at
+// N + K where miller_depth() proves the start forgotten by N (to ε/16);
+// never from 0 at a guessed index.
 // Trap large-kx.  Only ratios appear; nothing grows like e^{kx}.
 #pragma once
 
