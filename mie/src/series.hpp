@@ -151,48 +151,47 @@ void block_terms(bool pec, const TermConstants<Real>& k, const TermInputs<Real>&
   }
 }
 
-// The compensated sums of the series and what is read from them.
+// The compensated sums of the series, one per SumLane (term_block.hpp), and
+// what is read from them.
 template <class Real>
 struct SeriesSums {
-  KahanSum<Real> ext, sca, abs, back_re, back_im, g_cross, g_self;
+  KahanSum<Real> lane[SumLane::count];
   // Order n's terms (entry i of a block).
   void add(const TermOutputs<Real>& t, std::size_t i, std::size_t n) {
-    ext.add(t.ext[i]);
-    sca.add(t.sca[i]);
-    abs.add(t.abs[i]);
-    back_re.add(t.back_re[i]);
-    back_im.add(t.back_im[i]);
+    lane[SumLane::ext].add(t.ext[i]);
+    lane[SumLane::sca].add(t.sca[i]);
+    lane[SumLane::abs].add(t.abs[i]);
+    lane[SumLane::back_re].add(t.back_re[i]);
+    lane[SumLane::back_im].add(t.back_im[i]);
     // g (B&H 4.74): Σ n(n+2)/(n+1) Re(aₙa*ₙ₊₁ + bₙb*ₙ₊₁) + Σ (2n+1)/(n(n+1)) Re(aₙb*ₙ),
     // with k(k+2)/(k+1) = n − 1/n for k = n − 1 and (2n+1)/(n(n+1)) = 1/n + 1/(n+1).
     // Two sums, so that neither compensated chain waits for the other.
-    if (n >= 2) g_cross.add(t.g_cross[i]);
-    g_self.add(t.g_self[i]);
+    if (n >= 2) lane[SumLane::g_cross].add(t.g_cross[i]);
+    lane[SumLane::g_self].add(t.g_self[i]);
   }
-  // The scale the convergence test compares a term with.
-  Real scale() const {
-    using std::abs;
-    return (std::min)(abs(ext.sum), abs(back_re.sum) + abs(back_im.sum));
+  // Whether order n (entry i of a block, just added) is the last one.
+  bool converged(const TermOutputs<Real>& t, std::size_t i, std::size_t n, double x, const Real& tol) const {
+    return series_converged(n, x, t.size[i], tol, lane[SumLane::ext].sum, lane[SumLane::back_re].sum,
+                            lane[SumLane::back_im].sum);
   }
   void finish(const Real& x, bool pec, std::size_t terms, Efficiencies<Real>& q) const {
     const Real inv_x = Real(1) / x;
     const Real f = Real(2) * inv_x * inv_x;
     q.terms = terms;
-    const Real br = back_re.value(), bi = back_im.value(), ssum = sca.value();
-    q.qext = f * ext.value();
+    const Real br = lane[SumLane::back_re].value(), bi = lane[SumLane::back_im].value();
+    const Real ssum = lane[SumLane::sca].value();
+    q.qext = f * lane[SumLane::ext].value();
     q.qsca = f * ssum;
-    q.qabs = pec ? Real(0) : f * abs.value();
+    q.qabs = pec ? Real(0) : f * lane[SumLane::abs].value();
     q.qback = (br * br + bi * bi) * inv_x * inv_x;
-    q.g = ssum > 0 ? Real(2) * (g_cross.value() + g_self.value()) / ssum : Real(0);
+    q.g = ssum > 0 ? Real(2) * (lane[SumLane::g_cross].value() + lane[SumLane::g_self].value()) / ssum : Real(0);
     q.qpr = q.qext - q.g * q.qsca;
   }
 };
 
-// The state of SeriesSums<double>'s seven compensated sums as two vectors
-// (lane c: ext, sca, abs, back_re, back_im, g_cross, g_self, unused) for
-// sum_block_double (term_block.hpp); converted back for finish().
+// SeriesSums<double> from the vector form of sum_block_double, lane by lane.
 inline void VectorSums::to(SeriesSums<double>& s) const {
-  KahanSum<double>* k[7] = {&s.ext, &s.sca, &s.abs, &s.back_re, &s.back_im, &s.g_cross, &s.g_self};
-  for (int c = 0; c < 7; ++c) k[c]->sum = sum[c], k[c]->carry = carry[c];
+  for (int c = 0; c < SumLane::count; ++c) s.lane[c].sum = sum[c], s.lane[c].carry = carry[c];
 }
 
 // ψ₁(x) = ψ₀ y₀ from y₀ = ψ₁/ψ₀ of the downward pass, without the small-x
@@ -377,7 +376,7 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
       for (std::size_t i = 0; i < count; ++i) {
         const std::size_t n = first + i;
         sums.add(terms, i, n);
-        if (converged_rule && static_cast<double>(n) > xd && terms.size[i] <= tol * sums.scale()) {
+        if (converged_rule && sums.converged(terms, i, n, xd, tol)) {
           converged = stopped = true;
           n_last = n;
           used = i + 1;
