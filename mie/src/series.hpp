@@ -282,6 +282,89 @@ void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bo
     block_inputs_for<Real, Work, false, Slot::none>(first, count, tables, over_mxw, upward, R_w, s_w, in);
 }
 
+// The downward pass over the tables of N + 1 entries (log_derivative.hpp),
+// from Lentz's start or, where miller_depth() allows it (Work = double, a
+// complex slot), the cheaper Miller start.
+template <class Real, class Work>
+void fill_downward_tables(const Real& x, const Complex<Real>& m, std::size_t N, Slot slot,
+                          const ScaledInverse<Work>& over_xw, const ScaledInverseComplex<Work, Complex<Work>>& over_mxw,
+                          const Complex<Work>& mw, DownwardTables<Work>& tables) {
+  std::size_t miller = 0;
+  if constexpr (std::is_same_v<Work, double>) {
+    if (slot != Slot::none)
+      miller = miller_depth(static_cast<double>(x), std::complex<double>(m.real(), m.imag()), N);
+  }
+  downward_ratios<Work, Complex<Work>>(over_xw, over_mxw, mw, N, slot, tables.y, tables.rho, tables.w,
+                                       tables.is_value, miller);
+}
+
+// The constants of the term formulas; k/x and k/(mx) are those of the
+// recurrences when Real is Work.
+template <class Real, class Work>
+TermConstants<Real> term_constants(const Real& x, const Complex<Real>& m, const ScaledInverse<Work>& over_xw,
+                                   const ScaledInverseComplex<Work, Complex<Work>>& over_mxw) {
+  using C = Complex<Real>;
+  const C m_minus_1 = m - C(Real(1));
+  const C m2_minus_1_over_m = m_minus_1 * (m + C(Real(1))) * recip(m);  // (m²−1)/m, trap m-near-1
+  const C m2_minus_1 = m_minus_1 * (m + C(Real(1)));
+  return {m.real(), m.imag(), m_minus_1.real(), m_minus_1.imag(), m2_minus_1_over_m.real(), m2_minus_1_over_m.imag(),
+          m2_minus_1.real(), m2_minus_1.imag(),
+          [&] {
+            if constexpr (std::is_same_v<Real, Work>) return over_xw;
+            else return ScaledInverse<Real>(x);
+          }(),
+          [&] {
+            if constexpr (std::is_same_v<Real, Work>) return over_mxw;
+            else return ScaledInverseComplex<Real, C>(x, m);
+          }()};
+}
+
+// The relative size of the last term kept (the converged rule), once per type.
+template <class Real>
+Real series_tolerance() {
+  static const double tol = std::exp(-tail_log_tolerance<Real>());
+  return Real(tol);
+}
+
+// What pass 3 did with a block: how many of its orders it summed, and whether
+// the last of them ended the series (the converged rule).
+struct BlockSum {
+  std::size_t used;
+  bool stopped;
+};
+
+// Pass 3 of a block (serial): the compensated sums and the convergence test.
+// In double the seven sums advance together, two 4-wide vector operations per
+// order (sum_block_double, the same operations per sum as SeriesSums::add).
+template <class Real>
+BlockSum sum_block(const TermOutputs<Real>& terms, std::size_t first, std::size_t count, double x,
+                   const Real& tol, bool converged_rule, SeriesSums<Real>& sums, VectorSums& vector_sums) {
+  if constexpr (std::is_same_v<Real, double>) {
+    const std::size_t used = sum_block_double(terms, first, count, x, tol, converged_rule, vector_sums);
+    return {used, vector_sums.converged};
+  } else {
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t n = first + i;
+      sums.add(terms, i, n);
+      if (converged_rule && sums.converged(terms, i, n, x, tol)) return {i + 1, true};
+    }
+    return {count, false};
+  }
+}
+
+// The extras of the orders first .. first + used − 1 that were summed.
+template <class Real>
+void add_extras(const Extras& extras, std::size_t first, std::size_t used, const TermOutputs<Real>& terms,
+                std::optional<AngularSums<Real>>& angular, Scattering<Real>& out) {
+  if (extras.coefficients) {
+    for (std::size_t i = 0; i < used; ++i) {
+      out.a.emplace_back(terms.a_re[i], terms.a_im[i]);
+      out.b.emplace_back(terms.b_re[i], terms.b_im[i]);
+    }
+  }
+  if (angular) angular->add_block(first, used, terms);
+}
+
 // One summation of the series from tables of N + 1 entries into `out`.
 // Returns false if the converged rule asked for more than N terms.
 // Blocks of kTermBlock orders go through the three passes of term_block.hpp.
@@ -304,39 +387,20 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   } release_large_tables{tables};
   const ScaledInverse<Work> over_xw(xw);
   const ScaledInverseComplex<Work, CW> over_mxw(xw, mw);
-  std::size_t miller = 0;  // Lentz start unless miller_depth() allows the cheaper one (double only)
-  if constexpr (std::is_same_v<Work, double>) {
-    if (slot != Slot::none) miller = miller_depth(xd, std::complex<double>(m.real(), m.imag()), N);
-  }
-  downward_ratios<Work, CW>(over_xw, over_mxw, mw, N, slot, tables.y, tables.rho, tables.w, tables.is_value,
-                            miller);
+  fill_downward_tables<Real, Work>(x, m, N, slot, over_xw, over_mxw, mw, tables);
   UpwardLogDerivative<Work, CW> upward(xw, mw, over_mxw, method == DMethod::upward);
 
   out = Scattering<Real>{};
+  // Two tests of any_angle, not one block: with the copy and the emplace
+  // together GCC cleared the optional's 184 bytes on every call (1.5% at x = 1).
   const bool any_angle = !extras.angles_deg.empty();
   if (any_angle) out.angles_deg = extras.angles_deg;  // the copy of an empty vector was ~1% of a call at x = 0.1
   std::optional<AngularSums<Real>> angular;
   if (any_angle) angular.emplace(extras.angles_deg, out);
-
-  // Constants of the term formulas; k/x and k/(mx) already built above when Real is Work.
-  const C m_minus_1 = m - C(Real(1));
-  const C m2_minus_1_over_m = m_minus_1 * (m + C(Real(1))) * recip(m);  // (m²−1)/m, trap m-near-1
-  const C m2_minus_1 = m_minus_1 * (m + C(Real(1)));
-  const TermConstants<Real> constants{
-      m.real(), m.imag(), m_minus_1.real(), m_minus_1.imag(), m2_minus_1_over_m.real(), m2_minus_1_over_m.imag(),
-      m2_minus_1.real(), m2_minus_1.imag(),
-      [&] {
-        if constexpr (std::is_same_v<Real, Work>) return over_xw;
-        else return ScaledInverse<Real>(x);
-      }(),
-      [&] {
-        if constexpr (std::is_same_v<Real, Work>) return over_mxw;
-        else return ScaledInverseComplex<Real, C>(x, m);
-      }()};
-  static const double tol_d = std::exp(-tail_log_tolerance<Real>());
-  const Real tol(tol_d);
+  const TermConstants<Real> constants = term_constants<Real, Work>(x, m, over_xw, over_mxw);
+  const Real tol = series_tolerance<Real>();
   SeriesSums<Real> sums;
-  VectorSums vector_sums;  // double (pass 3 below)
+  VectorSums vector_sums;  // double (pass 3)
   const Work sx = sin(xw), cx = cos(xw);
   const Work psi1 = riccati_psi1(sx, cx, tables.y[0], over_xw(Work(1)));
   CW R_w(sx * psi1, cx * psi1);  // ψ₁/ξ₀ (1/ξ₀ = sin x + i cos x); R₁ = ρ₁ ψ₁/ξ₀
@@ -362,36 +426,13 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
     const std::size_t padded = std::min(kTermBlock, (count + 3) / 4 * 4);
     for (std::size_t i = count; i < padded; ++i) in.copy_entry(count - 1, i);
     block_terms<Real>(pec, constants, in, padded, a_prev, b_prev, terms);
-    // Pass 3 (serial): compensated sums, convergence, extras.  In double the
-    // seven sums advance together, two 4-wide vector operations per order
-    // (sum_block_double, the same operations per sum as SeriesSums::add).
-    std::size_t used = count;
-    if constexpr (std::is_same_v<Real, double>) {
-      used = sum_block_double(terms, first, count, xd, tol, converged_rule, vector_sums);
-      if (vector_sums.converged) {  // stopped at order first + used − 1
-        converged = stopped = true;
-        n_last = first + used - 1;
-      }
-    } else {
-      for (std::size_t i = 0; i < count; ++i) {
-        const std::size_t n = first + i;
-        sums.add(terms, i, n);
-        if (converged_rule && sums.converged(terms, i, n, xd, tol)) {
-          converged = stopped = true;
-          n_last = n;
-          used = i + 1;
-          break;
-        }
-      }
+    // Pass 3 (serial).
+    const BlockSum summed = sum_block<Real>(terms, first, count, xd, tol, converged_rule, sums, vector_sums);
+    if (summed.stopped) {  // at order first + used − 1
+      converged = stopped = true;
+      n_last = first + summed.used - 1;
     }
-    // The extras of the orders summed.
-    if (extras.coefficients) {
-      for (std::size_t i = 0; i < used; ++i) {
-        out.a.emplace_back(terms.a_re[i], terms.a_im[i]);
-        out.b.emplace_back(terms.b_re[i], terms.b_im[i]);
-      }
-    }
-    if (any_angle) angular->add_block(first, used, terms);
+    add_extras(extras, first, summed.used, terms, angular, out);
     a_prev = C(terms.a_re[count - 1], terms.a_im[count - 1]);
     b_prev = C(terms.b_re[count - 1], terms.b_im[count - 1]);
   }
