@@ -1,7 +1,7 @@
-// The double amplitude sums of attenuvis/mie/angular_sums.hpp, one clone per
+// The double amplitude sums of angular_sums.hpp, one clone per
 // instruction set: the loop over the angles carries no value from one angle
 // to the next and is vectorised.
-#include "attenuvis/mie/angular_sums.hpp"
+#include "angular_sums.hpp"
 #include "instruction_set_clones.hpp"
 
 namespace attenuvis::mie::detail {

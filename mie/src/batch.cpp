@@ -205,6 +205,107 @@ void append_row(std::string& out, const Problem& p, const Efficiencies<double>& 
   out.append(buf, at);
 }
 
+// Good lines are collected in chunks and evaluated together by spheres()
+// (several spheres per vector instruction, threads over cores); rows are
+// written in input order.  Messages for lines the core rejects (outside the
+// domain of attenuvis/mie.hpp) are written when their chunk is evaluated.
+class ChunkedRows {
+ public:
+  ChunkedRows(std::ostream& out, std::ostream& err, const Options& options) : out_(out), err_(err) {
+    spheres_options_.options = options;
+  }
+  void add(const Problem& p, std::size_t line_number) {
+    xs_.push_back(p.x);
+    ms_.push_back(p.m);
+    line_of_.push_back(line_number);
+    if (xs_.size() == kChunk) evaluate();
+  }
+  // Evaluates the lines collected so far and writes their rows (or messages).
+  void evaluate() {
+    const std::size_t n = xs_.size();
+    q_.resize(n);
+    const std::vector<SphereError> errors = spheres(xs_.data(), ms_.data(), n, q_.data(), spheres_options_);
+    std::size_t e = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (e < errors.size() && errors[e].index == i) {
+        ++bad_;
+        err_ << "line " << line_of_[i] << ": " << errors[e++].message << '\n';
+        continue;
+      }
+      append_row(text_, Problem{xs_[i], ms_[i]}, q_[i], &index_memo_);
+      text_ += '\n';
+    }
+    out_ << text_;
+    text_.clear();
+    xs_.clear();
+    ms_.clear();
+    line_of_.clear();
+  }
+  std::size_t bad() const { return bad_; }
+  // The reader's memo of the index (parse_fields), shared with the writer's.
+  IndexMemo& index_memo() { return index_memo_; }
+
+ private:
+  static constexpr std::size_t kChunk = 4096;
+  std::ostream& out_;
+  std::ostream& err_;
+  SpheresOptions spheres_options_;
+  IndexMemo index_memo_;
+  std::vector<std::size_t> line_of_;
+  std::vector<double> xs_;
+  std::vector<std::complex<double>> ms_;
+  std::vector<Efficiencies<double>> q_;
+  std::string text_;
+  std::size_t bad_ = 0;
+};
+
+// Lines cut out of 64 KiB blocks read straight into `pending_` (std::getline
+// on a stream synchronised with C stdio, std::cin by default, reads one
+// character per library call); each line is a view into the block, parsed
+// where it lies and valid until the next call.
+class LineReader {
+ public:
+  explicit LineReader(std::istream& in) : in_(in) {}
+  bool next(std::string_view& line) {
+    for (;;) {
+      const auto nl = pending_.find('\n', scan_);
+      if (nl != std::string::npos) {
+        line = std::string_view(pending_).substr(pos_, nl - pos_);
+        pos_ = scan_ = nl + 1;
+        return true;
+      }
+      scan_ = pending_.size();
+      if (!more_) {
+        if (pos_ >= pending_.size()) return false;
+        line = std::string_view(pending_).substr(pos_);  // last line without a newline
+        pos_ = pending_.size();
+        return true;
+      }
+      read_block();
+    }
+  }
+
+ private:
+  static constexpr std::size_t kBlock = std::size_t(1) << 16;
+  // Drops the lines already handed out and appends the next block.
+  void read_block() {
+    pending_.erase(0, pos_);
+    scan_ -= pos_;
+    pos_ = 0;
+    const std::size_t kept = pending_.size();
+    pending_.resize(kept + kBlock);
+    in_.read(pending_.data() + kept, static_cast<std::streamsize>(kBlock));
+    const std::streamsize got = in_.gcount();
+    pending_.resize(kept + static_cast<std::size_t>(std::max<std::streamsize>(got, 0)));
+    if (!in_) more_ = false;  // end of input (or a read error): what was read is kept
+  }
+  std::istream& in_;
+  std::string pending_;
+  std::size_t pos_ = 0;   // start of the unread part of `pending_`
+  std::size_t scan_ = 0;  // where the search for its line end resumes (a long line is searched once)
+  bool more_ = true;
+};
+
 }  // namespace
 
 std::optional<Problem> parse_line(const std::string& line) { return parse_fields(line, nullptr); }
@@ -217,93 +318,24 @@ std::string csv_row(const Problem& p, const Efficiencies<double>& q) {
   return row;
 }
 
-// Good lines are collected in chunks and evaluated together by spheres()
-// (several spheres per vector instruction, threads over cores); rows are
-// written in input order.  Messages for lines that fail to parse are written
-// as they are read, those for lines the core rejects (outside the domain of attenuvis/mie.hpp) when
-// their chunk is evaluated.
+// Messages for lines that fail to parse are written as they are read.
 std::size_t run(std::istream& in, std::ostream& out, std::ostream& err, const Options& options) {
-  constexpr std::size_t kChunk = 4096;
   out << csv_header() << '\n';
-  std::size_t bad = 0, line_number = 0;
-  std::vector<std::size_t> line_of;
-  std::vector<double> xs;
-  std::vector<std::complex<double>> ms;
-  std::vector<Efficiencies<double>> q;
-  std::string text;
-  SpheresOptions spheres_options;
-  spheres_options.options = options;
-  IndexMemo index_memo;
-  auto evaluate = [&] {
-    const std::size_t n = xs.size();
-    q.resize(n);
-    const std::vector<SphereError> errors = spheres(xs.data(), ms.data(), n, q.data(), spheres_options);
-    std::size_t e = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (e < errors.size() && errors[e].index == i) {
-        ++bad;
-        err << "line " << line_of[i] << ": " << errors[e++].message << '\n';
-        continue;
-      }
-      append_row(text, Problem{xs[i], ms[i]}, q[i], &index_memo);
-      text += '\n';
-    }
-    out << text;
-    text.clear();
-    xs.clear();
-    ms.clear();
-    line_of.clear();
-  };
-  // Lines are cut out of 64 KiB blocks read straight into `pending` (std::getline
-  // on a stream synchronised with C stdio, std::cin by default, reads one
-  // character per library call) and parsed where they lie.
-  constexpr std::size_t kBlock = std::size_t(1) << 16;
-  std::string pending;
-  std::size_t pos = 0;   // start of the unread part of `pending`
-  std::size_t scan = 0;  // where the search for its line end resumes (a long line is searched once)
-  bool more = true;
-  auto next_line = [&](std::string_view& line) -> bool {
-    for (;;) {
-      const auto nl = pending.find('\n', scan);
-      if (nl != std::string::npos) {
-        line = std::string_view(pending).substr(pos, nl - pos);
-        pos = scan = nl + 1;
-        return true;
-      }
-      scan = pending.size();
-      if (!more) {
-        if (pos >= pending.size()) return false;
-        line = std::string_view(pending).substr(pos);  // last line without a newline
-        pos = pending.size();
-        return true;
-      }
-      pending.erase(0, pos);
-      scan -= pos;
-      pos = 0;
-      const std::size_t kept = pending.size();
-      pending.resize(kept + kBlock);
-      in.read(pending.data() + kept, static_cast<std::streamsize>(kBlock));
-      const std::streamsize got = in.gcount();
-      pending.resize(kept + static_cast<std::size_t>(std::max<std::streamsize>(got, 0)));
-      if (!in) more = false;  // end of input (or a read error): what was read is kept
-    }
-  };
-  for (std::string_view line; next_line(line);) {
+  ChunkedRows rows(out, err, options);
+  LineReader reader(in);
+  std::size_t unparsed = 0, line_number = 0;
+  for (std::string_view line; reader.next(line);) {
     ++line_number;
     try {
-      const std::optional<Problem> p = parse_fields(line, &index_memo);
-      if (!p) continue;
-      xs.push_back(p->x);
-      ms.push_back(p->m);
-      line_of.push_back(line_number);
-      if (xs.size() == kChunk) evaluate();
+      const std::optional<Problem> p = parse_fields(line, &rows.index_memo());
+      if (p) rows.add(*p, line_number);
     } catch (const std::exception& e) {
-      ++bad;
+      ++unparsed;
       err << "line " << line_number << ": " << e.what() << '\n';
     }
   }
-  evaluate();
-  return bad;
+  rows.evaluate();
+  return unparsed + rows.bad();
 }
 
 std::complex<double> parse_refractive_index(const std::string& text) {

@@ -1,5 +1,5 @@
 // Legendre moments and scattering-matrix expansion in double precision (the
-// algorithm: attenuvis/mie/legendre_moments_impl.hpp).
+// algorithm: attenuvis/mie/detail/legendre_moments_impl.hpp).
 #include "attenuvis/mie/legendre_moments.hpp"
 
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include <boost/math/special_functions/cos_pi.hpp>
 
-#include "attenuvis/mie/legendre_moments_impl.hpp"
+#include "attenuvis/mie/detail/legendre_moments_impl.hpp"
 #include "attenuvis/mie/legendre_moments_referee.hpp"
 
 namespace attenuvis::mie {

@@ -1,11 +1,11 @@
 // The double instances of the node loops of the Legendre moments and the
-// scattering-matrix expansion (attenuvis/mie/legendre_moments_impl.hpp), one
+// scattering-matrix expansion (attenuvis/mie/detail/legendre_moments_impl.hpp), one
 // clone per instruction set with run-time choice, as the Mie term loops
 // (term_block_double.cpp): an AVX2 or AVX-512 machine runs 4 or 8 nodes per
 // instruction.  The kernels are inlined into each clone; with -ffp-contract=off
 // (mie/CMakeLists.txt) every node sees the same IEEE operations in the same
 // order on every machine, so the results are the same bits.
-#include "attenuvis/mie/legendre_moments_impl.hpp"
+#include "attenuvis/mie/detail/legendre_moments_impl.hpp"
 #include "instruction_set_clones.hpp"
 
 namespace attenuvis::mie::detail {

@@ -2,7 +2,7 @@
 // attenuvis/mie/legendre_moments_referee.hpp).
 #include "attenuvis/mie/legendre_moments_referee.hpp"
 
-#include "attenuvis/mie/legendre_moments_impl.hpp"
+#include "attenuvis/mie/detail/legendre_moments_impl.hpp"
 
 namespace attenuvis::mie {
 

@@ -1,7 +1,8 @@
 // Argument checks and the automatic choice of working precision of the
 // double-precision entry points, shared by sphere()/scatter()
-// (sphere_double.cpp) and the batch spheres() (spheres.cpp).  Private to the
-// mie library.
+// (sphere_double.cpp), the batch spheres() (spheres.cpp) and its lanes
+// (sphere_lanes.cpp), which must route every sphere as sphere() would.
+// Private to the mie library.
 #pragma once
 
 #include <cmath>

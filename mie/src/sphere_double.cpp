@@ -1,11 +1,11 @@
 // The double-precision Mie entry points (the product).  The series itself is
-// the template in attenuvis/mie/series.hpp, instantiated here for double.
+// the template in series.hpp, instantiated here for double.
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "attenuvis/mie.hpp"
-#include "attenuvis/mie/series.hpp"
+#include "series.hpp"
 #include "sphere_checks.hpp"
 
 namespace attenuvis::mie {

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "attenuvis/mie/series.hpp"
+#include "series.hpp"
 #include "sphere_checks.hpp"
 
 namespace attenuvis::mie::detail {

@@ -2,7 +2,7 @@
 // (private to the mie library; used by spheres.cpp).
 //
 // Every lane performs exactly the operations, in the same order, of the
-// double-precision series of attenuvis/mie/series.hpp (Work = Real = double,
+// double-precision series of series.hpp (Work = Real = double,
 // Dₙ(mx) downward) for its own sphere: the same Lentz start at its own table
 // length, the same downward, Hankel-ratio and product recurrences, the same
 // term formulas (term_block.hpp), the same compensated sums and convergence
@@ -32,7 +32,8 @@ struct LaneProblems {
 struct LaneResults {
   Efficiencies<double> q[kLanes];
   // false: the lane's series did not converge within its first table
-  // (first_terms in series.hpp); the caller redoes that sphere with sphere().
+  // (first_terms, detail/term_count.hpp); the caller redoes that sphere with
+  // sphere().
   bool converged[kLanes];
 };
 
@@ -40,8 +41,8 @@ struct LaneResults {
 // downward and the converged term rule (lane_eligible()).
 bool lane_eligible(double x, std::complex<double> m);
 // For x and m in the domain: the length of the first table a lane runs
-// (first_terms in series.hpp), the order count a group is sized by; 0 where
-// the sphere is not lane-eligible.
+// (first_terms, detail/term_count.hpp), the order count a group is sized by;
+// 0 where the sphere is not lane-eligible.
 std::size_t lane_terms(double x, std::complex<double> m);
 // One or two groups (`groups` entries of in and out; two run their downward
 // passes interleaved).  kernel: an index into lane_instruction_sets() (0: the

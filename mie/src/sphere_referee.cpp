@@ -3,7 +3,7 @@
 
 #include <stdexcept>
 
-#include "attenuvis/mie/series.hpp"
+#include "series.hpp"
 
 namespace attenuvis::mie {
 namespace {

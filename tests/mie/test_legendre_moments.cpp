@@ -42,7 +42,7 @@
 
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/legendre_moments.hpp"
-#include "attenuvis/mie/legendre_moments_impl.hpp"
+#include "attenuvis/mie/detail/legendre_moments_impl.hpp"
 #include "attenuvis/mie/legendre_moments_referee.hpp"
 #include "attenuvis/mie/scattering_matrix.hpp"
 

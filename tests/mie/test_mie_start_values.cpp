@@ -1,4 +1,4 @@
-// Start values of the downward recurrences (mie/log_derivative.hpp): where
+// Start values of the downward recurrences (attenuvis/mie/detail/log_derivative.hpp): where
 // miller_depth() allows it, the double core starts yₙ(x), yₙ(mx) and
 // δₙ = yₙ(mx) − yₙ(x) from zeros K orders above the table instead of from
 // Lentz's continued fraction.  Checked here against the independent start:
@@ -11,7 +11,8 @@
 #include <limits>
 #include <vector>
 
-#include "attenuvis/mie/series.hpp"
+#include "attenuvis/mie/detail/log_derivative.hpp"
+#include "attenuvis/mie/detail/term_count.hpp"
 
 namespace {
 

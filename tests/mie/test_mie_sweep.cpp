@@ -4,7 +4,7 @@
 //     |q − q_ref| <= max(1e-10 |q_ref|, 1e-14 Qext_ref)
 // for Qext, Qsca, Qabs, g and Qback at the points most at risk.
 //
-// Points at risk (trap sin-zero, attenuvis/mie/series.hpp): the doubles
+// Points at risk (trap sin-zero, mie/src/series.hpp): the doubles
 // nearest x = jπ, where ψ₀(x) = sin x is ~1e-16..1e-18 and the downward
 // recurrence forms 1/y₀ = ψ₀/ψ₁ by cancellation.  The midpoint grid
 // x = 2π(i + ½)·0.1/0.55, i = 0..1412 (the report's fixed-step size

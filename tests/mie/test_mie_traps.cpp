@@ -1,5 +1,5 @@
 // One test per Mie trap (the named numerical pitfalls listed in
-// attenuvis/mie/series.hpp, each seen in a widely used Mie code).
+// mie/src/series.hpp, each seen in a widely used Mie code).
 // Reference: the same problem solved by the 50-digit referee
 // (attenuvis/mie/referee.hpp), i.e. the series in cpp_bin_float_50 for exactly
 // the double inputs; 50 digits leave every cancellation below 1e-30.  The

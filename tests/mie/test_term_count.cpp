@@ -1,4 +1,4 @@
-// The table lengths of the converged rule (attenuvis/mie/term_count.hpp):
+// The table lengths of the converged rule (attenuvis/mie/detail/term_count.hpp):
 // the small-x bound, looked up from precomputed thresholds, against its own
 // closed form ⌊3 + L/(2 ln(2/x))⌋ + 1 evaluated with a logarithm, and the
 // cube root of the Airy bound against std::cbrt.
@@ -11,7 +11,7 @@
 #include <random>
 
 #include "attenuvis/mie/referee.hpp"
-#include "attenuvis/mie/term_count.hpp"
+#include "attenuvis/mie/detail/term_count.hpp"
 
 using namespace attenuvis::mie::detail;
 

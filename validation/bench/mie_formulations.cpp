@@ -33,9 +33,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "attenuvis/mie/log_derivative.hpp"
-#include "attenuvis/mie/series.hpp"
-#include "attenuvis/mie/term_count.hpp"
+#include "attenuvis/mie/detail/log_derivative.hpp"
+#include "attenuvis/mie/detail/term_count.hpp"
 
 namespace {
 

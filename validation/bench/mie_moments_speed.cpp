@@ -34,7 +34,7 @@
 
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/legendre_moments.hpp"
-#include "attenuvis/mie/legendre_moments_impl.hpp"
+#include "attenuvis/mie/detail/legendre_moments_impl.hpp"
 #include "attenuvis/mie/legendre_moments_referee.hpp"
 
 namespace {

@@ -13,7 +13,7 @@
 //      Qext = (2/x²) Σ (2n+1) Re(aₙ+bₙ)                  (B&H 4.62)
 //      Qsca = (2/x²) Σ (2n+1) (|aₙ|²+|bₙ|²)              (B&H 4.61)
 //      Qabs = Qext − Qsca, computed from a sum of its own (each term is
-//             −Im(·)/|·|², see mie/series.hpp) so it keeps full relative
+//             −Im(·)/|·|², see mie/src/series.hpp) so it keeps full relative
 //             accuracy even when k is tiny and Qabs ≪ Qsca.
 //      Qback = 4|S1(π)|²/x² = (1/x²) |Σ (2n+1)(−1)ⁿ(aₙ−bₙ)|²  (B&H 4.82).
 //             This is B&H's (and MIEV0's) backscattering efficiency.  Draine's
@@ -38,7 +38,7 @@
 // Everything is computed from ratio/logarithmic-derivative recurrences, so
 // nothing overflows or underflows inside the domain.
 // The numerical method and its traps (named pitfalls) are described in
-// mie/series.hpp.
+// mie/src/series.hpp.
 #pragma once
 
 #include <complex>
@@ -75,7 +75,7 @@ enum class TermRule {
   // Wiscombe (1980, Appl. Opt. 19:1505, eq. 19) / MIEV0: N = x + 4.05 x^{1/3} + 2
   // (truncated to an integer).  Provided to reproduce other codes and to
   // measure its truncation error; it is NOT accurate to 1e-10 (trap truncation,
-  // mie/series.hpp).
+  // mie/src/series.hpp).
   wiscombe,
 };
 

@@ -28,7 +28,7 @@
 // accuracy.
 //
 // Method: Dₙ(z) = ψₙ'(z)/ψₙ(z) at z = x and z = mx by downward recurrence
-// started from Lentz's continued fraction (lentz.hpp); ξₙ(x) = x hₙ⁽¹⁾(x)
+// started from Lentz's continued fraction (detail/lentz.hpp); ξₙ(x) = x hₙ⁽¹⁾(x)
 // through the ratio ξ_{n−1}/ξₙ upward (stable for the outgoing Hankel
 // function); ψₙ/ξₙ as a running product, so nothing overflows:
 //

@@ -36,14 +36,14 @@
 //     b1(θ) = Σ β1_l d^l_{02}(θ),      b2(θ)   = Σ β2_l d^l_{02}(θ),
 // where d^l_{mn} are the Wigner functions as MTL's subroutine MATR evaluates
 // them: d²_{22} = (1+μ)²/4, d²_{2,−2} = (1−μ)²/4, d²_{02} = (√6/4)(μ² − 1)
-// (recurrences in gsf_coefficients_impl.hpp).  Identities: α1_0 = 1,
+// (recurrences in detail/gsf_coefficients_impl.hpp).  Identities: α1_0 = 1,
 // α1_1 = 3g; α2, α3, β1, β2 vanish for l < 2; |α1_l|, |α4_l|, |β1_l|, |β2_l|
 // <= 2l+1 and |α2_l ± α3_l| <= 2(2l+1) (|F_ij| <= F11 and |d| <= 1); everything
 // vanishes for l > 2N.  For a Rayleigh sphere (x → 0): α1 = (1, 0, ½),
 // α2_2 = 3, α3 = 0, α4_1 = 3/2, β1_2 = √6/2, β2 = 0.
 //
 // Method: exact Gauss–Legendre quadrature of the amplitude products with
-// 2N+1 nodes (legendre_moments_impl.hpp), O(N²).
+// 2N+1 nodes (detail/legendre_moments_impl.hpp), O(N²).
 //
 // Accuracy (tests/mie/test_legendre_moments.cpp), max over l = 0..2N of the
 // absolute error of χ_l and of α_l/(2l+1), β_l/(2l+1), for m in {1.33 + 1e-8i,

@@ -1,4 +1,4 @@
-// The 50-digit referee: the same Mie series (attenuvis/mie/series.hpp) run in
+// The 50-digit referee: the same Mie series (mie/src/series.hpp) run in
 // Boost.Multiprecision cpp_bin_float_50 / cpp_complex_50.  Used by tests and
 // benchmarks to measure the error of the double-precision product; it is
 // compiled in its own translation unit (mie/src/sphere_referee.cpp) because

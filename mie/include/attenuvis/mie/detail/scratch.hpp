@@ -6,7 +6,8 @@
 // machine costs as much as the series itself (~8000 faults, ~80 ms measured).
 // For trivial element types we allocate 2 MiB-aligned blocks and ask for
 // transparent huge pages, and never initialise.  The buffers are per thread
-// and reused; series.hpp gives back those above 8 MB after each call.
+// and reused; the series gives back those above 8 MB after each call
+// (DownwardTables::release_large, log_derivative.hpp).
 #pragma once
 
 #include <cstddef>

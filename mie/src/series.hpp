@@ -1,8 +1,10 @@
 // The Mie series for a homogeneous sphere, templated on the floating type.
 //
-// Template implementation detail; included only by mie/src/sphere_double.cpp
-// (Real = double) and mie/src/sphere_referee.cpp (Real = 50-digit), so the
-// code that weather/ and the CLI include stays template-free.
+// Private to the library: instantiated by sphere_double.cpp (Real = double)
+// and sphere_referee.cpp (Real = 50-digit); sphere_lanes.cpp takes its
+// choose_method() and riccati_psi1(), so that the lanes of spheres() decide
+// and start as sphere() does.  What weather/, apps/ and python/ include
+// (attenuvis/mie.hpp and its siblings) stays free of these templates.
 //
 // Method (B&H ch. 4 rewritten in ratios, cf. Wiscombe 1979 NCAR/TN-140+STR §3):
 //   aₙ = Rₙ (Dₙ(mx)/m − Dₙ(x)) / (Dₙ(mx)/m − Gₙ(x))
@@ -23,8 +25,8 @@
 //     even when Qabs ≪ Qsca, where Qext − Qsca would cancel.  1/|ξₙ|² =
 //     Π|ρ_k|² (|ξ₀| = 1) is carried as a product, so it underflows harmlessly
 //     instead of overflowing.
-//   * Dₙ(mx): downward from a Lentz start (log_derivative.hpp, with the Δ
-//     difference for trap m-near-1), or — when the continued fraction would
+//   * Dₙ(mx): downward from a Lentz or Miller start (log_derivative.hpp, with
+//     the δ difference for trap m-near-1), or — when the continued fraction would
 //     need far more steps than the series has terms and the upward recurrence
 //     is provably stable — upward from cot(mx); see choose_method().
 //   * Sums are compensated (Kahan) so that 1e6 terms of alternating sign
@@ -32,15 +34,18 @@
 //
 // The Mie traps: numerical pitfalls, each seen in widely used Mie codes, that
 // this core is built to avoid.  Comments and tests refer to them by name
-// ("trap m-near-1"); tests/mie/test_mie_traps.cpp holds one test per trap
-// against the 50-digit referee.
+// ("trap m-near-1"); tests/mie/test_mie_traps.cpp tests truncation,
+// start-value, small-x, sin-zero, m-near-1, psi-zero and large-kx against the
+// 50-digit referee, tests/mie/test_mie_referee.cpp back-cancellation.
 //   truncation          Stopping at Wiscombe's N = x + 4.05 x^{1/3} + 2 leaves
 //                       ~1e-10 in Qext and up to ~1e-5 in Qback; the series is
 //                       summed until the terms stop changing the sums.
 //   start-value         Dₙ(mx) downward from an arbitrary start (0 at
 //                       max(N, |mx|) + 15) is not forgotten for large, weakly
 //                       absorbing spheres; every downward recurrence starts
-//                       from Lentz's continued fraction (lentz.hpp).
+//                       from Lentz's continued fraction (lentz.hpp), or from
+//                       0 only as far above N as miller_depth() proves enough
+//                       (log_derivative.hpp).
 //   upward-instability  Dₙ(mx) upward from cot(mx) amplifies rounding errors by
 //                       ~exp(N² Im z/|z|²) and is unstable for n > |z|; it is
 //                       used only where choose_method() proves it stable.
@@ -84,11 +89,11 @@
 #include <vector>
 
 #include "attenuvis/mie.hpp"
-#include "attenuvis/mie/angular_sums.hpp"
-#include "attenuvis/mie/log_derivative.hpp"
-#include "attenuvis/mie/scratch.hpp"
-#include "attenuvis/mie/term_count.hpp"
-#include "attenuvis/mie/term_block.hpp"
+#include "attenuvis/mie/detail/log_derivative.hpp"
+#include "attenuvis/mie/detail/scratch.hpp"
+#include "attenuvis/mie/detail/term_count.hpp"
+#include "angular_sums.hpp"
+#include "term_block.hpp"
 
 namespace attenuvis::mie::detail {
 
@@ -102,22 +107,6 @@ struct KahanSum {
     sum = t;
   }
   Real value() const { return sum - carry; }
-};
-
-// Storage of the per-term complex slot of the downward pass.  The double
-// product runs in long double (see sphere_double.cpp) but keeps this array in
-// double: 16 instead of 32 bytes per term, and each entry is used once.
-template <class Real>
-struct SlotStore {
-  using type = Complex<Real>;
-};
-template <>
-struct SlotStore<long double> {
-  using type = StoredComplex<double>;
-};
-template <>
-struct SlotStore<double> {
-  using type = StoredComplex<double>;
 };
 
 enum class DMethod { downward, upward };
@@ -146,26 +135,6 @@ DMethod choose_method(double x, std::complex<double> m, std::size_t N) {
   return E <= 3.0 ? DMethod::upward : DMethod::downward;
 }
 
-// Per-thread tables of the downward pass, reused between calls: a fresh
-// ~33·N-byte allocation per call costs more in page faults than the series
-// itself for x ≳ 1e4.  Tables above 8 MB (x ≳ 2.5e5) are given back after
-// each call so a single x = 1e6 call does not pin 33 MB per thread (see
-// scratch.hpp).
-template <class Work>
-struct DownwardTables {
-  Scratch<Work> y;
-  Scratch<StoredComplex<Work>> rho;
-  Scratch<typename SlotStore<Work>::type> w;
-  Scratch<unsigned char> is_value;
-  void release_large() {
-    constexpr std::size_t kKeep = std::size_t(8) << 20;
-    if (y.capacity_bytes() > kKeep) y.release();
-    if (rho.capacity_bytes() > kKeep) rho.release();
-    if (is_value.capacity_bytes() > kKeep) is_value.release();
-    if (w.capacity_bytes() > kKeep) w.release();
-  }
-};
-
 // The per-block term loops: the run-time dispatched clones for double
 // (term_block_double.cpp), the templates otherwise.
 template <class Real>
@@ -182,48 +151,47 @@ void block_terms(bool pec, const TermConstants<Real>& k, const TermInputs<Real>&
   }
 }
 
-// The compensated sums of the series and what is read from them.
+// The compensated sums of the series, one per SumLane (term_block.hpp), and
+// what is read from them.
 template <class Real>
 struct SeriesSums {
-  KahanSum<Real> ext, sca, abs, back_re, back_im, g_cross, g_self;
+  KahanSum<Real> lane[SumLane::count];
   // Order n's terms (entry i of a block).
   void add(const TermOutputs<Real>& t, std::size_t i, std::size_t n) {
-    ext.add(t.ext[i]);
-    sca.add(t.sca[i]);
-    abs.add(t.abs[i]);
-    back_re.add(t.back_re[i]);
-    back_im.add(t.back_im[i]);
+    lane[SumLane::ext].add(t.ext[i]);
+    lane[SumLane::sca].add(t.sca[i]);
+    lane[SumLane::abs].add(t.abs[i]);
+    lane[SumLane::back_re].add(t.back_re[i]);
+    lane[SumLane::back_im].add(t.back_im[i]);
     // g (B&H 4.74): Σ n(n+2)/(n+1) Re(aₙa*ₙ₊₁ + bₙb*ₙ₊₁) + Σ (2n+1)/(n(n+1)) Re(aₙb*ₙ),
     // with k(k+2)/(k+1) = n − 1/n for k = n − 1 and (2n+1)/(n(n+1)) = 1/n + 1/(n+1).
     // Two sums, so that neither compensated chain waits for the other.
-    if (n >= 2) g_cross.add(t.g_cross[i]);
-    g_self.add(t.g_self[i]);
+    if (n >= 2) lane[SumLane::g_cross].add(t.g_cross[i]);
+    lane[SumLane::g_self].add(t.g_self[i]);
   }
-  // The scale the convergence test compares a term with.
-  Real scale() const {
-    using std::abs;
-    return (std::min)(abs(ext.sum), abs(back_re.sum) + abs(back_im.sum));
+  // Whether order n (entry i of a block, just added) is the last one.
+  bool converged(const TermOutputs<Real>& t, std::size_t i, std::size_t n, double x, const Real& tol) const {
+    return series_converged(n, x, t.size[i], tol, lane[SumLane::ext].sum, lane[SumLane::back_re].sum,
+                            lane[SumLane::back_im].sum);
   }
   void finish(const Real& x, bool pec, std::size_t terms, Efficiencies<Real>& q) const {
     const Real inv_x = Real(1) / x;
     const Real f = Real(2) * inv_x * inv_x;
     q.terms = terms;
-    const Real br = back_re.value(), bi = back_im.value(), ssum = sca.value();
-    q.qext = f * ext.value();
+    const Real br = lane[SumLane::back_re].value(), bi = lane[SumLane::back_im].value();
+    const Real ssum = lane[SumLane::sca].value();
+    q.qext = f * lane[SumLane::ext].value();
     q.qsca = f * ssum;
-    q.qabs = pec ? Real(0) : f * abs.value();
+    q.qabs = pec ? Real(0) : f * lane[SumLane::abs].value();
     q.qback = (br * br + bi * bi) * inv_x * inv_x;
-    q.g = ssum > 0 ? Real(2) * (g_cross.value() + g_self.value()) / ssum : Real(0);
+    q.g = ssum > 0 ? Real(2) * (lane[SumLane::g_cross].value() + lane[SumLane::g_self].value()) / ssum : Real(0);
     q.qpr = q.qext - q.g * q.qsca;
   }
 };
 
-// The state of SeriesSums<double>'s seven compensated sums as two vectors
-// (lane c: ext, sca, abs, back_re, back_im, g_cross, g_self, unused) for
-// sum_block_double (term_block.hpp); converted back for finish().
+// SeriesSums<double> from the vector form of sum_block_double, lane by lane.
 inline void VectorSums::to(SeriesSums<double>& s) const {
-  KahanSum<double>* k[7] = {&s.ext, &s.sca, &s.abs, &s.back_re, &s.back_im, &s.g_cross, &s.g_self};
-  for (int c = 0; c < 7; ++c) k[c]->sum = sum[c], k[c]->carry = carry[c];
+  for (int c = 0; c < SumLane::count; ++c) s.lane[c].sum = sum[c], s.lane[c].carry = carry[c];
 }
 
 // ψ₁(x) = ψ₀ y₀ from y₀ = ψ₁/ψ₀ of the downward pass, without the small-x
@@ -314,6 +282,89 @@ void block_inputs(std::size_t first, std::size_t count, const Tables& tables, bo
     block_inputs_for<Real, Work, false, Slot::none>(first, count, tables, over_mxw, upward, R_w, s_w, in);
 }
 
+// The downward pass over the tables of N + 1 entries (log_derivative.hpp),
+// from Lentz's start or, where miller_depth() allows it (Work = double, a
+// complex slot), the cheaper Miller start.
+template <class Real, class Work>
+void fill_downward_tables(const Real& x, const Complex<Real>& m, std::size_t N, Slot slot,
+                          const ScaledInverse<Work>& over_xw, const ScaledInverseComplex<Work, Complex<Work>>& over_mxw,
+                          const Complex<Work>& mw, DownwardTables<Work>& tables) {
+  std::size_t miller = 0;
+  if constexpr (std::is_same_v<Work, double>) {
+    if (slot != Slot::none)
+      miller = miller_depth(static_cast<double>(x), std::complex<double>(m.real(), m.imag()), N);
+  }
+  downward_ratios<Work, Complex<Work>>(over_xw, over_mxw, mw, N, slot, tables.y, tables.rho, tables.w,
+                                       tables.is_value, miller);
+}
+
+// The constants of the term formulas; k/x and k/(mx) are those of the
+// recurrences when Real is Work.
+template <class Real, class Work>
+TermConstants<Real> term_constants(const Real& x, const Complex<Real>& m, const ScaledInverse<Work>& over_xw,
+                                   const ScaledInverseComplex<Work, Complex<Work>>& over_mxw) {
+  using C = Complex<Real>;
+  const C m_minus_1 = m - C(Real(1));
+  const C m2_minus_1_over_m = m_minus_1 * (m + C(Real(1))) * recip(m);  // (m²−1)/m, trap m-near-1
+  const C m2_minus_1 = m_minus_1 * (m + C(Real(1)));
+  return {m.real(), m.imag(), m_minus_1.real(), m_minus_1.imag(), m2_minus_1_over_m.real(), m2_minus_1_over_m.imag(),
+          m2_minus_1.real(), m2_minus_1.imag(),
+          [&] {
+            if constexpr (std::is_same_v<Real, Work>) return over_xw;
+            else return ScaledInverse<Real>(x);
+          }(),
+          [&] {
+            if constexpr (std::is_same_v<Real, Work>) return over_mxw;
+            else return ScaledInverseComplex<Real, C>(x, m);
+          }()};
+}
+
+// The relative size of the last term kept (the converged rule), once per type.
+template <class Real>
+Real series_tolerance() {
+  static const double tol = std::exp(-tail_log_tolerance<Real>());
+  return Real(tol);
+}
+
+// What pass 3 did with a block: how many of its orders it summed, and whether
+// the last of them ended the series (the converged rule).
+struct BlockSum {
+  std::size_t used;
+  bool stopped;
+};
+
+// Pass 3 of a block (serial): the compensated sums and the convergence test.
+// In double the seven sums advance together, two 4-wide vector operations per
+// order (sum_block_double, the same operations per sum as SeriesSums::add).
+template <class Real>
+BlockSum sum_block(const TermOutputs<Real>& terms, std::size_t first, std::size_t count, double x,
+                   const Real& tol, bool converged_rule, SeriesSums<Real>& sums, VectorSums& vector_sums) {
+  if constexpr (std::is_same_v<Real, double>) {
+    const std::size_t used = sum_block_double(terms, first, count, x, tol, converged_rule, vector_sums);
+    return {used, vector_sums.converged};
+  } else {
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t n = first + i;
+      sums.add(terms, i, n);
+      if (converged_rule && sums.converged(terms, i, n, x, tol)) return {i + 1, true};
+    }
+    return {count, false};
+  }
+}
+
+// The extras of the orders first .. first + used − 1 that were summed.
+template <class Real>
+void add_extras(const Extras& extras, std::size_t first, std::size_t used, const TermOutputs<Real>& terms,
+                std::optional<AngularSums<Real>>& angular, Scattering<Real>& out) {
+  if (extras.coefficients) {
+    for (std::size_t i = 0; i < used; ++i) {
+      out.a.emplace_back(terms.a_re[i], terms.a_im[i]);
+      out.b.emplace_back(terms.b_re[i], terms.b_im[i]);
+    }
+  }
+  if (angular) angular->add_block(first, used, terms);
+}
+
 // One summation of the series from tables of N + 1 entries into `out`.
 // Returns false if the converged rule asked for more than N terms.
 // Blocks of kTermBlock orders go through the three passes of term_block.hpp.
@@ -336,39 +387,20 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
   } release_large_tables{tables};
   const ScaledInverse<Work> over_xw(xw);
   const ScaledInverseComplex<Work, CW> over_mxw(xw, mw);
-  std::size_t miller = 0;  // Lentz start unless miller_depth() allows the cheaper one (double only)
-  if constexpr (std::is_same_v<Work, double>) {
-    if (slot != Slot::none) miller = miller_depth(xd, std::complex<double>(m.real(), m.imag()), N);
-  }
-  downward_ratios<Work, CW>(over_xw, over_mxw, mw, N, slot, tables.y, tables.rho, tables.w, tables.is_value,
-                            miller);
+  fill_downward_tables<Real, Work>(x, m, N, slot, over_xw, over_mxw, mw, tables);
   UpwardLogDerivative<Work, CW> upward(xw, mw, over_mxw, method == DMethod::upward);
 
   out = Scattering<Real>{};
+  // Two tests of any_angle, not one block: with the copy and the emplace
+  // together GCC cleared the optional's 184 bytes on every call (1.5% at x = 1).
   const bool any_angle = !extras.angles_deg.empty();
   if (any_angle) out.angles_deg = extras.angles_deg;  // the copy of an empty vector was ~1% of a call at x = 0.1
   std::optional<AngularSums<Real>> angular;
   if (any_angle) angular.emplace(extras.angles_deg, out);
-
-  // Constants of the term formulas; k/x and k/(mx) already built above when Real is Work.
-  const C m_minus_1 = m - C(Real(1));
-  const C m2_minus_1_over_m = m_minus_1 * (m + C(Real(1))) * recip(m);  // (m²−1)/m, trap m-near-1
-  const C m2_minus_1 = m_minus_1 * (m + C(Real(1)));
-  const TermConstants<Real> constants{
-      m.real(), m.imag(), m_minus_1.real(), m_minus_1.imag(), m2_minus_1_over_m.real(), m2_minus_1_over_m.imag(),
-      m2_minus_1.real(), m2_minus_1.imag(),
-      [&] {
-        if constexpr (std::is_same_v<Real, Work>) return over_xw;
-        else return ScaledInverse<Real>(x);
-      }(),
-      [&] {
-        if constexpr (std::is_same_v<Real, Work>) return over_mxw;
-        else return ScaledInverseComplex<Real, C>(x, m);
-      }()};
-  static const double tol_d = std::exp(-tail_log_tolerance<Real>());
-  const Real tol(tol_d);
+  const TermConstants<Real> constants = term_constants<Real, Work>(x, m, over_xw, over_mxw);
+  const Real tol = series_tolerance<Real>();
   SeriesSums<Real> sums;
-  VectorSums vector_sums;  // double (pass 3 below)
+  VectorSums vector_sums;  // double (pass 3)
   const Work sx = sin(xw), cx = cos(xw);
   const Work psi1 = riccati_psi1(sx, cx, tables.y[0], over_xw(Work(1)));
   CW R_w(sx * psi1, cx * psi1);  // ψ₁/ξ₀ (1/ξ₀ = sin x + i cos x); R₁ = ρ₁ ψ₁/ξ₀
@@ -394,36 +426,13 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
     const std::size_t padded = std::min(kTermBlock, (count + 3) / 4 * 4);
     for (std::size_t i = count; i < padded; ++i) in.copy_entry(count - 1, i);
     block_terms<Real>(pec, constants, in, padded, a_prev, b_prev, terms);
-    // Pass 3 (serial): compensated sums, convergence, extras.  In double the
-    // seven sums advance together, two 4-wide vector operations per order
-    // (sum_block_double, the same operations per sum as SeriesSums::add).
-    std::size_t used = count;
-    if constexpr (std::is_same_v<Real, double>) {
-      used = sum_block_double(terms, first, count, xd, tol, converged_rule, vector_sums);
-      if (vector_sums.converged) {  // stopped at order first + used − 1
-        converged = stopped = true;
-        n_last = first + used - 1;
-      }
-    } else {
-      for (std::size_t i = 0; i < count; ++i) {
-        const std::size_t n = first + i;
-        sums.add(terms, i, n);
-        if (converged_rule && static_cast<double>(n) > xd && terms.size[i] <= tol * sums.scale()) {
-          converged = stopped = true;
-          n_last = n;
-          used = i + 1;
-          break;
-        }
-      }
+    // Pass 3 (serial).
+    const BlockSum summed = sum_block<Real>(terms, first, count, xd, tol, converged_rule, sums, vector_sums);
+    if (summed.stopped) {  // at order first + used − 1
+      converged = stopped = true;
+      n_last = first + summed.used - 1;
     }
-    // The extras of the orders summed.
-    if (extras.coefficients) {
-      for (std::size_t i = 0; i < used; ++i) {
-        out.a.emplace_back(terms.a_re[i], terms.a_im[i]);
-        out.b.emplace_back(terms.b_re[i], terms.b_im[i]);
-      }
-    }
-    if (any_angle) angular->add_block(first, used, terms);
+    add_extras(extras, first, summed.used, terms, angular, out);
     a_prev = C(terms.a_re[count - 1], terms.a_im[count - 1]);
     b_prev = C(terms.b_re[count - 1], terms.b_im[count - 1]);
   }
@@ -438,7 +447,7 @@ bool sum_series(const Real& x, const Complex<Real>& m, bool pec, const Extras& e
 // ρₙ, Rₙ, 1/|ξₙ|², upward Dₙ), whose rounding errors accumulate like √N·ε;
 // Real: the type of each term's own arithmetic (aₙ, bₙ, sums), whose errors do
 // not accumulate.  The double product chooses Work per call (see
-// Options::precision in mie.hpp and use_extended() in sphere_double.cpp).
+// Options::precision in mie.hpp and use_extended() in sphere_checks.hpp).
 //
 // The converged rule first fills tables of first_terms(x) entries; in the
 // rare case the series has not converged by then, it is summed again from

@@ -1,7 +1,8 @@
 // Gauss–Legendre quadrature of run-time order, with the nodes held as angles.
 //
 // Template detail of the Legendre-moment code (legendre_moments_impl.hpp); it is
-// instantiated for double and for the 50-digit referee type.
+// instantiated for double, for long double (by the tests) and for the 50-digit
+// referee type.
 //
 // Why not μ = cos θ: the rule integrates the phase function of a large sphere,
 // whose forward peak is only Δμ ≈ 1/x² wide.  A node μ stored in double is off by

@@ -1,9 +1,12 @@
 // Expansion of a sphere's scattering matrix in Legendre polynomials / Wigner
 // d-functions, from its Mie coefficients aₙ, bₙ; templated on the floating type.
 //
-// Template detail of attenuvis/mie/legendre_moments.hpp, included only by
-// mie/src/legendre_moments.cpp (double) and mie/src/legendre_moments_referee.cpp
-// (50-digit referee), so that both run exactly the same algorithm.
+// Template detail of attenuvis/mie/legendre_moments.hpp, instantiated by
+// mie/src/legendre_moments.cpp (double; its node loops compiled per instruction
+// set in legendre_moments_double.cpp) and mie/src/legendre_moments_referee.cpp
+// (50-digit referee), so that both run exactly the same algorithm.  Tests and
+// the moments benchmark also run it in long double, and in double without the
+// per-instruction-set loops (PerIsa = false).
 //
 // Method.  With a series of N terms, S1(μ) and S2(μ) are polynomials of degree N in
 // μ = cos θ (πₙ has degree n−1, τₙ degree n), so every product |S1|², |S2|²,
@@ -46,7 +49,7 @@
 #include <vector>
 
 #include "attenuvis/mie.hpp"
-#include "attenuvis/mie/gauss_legendre.hpp"
+#include "attenuvis/mie/detail/gauss_legendre.hpp"
 #include "attenuvis/mie/legendre_moments.hpp"
 
 namespace attenuvis::mie::detail {
@@ -427,4 +430,4 @@ std::vector<Real> legendre_moments(const std::vector<Complex<Real>>& a, const st
 
 }  // namespace attenuvis::mie::detail
 
-#include "attenuvis/mie/gsf_coefficients_impl.hpp"
+#include "attenuvis/mie/detail/gsf_coefficients_impl.hpp"

@@ -1,7 +1,9 @@
 // Logarithmic derivatives of Riccati–Bessel functions for the Mie series.
 //
-// Template implementation detail of the Mie core; included only by the
-// translation units that instantiate it (mie/src/sphere_*.cpp).
+// Template detail of the Mie core: the recurrences of the series
+// (mie/src/series.hpp, term_block.hpp), whose split constants the lanes of
+// spheres() copy (sphere_lanes.cpp); tests and benchmarks run its start
+// values and downward pass on their own.
 //
 // Notation (B&H ch. 4): ψₙ(z) = z jₙ(z), Dₙ(z) = ψₙ'(z)/ψₙ(z).  The core
 // carries yₙ(z) = ψ_{n+1}(z)/ψₙ(z), which is small (≈ z/(2n+3)) for small z:
@@ -22,7 +24,9 @@
 // factor Π yₖ(x) (≪ 1 above n ≈ x) damps long before it matters.
 //
 // Trap start-value.  Both recurrences start at the top index N from the
-// exact values given by Lentz's continued fraction (lentz.hpp), never from 0.
+// exact values given by Lentz's continued fraction (lentz.hpp), or from 0 at
+// N + K where miller_depth() proves the start forgotten by N (to ε/16);
+// never from 0 at a guessed index.
 // Trap large-kx.  Only ratios appear; nothing grows like e^{kx}.
 #pragma once
 
@@ -34,9 +38,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "attenuvis/mie/complex_ops.hpp"
-#include "attenuvis/mie/lentz.hpp"
-#include "attenuvis/mie/scratch.hpp"
+#include "attenuvis/mie.hpp"
+#include "attenuvis/mie/detail/complex_ops.hpp"
+#include "attenuvis/mie/detail/lentz.hpp"
+#include "attenuvis/mie/detail/scratch.hpp"
 
 namespace attenuvis::mie::detail {
 
@@ -166,8 +171,8 @@ struct HankelRatio {
 
 // Downward pass from index N: fills y[n] = yₙ(x) for n = 0..N, rho[n] = ρₙ
 // for n = 1..N and, according to `slot`, w[n] = δₙ or yₙ(mx).
-// W is the stored complex type: it may be narrower than C (see SlotStore in
-// series.hpp), since each wₙ is used once and not fed into a product.
+// W is the stored complex type: it may be narrower than C (see SlotStore
+// below), since each wₙ is used once and not fed into a product.
 //
 // In Slot::difference mode, entry n holds δₙ only where yₙ(mx) = yₙ(x) + δₙ
 // does not cancel (|yₙ(mx)| >= |yₙ(x)|/8); near a pole of yₙ(x) (ψₙ(x) ≈ 0)
@@ -251,6 +256,43 @@ void downward_ratios(const ScaledInverse<Real>& over_x_in, const ScaledInverseCo
     step_down(n, slot == Slot::difference);
   }
 }
+
+// Storage of the per-term complex slot of the downward pass (w below): a
+// trivial pair of doubles for the double product, also where its recurrences
+// run in long double (use_extended(), mie/src/sphere_checks.hpp) — 16 instead
+// of 32 bytes per term, and each entry is used once.
+template <class Real>
+struct SlotStore {
+  using type = Complex<Real>;
+};
+template <>
+struct SlotStore<long double> {
+  using type = StoredComplex<double>;
+};
+template <>
+struct SlotStore<double> {
+  using type = StoredComplex<double>;
+};
+
+// The tables downward_ratios fills, per thread and reused between calls
+// (sum_series, mie/src/series.hpp): a fresh ~33·N-byte allocation per call
+// costs more in page faults than the series itself for x ≳ 1e4.  Tables above
+// 8 MB (x ≳ 2.5e5) are given back after each call so a single x = 1e6 call
+// does not pin 33 MB per thread (see scratch.hpp).
+template <class Work>
+struct DownwardTables {
+  Scratch<Work> y;
+  Scratch<StoredComplex<Work>> rho;
+  Scratch<typename SlotStore<Work>::type> w;
+  Scratch<unsigned char> is_value;
+  void release_large() {
+    constexpr std::size_t kKeep = std::size_t(8) << 20;
+    if (y.capacity_bytes() > kKeep) y.release();
+    if (rho.capacity_bytes() > kKeep) rho.release();
+    if (is_value.capacity_bytes() > kKeep) is_value.release();
+    if (w.capacity_bytes() > kKeep) w.release();
+  }
+};
 
 // cot z for Im z >= 0 without overflow: cot z = i(E+1)/(E−1), E = e^{2iz},
 // |E| = e^{−2 Im z} <= 1.

@@ -1,8 +1,9 @@
 // How many terms a Mie series needs: the table lengths of the converged rule
 // (an Airy-tail bound beyond n ≈ x, a small-x bound below x = 1) and
-// Wiscombe's (1980) count.  Template detail of attenuvis/mie/series.hpp,
-// shared by sphere() and the lanes of spheres(), which must agree on every
-// length to return the same bits.
+// Wiscombe's (1980) count.  Template detail of the series
+// (mie/src/series.hpp), shared by sphere() and the lanes of spheres()
+// (mie/src/sphere_lanes.cpp), which must agree on every length to return the
+// same bits; tests/mie/test_term_count.cpp checks the lengths.
 #pragma once
 
 #include <algorithm>

@@ -8,19 +8,21 @@
 //   2. here: every order independently — no value flows from n to n+1 — so
 //      the loops are plain arithmetic on arrays that the compiler vectorises
 //      (two lanes with SSE2; four or eight where the CPU has AVX2 or AVX-512,
-//      chosen at run time in sphere_double.cpp);
-//   3. serial: the compensated sums and the convergence test (series.hpp).
+//      chosen at run time: term_block_double.cpp);
+//   3. serial: the compensated sums (series.hpp) and the convergence test
+//      (series_converged below).
 // The formulas are those of series.hpp's header (B&H 4.88 in ratios), written
 // out in real and imaginary parts, in the same order of operations as the
 // one-order-at-a-time form they replace; only aₙ − bₙ (for Qback) has a
 // formula of its own (sphere_terms).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
 #include "attenuvis/mie.hpp"
-#include "attenuvis/mie/log_derivative.hpp"
+#include "attenuvis/mie/detail/log_derivative.hpp"
 
 namespace attenuvis::mie::detail {
 
@@ -186,14 +188,33 @@ ATTENUVIS_MIE_INLINE void sum_terms(const TermInputs<Real>& in, std::size_t coun
                       out.b_re[i - 1] * out.b_re[i] + out.b_im[i - 1] * out.b_im[i];
 }
 
+// The seven compensated sums of the series, by lane: SeriesSums (series.hpp)
+// keeps them in this order, VectorSums as lanes 0–6 of its two 4-wide vectors
+// (lane 7 unused).
+struct SumLane {
+  enum : int { ext, sca, abs, back_re, back_im, g_cross, g_self, count };
+};
+
+// The convergence test of the converged term rule: order n, beyond x, is the
+// last one summed once its size (TermOutputs::size) is at most tol times the
+// scale of the sums, min(|Σext|, |Σback_re| + |Σback_im|), read from the
+// running sums without their carries.  SeriesSums and sum_block_double call
+// it; the lanes of spheres() run the same test on vectors
+// (sphere_lanes_kernels.inc, where no helper from outside may be called).
+template <class Real>
+ATTENUVIS_MIE_INLINE bool series_converged(std::size_t n, double x, const Real& size, const Real& tol,
+                                           const Real& ext, const Real& back_re, const Real& back_im) {
+  using std::abs;
+  return static_cast<double>(n) > x && size <= tol * (std::min)(abs(ext), abs(back_re) + abs(back_im));
+}
+
 template <class Real>
 struct SeriesSums;
 
-// Pass 3 of series.hpp for double without extras: its seven compensated
-// (Kahan) sums, lane c of `sum`/`carry` the sum c of SeriesSums (ext, sca,
-// abs, back_re, back_im, g_cross, g_self; lane 7 unused).  Two 4-wide vector
-// operations advance all seven — the same IEEE operations per sum as
-// KahanSum::add, so the same bits — where the scalar loop took seven.
+// Pass 3 of series.hpp for double (with or without extras): its seven
+// compensated (Kahan) sums, lane c of `sum`/`carry` the sum SumLane c.  Two
+// 4-wide vector operations advance all seven — the same IEEE operations per
+// sum as KahanSum::add, so the same bits — where the scalar loop took seven.
 struct VectorSums {
   alignas(64) double sum[8] = {}, carry[8] = {};
   bool converged = false;  // the convergence test stopped the series
@@ -211,8 +232,8 @@ void conductor_terms_double(const TermConstants<double>& k, const TermInputs<dou
 void sum_terms_double(const TermInputs<double>& in, std::size_t count, const Complex<double>& a_prev,
                       const Complex<double>& b_prev, TermOutputs<double>& out);
 // Adds orders first .. first+count−1 of `t` to `s`, stopping after the first
-// order n > x whose size is <= tol·min(|Σext|, |Σback_re| + |Σback_im|)
-// (converged_rule; sets s.converged).  Returns the number of orders added.
+// order that passes series_converged (converged_rule; sets s.converged).
+// Returns the number of orders added.
 std::size_t sum_block_double(const TermOutputs<double>& t, std::size_t first, std::size_t count, double x,
                              double tol, bool converged_rule, VectorSums& s);
 

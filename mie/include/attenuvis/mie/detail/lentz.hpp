@@ -1,8 +1,9 @@
 // Continued fraction for the ratio of Bessel functions J_{ν-1}(z)/J_ν(z),
 // evaluated by the modified Lentz algorithm.
 //
-// Template implementation detail of the Mie core; included only by the
-// translation units that instantiate it (mie/src/sphere_*.cpp).
+// Template detail of the Mie core: the start of the downward recurrences of
+// the series (log_derivative.hpp) and of forward_amplitude()
+// (mie/src/forward_amplitude.cpp).
 //
 // From the recurrence J_{ν-1}(z) + J_{ν+1}(z) = (2ν/z) J_ν(z):
 //     J_{ν-1}/J_ν = b₀ − 1/(b₁ − 1/(b₂ − …)),   b_j = 2(ν+j)/z.
@@ -22,7 +23,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "attenuvis/mie/complex_ops.hpp"
+#include "attenuvis/mie/detail/complex_ops.hpp"
 
 namespace attenuvis::mie::detail {
 

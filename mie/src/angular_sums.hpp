@@ -19,7 +19,7 @@
 #include <boost/math/special_functions/cos_pi.hpp>
 
 #include "attenuvis/mie.hpp"
-#include "attenuvis/mie/term_block.hpp"
+#include "term_block.hpp"
 
 namespace attenuvis::mie::detail {
 
