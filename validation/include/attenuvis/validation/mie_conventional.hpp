@@ -8,7 +8,7 @@
 // recurrence (B&H eq. 4.89) started from zero at max(N, |mx|) + 15.  It has no
 // Lentz continued fraction, no series for small x and no convergence test: it
 // exists to show numerically what those omissions cost (the Mie traps
-// truncation, start-value and small-x of mie/series.hpp).
+// truncation, start-value and small-x of mie/src/series.hpp).
 // It is NOT Wiscombe's MIEV0; do not label its timings as MIEV0's.
 #pragma once
 
