@@ -135,6 +135,59 @@ struct BulkOptics {
   MatrixExpansion expansion, expansion_error;          // scattering-weighted, as chi_l
 };
 
+// Every field of a result by name, in declaration order, for outputs that
+// show them all (the Python bindings): visit(name, value) for a field of its
+// own, visit(name, value, error) for a value and its error.  Each
+// structured binding names every data member, so a field added to one of
+// these structs does not compile until it is listed here, and then reaches
+// those outputs without further change.
+template <class Visit>
+void for_each_field(const IntegralEstimate& e, Visit&& visit) {
+  const auto& [value, quadrature_error, tail_error, asymptotic_error, resonance_error, rounding_error] = e;
+  visit("value", value);
+  visit("quadrature_error", quadrature_error);
+  visit("tail_error", tail_error);
+  visit("asymptotic_error", asymptotic_error);
+  visit("resonance_error", resonance_error);
+  visit("rounding_error", rounding_error);
+}
+// The expansion and its error, coefficient by coefficient: visit(name, values, errors).
+template <class Visit>
+void for_each_field(const MatrixExpansion& value, const MatrixExpansion& error, Visit&& visit) {
+  const auto& [alpha1, alpha2, alpha3, alpha4, beta1, beta2] = value;
+  const auto& [alpha1_error, alpha2_error, alpha3_error, alpha4_error, beta1_error, beta2_error] = error;
+  visit("alpha1", alpha1, alpha1_error);
+  visit("alpha2", alpha2, alpha2_error);
+  visit("alpha3", alpha3, alpha3_error);
+  visit("alpha4", alpha4, alpha4_error);
+  visit("beta1", beta1, beta1_error);
+  visit("beta2", beta2, beta2_error);
+}
+template <class Visit>
+void for_each_field(const BulkOptics& b, Visit&& visit) {
+  const auto& [extinction, scattering, absorption, albedo, albedo_error, asymmetry, asymmetry_error, evaluations,
+               floor_panels, max_size_parameter, scattering_computed, method, backscatter_computed, backscatter,
+               lidar_ratio, lidar_ratio_error, moments, moments_error, angles_deg, phase, phase_error, expansion,
+               expansion_error] = b;
+  visit("extinction", extinction);
+  visit("scattering", scattering);
+  visit("absorption", absorption);
+  visit("albedo", albedo, albedo_error);
+  visit("asymmetry", asymmetry, asymmetry_error);
+  visit("evaluations", evaluations);
+  visit("floor_panels", floor_panels);
+  visit("max_size_parameter", max_size_parameter);
+  visit("scattering_computed", scattering_computed);
+  visit("method", method);
+  visit("backscatter_computed", backscatter_computed);
+  visit("backscatter", backscatter);
+  visit("lidar_ratio", lidar_ratio, lidar_ratio_error);
+  visit("moments", moments, moments_error);
+  visit("angles_deg", angles_deg);
+  visit("phase", phase, phase_error);
+  visit("expansion", expansion, expansion_error);
+}
+
 // With any efficiency function (analytic test integrands, a cached Mie table...).
 // `m` is used only for the error terms (resonances, large-x bound); the default
 // (Im m = 1) switches the resonance term off, as for a smooth test integrand.
