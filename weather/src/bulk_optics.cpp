@@ -15,7 +15,7 @@
 
 #include "attenuvis/io/check.hpp"
 #include "attenuvis/weather/cancel.hpp"
-#include "attenuvis/weather/resonance.hpp"
+#include "resonance.hpp"
 #include "bulk_components.hpp"
 #include "extinction_tail.hpp"
 #include "gauss_kronrod_rule.hpp"

@@ -14,7 +14,7 @@
 
 #include "attenuvis/mie/forward_amplitude.hpp"
 #include "attenuvis/weather/cancel.hpp"
-#include "analytic_density.hpp"
+#include "attenuvis/weather/detail/analytic_density.hpp"
 #include "extinction_tail.hpp"
 #include "contour_panel.hpp"
 #include "gauss_kronrod_rule.hpp"
@@ -54,7 +54,7 @@ class PathIntegrand {
   // The integrand is S(0) times 4/x^2 pi r^2 n(r) dr/dx.
   Complex weight(Complex x) const {
     const Complex r = x / k_;
-    return 4.0 / (x * x) * kPi * r * r * *analytic_density(d_, r) / k_;
+    return 4.0 / (x * x) * kPi * r * r * *detail::analytic_density(d_, r) / k_;
   }
 
   // Gauss-Kronrod on [a, b] in t along x = point(t).
@@ -238,7 +238,7 @@ std::string method_text(const ContourSettings& s, double angle, bool verify, mie
 
 }  // namespace
 
-std::optional<Complex> analytic_density(const SizeDistribution& d, Complex r) {
+std::optional<Complex> detail::analytic_density(const SizeDistribution& d, Complex r) {
   if (const auto* g = std::get_if<ModifiedGamma>(&d.form())) return detail::modified_gamma_density(*g, r);
   if (const auto* l = std::get_if<LogNormal>(&d.form())) return detail::log_normal_density(*l, r);
   return std::nullopt;

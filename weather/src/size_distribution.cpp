@@ -11,7 +11,7 @@
 #include <boost/math/special_functions/erf.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 
-#include "analytic_density.hpp"
+#include "attenuvis/weather/detail/analytic_density.hpp"
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/weather/domains.hpp"
 #include "registry_rows.hpp"

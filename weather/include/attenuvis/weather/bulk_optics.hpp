@@ -34,7 +34,7 @@
 //               1.5 x (sampled range of Q) x (panel's geometric cross-section)
 //               is added, since K and G can alias alike there,
 //   resonance   for nearly non-absorbing particles, what panels no wider
-//               than resonance_x_span still disagree on (resonance.hpp);
+//               than resonance_x_span still disagree on (src/resonance.hpp);
 //               not counted against rel_tolerance: those panels are split
 //               in an order set by the weight alone (not by |K - G|, which
 //               would bias sigma low) until it is below resonance_tolerance
@@ -89,7 +89,7 @@ struct QuadratureSettings {
   double tail_fraction = 0;        // fraction of the r^2 moment left outside; 0: 1e-3 * rel_tolerance
   std::size_t max_evaluations = 400000;
   double asymptotic_x = 0;         // > 0: use the large-x expansion of Q_ext beyond this x (extinction only)
-  // Nearly non-absorbing spheres (Im m < resonance_free_k(), see resonance.hpp):
+  // Nearly non-absorbing spheres (Im m < resonance_free_k(), see src/resonance.hpp):
   bool estimate_resonances = true;
   double resonance_x_span = 2.0;      // panels this narrow in x resolve the ripple: their |K - G| is resonance error
   double resonance_tolerance = 5e-5;  // split such panels until the resonance error is below this x sigma_ext...
