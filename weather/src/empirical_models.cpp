@@ -25,11 +25,7 @@ const std::vector<RainLawCoefficients>& rain_power_laws() {
   return laws;
 }
 
-const RainLawCoefficients& rain_power_law(RainLaw law) {
-  for (const auto& l : rain_power_laws())
-    if (l.law == law) return l;
-  throw std::logic_error("rain law without coefficients");
-}
+const RainLawCoefficients& rain_power_law(RainLaw law) { return detail::row_of(rain_power_laws(), law); }
 
 const RainLawCoefficients& rain_power_law(const std::string& name) {
   std::string names;
@@ -55,13 +51,9 @@ const std::vector<SnowTypeInfo>& snow_types() {
   return types;
 }
 
-const SnowTypeInfo& info(SnowType type) { return snow_types().at(static_cast<std::size_t>(type)); }
+const SnowTypeInfo& info(SnowType type) { return detail::row_of(snow_types(), type); }
 
-const SnowTypeInfo* find_snow_type(const std::string& name) {
-  for (const auto& t : snow_types())
-    if (t.name == name) return &t;
-  return nullptr;
-}
+const SnowTypeInfo* find_snow_type(const std::string& name) { return detail::find_by_name(snow_types(), name); }
 
 std::string to_string(SnowType type) { return info(type).name; }
 
@@ -100,14 +92,10 @@ const std::vector<VisibilityFogModelInfo>& visibility_fog_models() {
   return models;
 }
 
-const VisibilityFogModelInfo& info(VisibilityFogModel m) {
-  return visibility_fog_models().at(static_cast<std::size_t>(m));
-}
+const VisibilityFogModelInfo& info(VisibilityFogModel m) { return detail::row_of(visibility_fog_models(), m); }
 
 const VisibilityFogModelInfo* find_visibility_fog_model(const std::string& name) {
-  for (const auto& m : visibility_fog_models())
-    if (m.name == name) return &m;
-  return nullptr;
+  return detail::find_by_name(visibility_fog_models(), name);
 }
 
 std::string to_string(VisibilityFogModel m) { return info(m).name; }

@@ -46,14 +46,13 @@ const std::vector<WaterTableInfo>& water_tables() {
   return tables;
 }
 
-const WaterTableInfo& info(WaterTable t) { return water_tables().at(static_cast<std::size_t>(t)); }
+const WaterTableInfo& info(WaterTable t) { return detail::row_of(water_tables(), t); }
 
 const WaterTableInfo* find_water_table(const std::string& name) {
-  for (const auto& t : water_tables()) {
-    if (t.name == name) return &t;
+  if (const WaterTableInfo* t = detail::find_by_name(water_tables(), name)) return t;
+  for (const auto& t : water_tables())
     for (const auto& alias : t.aliases)
       if (alias == name) return &t;
-  }
   return nullptr;
 }
 

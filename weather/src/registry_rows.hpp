@@ -27,6 +27,21 @@ std::vector<std::string> names_of(const Rows& rows) {
   return out;
 }
 
+// The row of an enum value: info(E) of every registry (check_enum_order
+// below holds the rows to the enum's order).
+template <class Rows, class Enum>
+const typename Rows::value_type& row_of(const Rows& rows, Enum value) {
+  return rows.at(static_cast<std::size_t>(value));
+}
+
+// The row of a name; nullptr for any other text.
+template <class Rows>
+const typename Rows::value_type* find_by_name(const Rows& rows, const std::string& name) {
+  for (const auto& row : rows)
+    if (row.name == name) return &row;
+  return nullptr;
+}
+
 // info(E) indexes a registry by the enum value: row i must hold value i.
 template <class Rows, class Member>
 void check_enum_order(const Rows& rows, Member id) {

@@ -234,13 +234,9 @@ const std::vector<FogPresetInfo>& fog_presets() {
   return presets;
 }
 
-const FogPresetInfo& info(FogPreset p) { return fog_presets().at(static_cast<std::size_t>(p)); }
+const FogPresetInfo& info(FogPreset p) { return detail::row_of(fog_presets(), p); }
 
-const FogPresetInfo* find_fog_preset(const std::string& name) {
-  for (const auto& p : fog_presets())
-    if (p.name == name) return &p;
-  return nullptr;
-}
+const FogPresetInfo* find_fog_preset(const std::string& name) { return detail::find_by_name(fog_presets(), name); }
 
 std::string to_string(FogPreset p) { return info(p).name; }
 

@@ -46,7 +46,7 @@ const std::vector<QuantityInfo>& table_quantities() {
   return table;
 }
 
-const QuantityInfo& info(Quantity q) { return table_quantities().at(static_cast<std::size_t>(q)); }
+const QuantityInfo& info(Quantity q) { return detail::row_of(table_quantities(), q); }
 
 std::string quantity_names() {
   std::string out;
