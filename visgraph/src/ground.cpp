@@ -161,9 +161,9 @@ GroundMade inferred(Mesh& mesh, const BuildingBases& bases) {
   made.inferred = true;
   made.triangles = add_inferred_ground(mesh, bases);
   made.points = bases.points.size();
-  made.description = "inferred from " + std::to_string(bases.building_base.size()) + " building bases (" +
-                     std::to_string(bases.points.size()) + " footprint points at " + metres(bases.lowest) + " to " +
-                     metres(bases.highest) + "; a Delaunay TIN over their convex hull)";
+  made.description = "a TIN inferred from " + std::to_string(bases.building_base.size()) + " building bases (" +
+                     std::to_string(bases.points.size()) + " footprint points at z = " + io::significant(bases.lowest, 6) +
+                     " to " + metres(bases.highest) + "; Delaunay, over their convex hull)";
   return made;
 }
 
