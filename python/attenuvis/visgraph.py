@@ -576,6 +576,19 @@ class VisibilityResult(NamedTuple):
             When geopandas is not installed.
         ValueError
             If ``eyes`` does not hold one point per node.
+
+        Examples
+        --------
+        >>> from attenuvis import visgraph as vg
+        >>> scene = vg.Scene.layout(2)
+        >>> eyes = vg.node_grid(scene, 10.0)
+        >>> r = vg.all_to_all(scene, eyes, [0.0, 0.01])
+        >>> try:
+        ...     frame = r.to_geopandas(eyes, "EPSG:28992", labels=["clear", "fog"])
+        ... except ImportError:  # geopandas is not installed
+        ...     frame = None
+        >>> frame is None or list(frame.columns)[:3] == ["node", "degree", "sum:clear"]
+        True
         """
         try:
             import geopandas
