@@ -89,7 +89,7 @@ class Extruder {
           if (base_z(p) >= roof)
             throw std::invalid_argument(where + ": height " + io::significant(f.height, 6) + " m is less than the " +
                                         io::significant(base_z(p) - lowest, 4) + " m its base rises across the footprint");
-      add_caps(rings, roof);
+      add_caps(rings, roof, where);
       for (const Ring& ring : rings) add_walls(ring, roof);
     }
   }
@@ -130,7 +130,7 @@ class Extruder {
 
   // Floor and roof: the polygon's ear-clipped triangulation in the plane,
   // at the base (facing down) and at the roof (facing up).
-  void add_caps(const std::vector<Ring>& rings, double roof) {
+  void add_caps(const std::vector<Ring>& rings, double roof, const std::string& where) {
     std::vector<std::vector<Eigen::Vector3d>> flat;
     std::vector<Eigen::Vector3d> corners;
     for (const Ring& ring : rings) {
@@ -141,6 +141,10 @@ class Extruder {
       }
     }
     const PolygonTriangles caps = triangulate_polygon(flat);
+    if (caps.status != PolygonStatus::ok)
+      throw std::invalid_argument(where + (caps.status == PolygonStatus::degenerate
+                                               ? " has no area"
+                                               : " cannot be triangulated: a hole outside its outline or crossing it?"));
     const auto floor_first = static_cast<std::uint32_t>(mesh_.vertices.size());
     for (const Eigen::Vector3d& p : corners) vertex({p.x(), p.y(), base_z(p)});
     const auto roof_first = static_cast<std::uint32_t>(mesh_.vertices.size());

@@ -46,7 +46,8 @@ struct FootprintGround {
 // The prisms, one group per footprint (its id) with classes GroundSurface,
 // WallSurface and RoofSurface.  Throws std::invalid_argument naming `source`
 // and the footprint's id for a ring with fewer than three distinct vertices,
-// a ring that intersects itself, a coordinate outside the range of limits.hpp,
+// a ring that intersects itself, a polygon that cannot be triangulated (a
+// hole outside its outline), a coordinate outside the range of limits.hpp,
 // a ring of more than kMaxPolygonVertices vertices, a height that is not a
 // positive finite number or that the base rises by more than across the
 // footprint, or a footprint with no terrain height under any vertex.
