@@ -4,7 +4,7 @@
 // (hillside.hpp) the inferred TIN: every node on it within the linear
 // interpolation bound of the true ground, no node under a building, and
 // lines of sight that agree with an independent segment test.
-#include "test_visibility_scenes.hpp"
+#include "sight_check.hpp"
 
 #include <attenuvis/visgraph/cityjson.hpp>
 #include <attenuvis/visgraph/ground.hpp>
@@ -17,8 +17,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
-#include <set>
 #include <string>
 
 namespace vg = attenuvis::visgraph;
@@ -54,14 +52,6 @@ double enclosing_radius(const std::array<Vector3d, 3>& t) {
   if (2 * longest * longest >= a * a + b * b + c * c) return 0.5 * longest;  // right or obtuse
   const double area = 0.5 * std::abs(cross2(t[0], t[1], t[2]));
   return a * b * c / (4 * area);
-}
-
-// Even-odd point-in-polygon test on a building's roof triangles' xy (the
-// footprint, holes and all).
-bool under_group(const std::vector<std::array<Vector3d, 3>>& roof, double x, double y) {
-  for (const auto& t : roof)
-    if (inside_xy(t, x, y, -1e-9)) return true;
-  return false;
 }
 
 }  // namespace
@@ -153,26 +143,38 @@ TEST_CASE("the inferred ground is the Delaunay triangulation of the base points"
   CHECK(tin.size() <= 2 * bases.points.size() - 5);
 }
 
+// The hillside town on its inferred ground, with nodes on a 2 m grid.
+struct HillsideRun {
+  vg::HillsideOptions options;
+  Mesh buildings = vg::hillside_town(options);
+  Mesh town = with_ground(buildings);
+  vg::Scene scene{town};
+  std::vector<Vector3d> eyes = nodes(scene);
+
+  static Mesh with_ground(Mesh m) {
+    vg::add_ground(m, {});
+    return m;
+  }
+  static std::vector<Vector3d> nodes(const vg::Scene& scene) {
+    vg::NodeGridOptions grid;
+    grid.spacing = 2.0;
+    const vg::NodeSet set = vg::generate_nodes(scene, grid);
+    CHECK(set.elevated == 0);
+    return set.eyes;
+  }
+};
+
 TEST_CASE("on the hillside town every node stands on the inferred ground, none under a building", "[visgraph][ground]") {
-  const vg::HillsideOptions o;
-  Mesh town = vg::hillside_town(o);
-  const Mesh buildings = town;
-  vg::add_ground(town, {});
-  const vg::Scene scene(town);
-  vg::NodeGridOptions grid;
-  grid.spacing = 2.0;
-  const vg::NodeSet nodes = vg::generate_nodes(scene, grid);
-  REQUIRE(nodes.eyes.size() > 5000);
-  CHECK(nodes.elevated == 0);
-  const auto tin = group_triangles(town, vg::kInferredGroundGroup);
+  const HillsideRun run;
+  REQUIRE(run.eyes.size() > 5000);
+  const auto tin = group_triangles(run.town, vg::kInferredGroundGroup);
   std::vector<std::vector<std::array<Vector3d, 3>>> roofs;
-  for (std::size_t b = 0; b < 100; ++b) roofs.push_back(group_triangles(buildings, "building-" + std::to_string(b)));
-  const double M = vg::hillside_curvature_bound(o);
+  for (std::size_t b = 0; b < 100; ++b) roofs.push_back(group_triangles(run.buildings, "building-" + std::to_string(b)));
+  const double M = vg::hillside_curvature_bound(run.options);
   double worst = 0, worst_bound = 0, sum = 0;
   std::size_t under = 0, beyond_bound = 0;
-  for (const Vector3d& e : nodes.eyes) {
-    const double ground = e.z() - grid.eye_height;
-    const double error = ground - vg::hillside_ground(o, e.x(), e.y());
+  for (const Vector3d& e : run.eyes) {
+    const double error = e.z() - 1.7 - vg::hillside_ground(run.options, e.x(), e.y());
     // The TIN triangle under the node bounds its error: M R^2 / 2
     // (hillside.hpp), plus 1 mm for Embree's single-precision hit.
     double bound = -1;
@@ -188,52 +190,26 @@ TEST_CASE("on the hillside town every node stands on the inferred ground, none u
   }
   CHECK(beyond_bound == 0);
   CHECK(under == 0);
-  WARN("hillside town, 2 m grid: " << nodes.eyes.size() << " nodes; ground error max " << worst << " m, mean "
-                                   << sum / nodes.eyes.size() << " m (largest bound " << worst_bound << " m)");
+  WARN("hillside town, 2 m grid: " << run.eyes.size() << " nodes; ground error max " << worst << " m, mean "
+                                   << sum / run.eyes.size() << " m (largest bound " << worst_bound << " m)");
   // And the flat plane the model used to get: eyes under most buildings'
   // bases (lowest corner more than 1.7 m above the lowest z).
   std::size_t floating = 0;
-  for (double base : vg::building_bases(buildings).building_base) floating += base - vg::mesh_stats(buildings).lower.z() > 1.7;
+  const double lowest = vg::mesh_stats(run.buildings).lower.z();
+  for (double base : vg::building_bases(run.buildings).building_base) floating += base - lowest > 1.7;
   CHECK(floating > 80);
 }
 
 TEST_CASE("lines of sight over the hillside town agree with an independent segment test", "[visgraph][ground]") {
-  const vg::HillsideOptions o;
-  Mesh town = vg::hillside_town(o);
-  const Mesh buildings = town;
-  vg::add_ground(town, {});
-  const vg::Scene scene(town);
-  vg::NodeGridOptions grid;
-  grid.spacing = 2.0;
-  const std::vector<Vector3d> all = vg::generate_nodes(scene, grid).eyes;
-  std::mt19937_64 rng(30);
-  std::size_t pairs = 0, visible = 0, hidden_by_ground = 0;
-  for (int trial = 0; trial < 3; ++trial) {
-    std::vector<Vector3d> nodes;
-    for (int k = 0; k < 60; ++k) nodes.push_back(all[rng() % all.size()]);
-    vg::VisibilityOptions options;
-    options.sigmas = {0.0};
-    std::set<std::pair<std::uint32_t, std::uint32_t>> seen;
-    options.edge_sink = [&](const std::vector<vg::Edge>& edges) {
-      for (const vg::Edge& e : edges) seen.insert({e.i, e.j});
-    };
-    vg::all_to_all(scene, nodes, options);
-    for (std::uint32_t i = 0; i < nodes.size(); ++i)
-      for (std::uint32_t j = i + 1; j < nodes.size(); ++j) {
-        if ((nodes[i] - nodes[j]).norm() < 1e-6) continue;  // the same node drawn twice
-        const bool expected = brute_force_visible(town, nodes[i], nodes[j]);
-        INFO("trial " << trial << " pair " << i << ", " << j);
-        CHECK(seen.count({i, j}) == (expected ? 1u : 0u));
-        ++pairs;
-        visible += expected;
-        hidden_by_ground += !expected && brute_force_visible(buildings, nodes[i], nodes[j]);
-      }
-  }
+  const HillsideRun run;
+  const SightCheck check = random_sight_lines(run.scene, run.town, run.buildings, run.eyes, 3, 60, 30);
+  for (const std::string& d : check.disagreements) FAIL_CHECK(d);
+  CHECK(check.agree == check.pairs);
   // Both outcomes are common, and the ground itself hides some pairs (over
   // the ridge), so the test exercises the TIN as an occluder.
-  CHECK(visible > pairs / 20);
-  CHECK(pairs - visible > pairs / 20);
-  CHECK(hidden_by_ground > 0);
-  WARN("hillside town: " << pairs << " random pairs, " << visible << " visible, " << hidden_by_ground
-                         << " hidden by the ground alone; Embree agrees with the segment test on every one");
+  CHECK(check.visible > check.pairs / 20);
+  CHECK(check.pairs - check.visible > check.pairs / 20);
+  CHECK(check.hidden_by_ground > 0);
+  WARN("hillside town: " << check.pairs << " random pairs, " << check.visible << " visible, " << check.hidden_by_ground
+                         << " hidden by the ground alone; Embree agrees with the segment test on " << check.agree);
 }
