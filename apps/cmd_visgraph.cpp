@@ -189,10 +189,40 @@ struct SpacingChoice {
 
 double unordered_pairs(std::size_t n) { return 0.5 * static_cast<double>(n) * (static_cast<double>(n) - 1); }
 
-// The node grid; adds the ground plane to a model without ground (--ground-plane).
+// The node grid on the ground --ground-plane asks for: a plane first (yes,
+// Z), or, when the grid finds no ground, the one add_ground chooses (auto);
+// `no_ground`: the model had none of its own.
+vg::NodeSet grid_on_ground(const VgArguments& a, SceneInput& input, std::unique_ptr<vg::Scene>& scene,
+                           vg::NodeGridOptions& options, bool& no_ground) {
+  const GroundPlaneChoice ground = ground_plane_choice(a.city, a.eye_height);
+  const auto add_ground = [&] {
+    const vg::GroundMade made = make_ground(input.mesh, ground.request);
+    input.ground = made.description;
+    if (made.floating > 0)
+      warn(input, std::to_string(made.floating) + " buildings stand more than the eye height above the ground plane " +
+                      "at z = " + io::shortest(made.plane_z) + " m: eye points there are below their bases", a.quiet);
+    scene = std::make_unique<vg::Scene>(input.mesh);
+    if (!options.walkable.empty())
+      options.walkable.push_back(made.inferred ? vg::kInferredGroundGroup : vg::kGroundPlaneGroup);
+    return made;
+  };
+  if (ground.now) add_ground();
+  vg::NodeSet grid = vg::generate_nodes(*scene, options);
+  no_ground = !vg::found_ground(*scene, grid);
+  if (no_ground && ground.automatic) {
+    const vg::GroundMade made = add_ground();
+    warn(input, "the scene has no ground (buildings only?): nodes stand on " + made.description +
+                    (made.inferred ? " (--terrain DEM gives the surveyed ground)"
+                                   : " (--ground-plane Z or --terrain DEM give another ground, --ground-plane no refuses)"),
+         a.quiet);
+    grid = vg::generate_nodes(*scene, options);
+  }
+  return grid;
+}
+
+// The node grid; on the ground of grid_on_ground.
 vg::NodeSet place_nodes(const VgArguments& a, SceneInput& input, std::unique_ptr<vg::Scene>& scene,
                         const SpacingChoice& choice) {
-  const GroundPlaneChoice ground = ground_plane_choice(a.city, a.eye_height);
   vg::NodeGridOptions options;
   options.spacing = a.spacing;
   options.eye_height = a.eye_height;
@@ -210,28 +240,8 @@ vg::NodeSet place_nodes(const VgArguments& a, SceneInput& input, std::unique_ptr
                                 io::significant(cells.bytes / 1e9, 3) + " GB while placing), more than the " +
                                 io::significant(vg::kDefaultMaxGridCells, 3) +
                                 " allowed: use a larger --spacing, or --allow-large to run it anyway");
-  const auto add_ground = [&] {
-    const vg::GroundMade made = make_ground(input.mesh, ground.request);
-    input.ground = made.description;
-    if (made.floating > 0)
-      warn(input, std::to_string(made.floating) + " buildings stand more than the eye height above the ground plane " +
-                      "at z = " + io::shortest(made.plane_z) + " m: eye points there are below their bases", a.quiet);
-    scene = std::make_unique<vg::Scene>(input.mesh);
-    if (!options.walkable.empty())
-      options.walkable.push_back(made.inferred ? vg::kInferredGroundGroup : vg::kGroundPlaneGroup);
-    return made;
-  };
-  if (ground.now) add_ground();
-  vg::NodeSet grid = vg::generate_nodes(*scene, options);
-  const bool no_ground = !vg::found_ground(*scene, grid);
-  if (no_ground && ground.automatic) {
-    const vg::GroundMade made = add_ground();
-    warn(input, "the scene has no ground (buildings only?): nodes stand on " + made.description +
-                    (made.inferred ? " (--terrain DEM gives the surveyed ground)"
-                                   : " (--ground-plane Z or --terrain DEM give another ground, --ground-plane no refuses)"),
-         a.quiet);
-    grid = vg::generate_nodes(*scene, options);
-  }
+  bool no_ground = false;
+  vg::NodeSet grid = grid_on_ground(a, input, scene, options, no_ground);
   if (input.ground.empty()) input.ground = no_ground ? "none" : "the model's own surfaces";
   if (choice.automatic) {
     const std::size_t first_nodes = grid.eyes.size();
