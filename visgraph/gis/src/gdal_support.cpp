@@ -90,7 +90,7 @@ bool to_lonlat(const OGRSpatialReference& srs, double x, double y, double& lon, 
   if (!to || !to->Transform(1, &x, &y)) return false;
   lon = x;
   lat = y;
-  return std::isfinite(lon) && std::isfinite(lat);
+  return std::abs(lon) <= 180 && std::abs(lat) <= 90;  // false for NaN too
 }
 }  // namespace
 

@@ -11,7 +11,8 @@ namespace attenuvis::visgraph::gis {
 // EPSG:326zz (WGS 84 / UTM zone zzN) or EPSG:327zz (zzS).  The exceptions
 // around Norway and Svalbard are not applied: any zone whose central
 // meridian is within 3 degrees keeps scale distortion under 1 part in 1000.
-// Returns "UTM zone 32N (EPSG:32632)".
+// Returns "UTM zone 32N (EPSG:32632)"; a longitude outside [-180, 180] is
+// taken at the nearest end.
 std::string utm_zone(double lon, double lat);
 
 }  // namespace attenuvis::visgraph::gis
