@@ -182,3 +182,25 @@ TEST_CASE("UTM zones for data in degrees", "[visgraph][gis]") {
   CHECK(gis::utm_zone(180.0, -10.0) == "UTM zone 60S (EPSG:32760)");
   CHECK(gis::utm_zone(6.0, 0.0) == "UTM zone 32N (EPSG:32632)");  // a zone's western edge belongs to it
 }
+
+TEST_CASE("vg on a CityJSON model and a DEM: the horizontal CRS decides, the vertical datum does not", "[visgraph][cli][gis]") {
+  // box_on_terrain_v1.0: EPSG:28992 (RD New), x 100000..100030, y 399996..400030.
+  TempDir dir;
+  const std::string model = std::string(ATTENUVIS_TEST_DATA_DIR) + "/visgraph/cityjson/box_on_terrain_v1.0.city.json";
+  const auto flat = [](double, double) { return 0.5; };
+  // EPSG:7415 is RD New + NAP height: the same horizontal CRS.
+  write_geotiff(dir / "rd_nap.tif", 7415, 99990, 400040, 1.0, 50, 50, flat);
+  Run r = run("vg " + model + " --terrain " + (dir / "rd_nap.tif") + " --conditions clear --out " + (dir / "n.csv"));
+  INFO(r.output);
+  CHECK(r.status == 0);
+  CHECK_THAT(r.output, Contains("ground: a DEM"));
+  write_geotiff(dir / "utm.tif", 32631, 99990, 400040, 1.0, 50, 50, flat);
+  r = run("vg " + model + " --terrain " + (dir / "utm.tif") + " --conditions clear --out " + (dir / "m.csv"));
+  CHECK(r.status != 0);
+  CHECK_THAT(r.output, Contains("utm.tif is in EPSG:32631 but the model in EPSG:28992"));
+  CHECK_FALSE(std::filesystem::exists(dir / "m.csv"));
+  // Generated scenes have no place on a DEM.
+  r = run("vg layout:1 --terrain " + (dir / "utm.tif") + " --conditions clear --out " + (dir / "m.csv"));
+  CHECK(r.status != 0);
+  CHECK_THAT(r.output, Contains("--terrain, --height-field and --levels-field apply to scene files"));
+}
