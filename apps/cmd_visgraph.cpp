@@ -4,11 +4,14 @@
 #include "commands.hpp"
 #include "path_clashes.hpp"
 #include "process_group.hpp"
+#include "vg_city_options.hpp"
 #include "weather_options.hpp"
 
 #include <attenuvis/io/number_text.hpp>
 #include <attenuvis/io/staged_file.hpp>
 #include <attenuvis/visgraph.hpp>
+#include <attenuvis/visgraph/gis/city.hpp>
+#include <attenuvis/visgraph/gis/geopackage.hpp>
 #include <attenuvis/weather.hpp>
 
 #include <chrono>
@@ -17,6 +20,7 @@
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -45,7 +49,8 @@ struct VgArguments {
   bool quiet = false;
   bool allow_large = false;
   bool no_culling = false;
-  std::string up_axis = "z", lod, ground_plane = "auto";
+  std::string up_axis = "z", lod;
+  CityArguments city;  // --terrain, footprints, --ground-plane, --gpkg (vg_city_options.hpp)
 };
 
 std::vector<std::string> split(const std::string& text, char separator) {
@@ -122,6 +127,9 @@ struct SceneInput {
   vg::Mesh mesh;
   std::string format;
   std::vector<std::string> warnings;
+  std::optional<vg::HeightGrid> terrain;  // the DEM window (--terrain)
+  std::string terrain_source;
+  std::string ground;                     // where the nodes' ground came from, in words
 };
 
 void warn(SceneInput& input, const std::string& text, bool quiet) {
@@ -132,16 +140,22 @@ void warn(SceneInput& input, const std::string& text, bool quiet) {
 SceneInput read_scene(const VgArguments& a) {
   SceneInput input;
   if (vg::is_scene_spec(a.scene)) {
+    if (wants_city_input(a.city))
+      throw std::invalid_argument("--terrain, --height-field and --levels-field apply to scene files, not to '" +
+                                  a.scene + "'");
     input.mesh = vg::scene_from_spec(a.scene);
     return input;
   }
   vg::SceneFileOptions options;
   options.obj_up_axis = vg::parse_up_axis(a.up_axis);
   options.lod = a.lod;
-  vg::SceneFile file = vg::load_scene_file(a.scene, options);
-  input.mesh = std::move(file.mesh);
-  input.format = file.format;
-  for (const std::string& w : file.warnings) warn(input, a.scene + ": " + w, a.quiet);
+  vg::gis::CityModel city = vg::gis::load_city(a.scene, city_options(a.city, options, !a.nodes_file.empty()));
+  input.mesh = std::move(city.mesh);
+  input.format = city.format;
+  input.terrain = std::move(city.terrain);
+  input.terrain_source = city.terrain_source;
+  input.ground = city.ground;
+  for (const std::string& w : city.warnings) warn(input, w, a.quiet);
   return input;
 }
 
@@ -175,11 +189,40 @@ struct SpacingChoice {
 
 double unordered_pairs(std::size_t n) { return 0.5 * static_cast<double>(n) * (static_cast<double>(n) - 1); }
 
-// The node grid; adds the ground plane to a model without ground (--ground-plane).
+// The node grid on the ground --ground-plane asks for: a plane first (yes,
+// Z), or, when the grid finds no ground, the one add_ground chooses (auto);
+// `no_ground`: the model had none of its own.
+vg::NodeSet grid_on_ground(const VgArguments& a, SceneInput& input, std::unique_ptr<vg::Scene>& scene,
+                           vg::NodeGridOptions& options, bool& no_ground) {
+  const GroundPlaneChoice ground = ground_plane_choice(a.city, a.eye_height);
+  const auto add_ground = [&] {
+    const vg::GroundMade made = make_ground(input.mesh, ground.request);
+    input.ground = made.description;
+    if (made.floating > 0)
+      warn(input, std::to_string(made.floating) + " buildings stand more than the eye height above the ground plane " +
+                      "at z = " + io::shortest(made.plane_z) + " m: eye points there are below their bases", a.quiet);
+    scene = std::make_unique<vg::Scene>(input.mesh);
+    if (!options.walkable.empty())
+      options.walkable.push_back(made.inferred ? vg::kInferredGroundGroup : vg::kGroundPlaneGroup);
+    return made;
+  };
+  if (ground.now) add_ground();
+  vg::NodeSet grid = vg::generate_nodes(*scene, options);
+  no_ground = !vg::found_ground(*scene, grid);
+  if (no_ground && ground.automatic) {
+    const vg::GroundMade made = add_ground();
+    warn(input, "the scene has no ground (buildings only?): nodes stand on " + made.description +
+                    (made.inferred ? " (--terrain DEM gives the surveyed ground)"
+                                   : " (--ground-plane Z or --terrain DEM give another ground, --ground-plane no refuses)"),
+         a.quiet);
+    grid = vg::generate_nodes(*scene, options);
+  }
+  return grid;
+}
+
+// The node grid; on the ground of grid_on_ground.
 vg::NodeSet place_nodes(const VgArguments& a, SceneInput& input, std::unique_ptr<vg::Scene>& scene,
                         const SpacingChoice& choice) {
-  if (a.ground_plane != "auto" && a.ground_plane != "yes" && a.ground_plane != "no")
-    throw std::invalid_argument("--ground-plane: expected auto, yes or no, got '" + a.ground_plane + "'");
   vg::NodeGridOptions options;
   options.spacing = a.spacing;
   options.eye_height = a.eye_height;
@@ -197,20 +240,9 @@ vg::NodeSet place_nodes(const VgArguments& a, SceneInput& input, std::unique_ptr
                                 io::significant(cells.bytes / 1e9, 3) + " GB while placing), more than the " +
                                 io::significant(vg::kDefaultMaxGridCells, 3) +
                                 " allowed: use a larger --spacing, or --allow-large to run it anyway");
-  const auto add_plane = [&] {
-    vg::add_ground_plane(input.mesh);
-    scene = std::make_unique<vg::Scene>(input.mesh);
-    if (!options.walkable.empty()) options.walkable.push_back(vg::kGroundPlaneGroup);
-  };
-  if (a.ground_plane == "yes") add_plane();
-  vg::NodeSet grid = vg::generate_nodes(*scene, options);
-  const bool no_ground = !vg::found_ground(*scene, grid);
-  if (no_ground && a.ground_plane == "auto") {
-    warn(input, "the scene has no ground (buildings only?): nodes stand on a horizontal ground plane at its "
-                "lowest z (--ground-plane yes says so, --ground-plane no refuses)", a.quiet);
-    add_plane();
-    grid = vg::generate_nodes(*scene, options);
-  }
+  bool no_ground = false;
+  vg::NodeSet grid = grid_on_ground(a, input, scene, options, no_ground);
+  if (input.ground.empty()) input.ground = no_ground ? "none" : "the model's own surfaces";
   if (choice.automatic) {
     const std::size_t first_nodes = grid.eyes.size();
     const double first_spacing = options.spacing;
@@ -234,14 +266,15 @@ vg::NodeSet place_nodes(const VgArguments& a, SceneInput& input, std::unique_ptr
     std::cerr << "nodes: " << grid.eyes.size() << " of " << grid.cells << " grid cells (dropped: " << grid.covered
               << " covered, " << grid.too_steep << " too steep, " << grid.no_headroom << " without headroom, "
               << grid.no_surface << " over no surface)\n  placed by: " << grid.rule << "\n  on: "
-              << vg::preview_names(where, 8, "(--summary lists the 20 largest)") << "\n";
+              << vg::preview_names(where, 8, "(--summary lists the 20 largest)") << "\n  ground: " << input.ground
+              << "\n";
   }
   if (grid.elevated > 0)
     warn(input, std::to_string(grid.elevated) + " nodes stand more than " + io::shortest(options.elevated_height) +
                     " m above the lowest surface under them (up to " + io::significant(grid.max_elevation, 3) +
                     " m): roofs or decks? --walkable chooses the surfaces", a.quiet);
   if (grid.eyes.empty())
-    throw std::runtime_error(no_ground && a.ground_plane == "no"
+    throw std::runtime_error(no_ground && a.city.ground_plane == "no"
                                  ? "no ground under the node grid (buildings only?): --ground-plane yes stands nodes "
                                    "on a plane at the scene's lowest z"
                                  : "no walkable surface under the node grid: no nodes (--walkable chooses surfaces)");
@@ -258,12 +291,14 @@ void check_arguments(const VgArguments& a) {
     throw std::invalid_argument("--edges is written by a single process: run it without mpirun (the scores "
                                 "are the same; the edge list's order is that of one process)");
   refuse_path_clashes({{"--out", a.out}, {"--ply", a.ply}, {"--heatmap", a.heatmap}, {"--summary", a.summary},
-                       {"--edges", a.edges}, {"--geojson", a.geojson}},
+                       {"--edges", a.edges}, {"--geojson", a.geojson}, {"--gpkg", a.city.gpkg}},
                       {{"the scene", vg::is_scene_spec(a.scene) ? "" : a.scene},
                        {"--nodes", a.nodes_file},
-                       {"--targets", a.targets_file}});
+                       {"--targets", a.targets_file},
+                       {"--terrain", a.city.terrain}});
   check_option_ranges(a);
-  for (const std::string* path : {&a.out, &a.ply, &a.heatmap, &a.summary, &a.edges, &a.geojson})
+  ground_plane_choice(a.city, a.eye_height);  // refuses a bad --ground-plane before anything is read
+  for (const std::string* path : {&a.out, &a.ply, &a.heatmap, &a.summary, &a.edges, &a.geojson, &a.city.gpkg})
     if (!path->empty()) io::require_regular_or_absent(*path);
 }
 
@@ -284,6 +319,7 @@ struct VgRun {
 void read_or_place_nodes(const VgArguments& a, VgRun& run) {
   if (!a.nodes_file.empty()) {
     run.eyes = read_node_file(a.nodes_file, run.input, a.quiet);
+    if (run.input.terrain) vg::check_nodes_on_terrain(*run.input.terrain, run.eyes, run.input.terrain_source);
   } else {
     // The spacing is chosen only for an unbounded all-to-all run; with a
     // radius (--max-distance, --prune-below) or targets the pair count is not
@@ -347,6 +383,7 @@ vg::RunInfo run_info(const VgArguments& a, const VgRun& run) {
   info.scene_report = vg::describe(*run.scene);
   info.scene_format = run.input.format;
   info.crs = run.input.mesh.crs;
+  info.ground = run.input.ground;
   info.warnings = run.input.warnings;
   info.mode = run.targets.empty() ? "all-to-all" : "to-targets";
   info.targets = run.targets.size();
@@ -372,6 +409,7 @@ void stage_outputs(const VgArguments& a, const VgRun& run, const vg::ScoreTable&
   vg::write_csv(csv, table);
   const std::string csv_temporary = stage_text(a.out, csv.str());
   if (!a.geojson.empty()) stage_text(a.geojson, vg::geojson_text(table, run.input.mesh.crs));
+  if (!a.city.gpkg.empty()) stage_text(a.city.gpkg, vg::gis::geopackage_bytes(table, run.input.mesh.crs));
   if (!a.ply.empty()) {
     std::ostringstream ply;
     vg::write_ply(ply, table, panels.front());
@@ -413,6 +451,7 @@ void run_vg(const VgArguments& given) {
   run.conditions = conditions_to_sigma(a, run.wavelength_m);
 
   run.input = read_scene(a);
+  if (!a.city.gpkg.empty()) vg::gis::check_geopackage_crs(run.input.mesh.crs);
   run.scene = std::make_unique<vg::Scene>(run.input.mesh);
   if (!a.quiet) std::cerr << "scene " << a.scene << ": " << vg::describe(*run.scene) << "\n";
   read_or_place_nodes(a, run);
@@ -442,15 +481,13 @@ void register_visgraph(CLI::App& app) {
   CLI::App* vgc = app.add_subcommand("vg", "Visibility graph weighted by contrast ratio C = exp(-sigma d)");
   vgc->add_option("scene", args->scene,
                   "scene file (CityJSON .json/.city.json/.jsonl, glTF .gltf/.glb, OBJ; recognised by content; "
+                  "or footprints with --height-field; "
                   "a regular file <= 2 GiB, |coordinates| <= 1e7 m, faces <= 10000 vertices), "
                   "or layout:0..4, city, city:SEED")
       ->required();
   vgc->add_option("--up-axis", args->up_axis, "up axis of an OBJ file: z or y")->capture_default_str();
   vgc->add_option("--lod", args->lod, "CityJSON level of detail to read, e.g. 2.2 (default: each object's highest)");
-  vgc->add_option("--ground-plane", args->ground_plane,
-                  "auto | yes | no: a horizontal plane at the scene's lowest z to stand on (auto: when the grid "
-                  "finds no ground)")
-      ->capture_default_str();
+  add_city_options(vgc, args->city);
   auto* spacing = vgc->add_option("--spacing", args->spacing,
                   "node grid spacing, 0.001 to 10000 m (default 1 m, coarsened to 1.5, 2, 3, 4, 5, 6, 8 x 10^k m "
                   "when an all-to-all grid would exceed the default limits; the choice is printed)")
@@ -495,6 +532,7 @@ void register_visgraph(CLI::App& app) {
                 "(never above all of it)");
   vgc->callback([args, old_prune, spacing] {
     args->spacing_given = spacing->count() > 0;
+    args->city.allow_large = args->allow_large;
     if (old_prune->count() > 0) {
       if (!args->quiet)
         std::cerr << "attenuvis vg: --tolerance is deprecated here (it means the Mie tolerance in sigma and table); "

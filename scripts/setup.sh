@@ -12,6 +12,8 @@ packages=(
   libcli11-dev nlohmann-json3-dev catch2 libbenchmark-dev libtinygltf-dev
   python3 python3-matplotlib python3-numpy
   libnetcdf-dev                             # netCDF-4 tables
+  libcgal-dev                               # the ground inferred under buildings-only city models (Delaunay)
+  libgdal-dev gdal-bin python3-gdal         # DEMs, footprint layers, GeoPackage out; gdal-bin and python3-gdal for their tests and docs
   pybind11-dev python3-dev python3-pytest  # the Python package (python/) and its tests
   python3-xarray python3-netcdf4           # optional there; its tests and examples use them
   libopenmpi-dev openmpi-bin               # optional: `mpirun -np N attenuvis vg` (ATTENUVIS_MPI)

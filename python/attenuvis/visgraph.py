@@ -61,7 +61,8 @@ class Scene:
         self._cpp = cpp
 
     @classmethod
-    def from_file(cls, path: Union[str, os.PathLike], *, up_axis: str = "z", lod: str = "") -> Scene:
+    def from_file(cls, path: Union[str, os.PathLike], *, up_axis: str = "z", lod: str = "",
+                  terrain: Union[None, str, os.PathLike] = None) -> Scene:
         """A scene from an OBJ, CityJSON or glTF file, recognised by content.
 
         Parameters
@@ -73,6 +74,14 @@ class Scene:
             The file's up axis; applies to OBJ (the scene is z up).
         lod : str, default ""
             CityJSON level of detail to read ("" = the reader's choice).
+        terrain : None, "infer" or str or path-like, default None
+            Ground to add: a DEM (a GeoTIFF or any raster GDAL reads, in the
+            model's CRS, covering it; its surface joins the scene and nodes
+            stand on it), ``"infer"`` for a model published as buildings
+            only (a plane at its lowest z where the building bases agree
+            within 0.5 m, else the Delaunay TIN of the bases, as the command
+            line's default), or None for the file as it is.  :attr:`ground`
+            says what was added.
 
         Returns
         -------
@@ -84,8 +93,9 @@ class Scene:
             If the file cannot be read or parsed (the message names the
             file and where).
         ValueError
-            For a bad argument: an ``up_axis`` other than "z" or "y", or a
-            ``lod`` for a file that is not CityJSON.
+            For a bad argument: an ``up_axis`` other than "z" or "y", a
+            ``lod`` for a file that is not CityJSON, a DEM in another CRS,
+            short of the model or without data where nodes would stand.
 
         Examples
         --------
@@ -102,7 +112,80 @@ class Scene:
         Scene(OBJ, 4 triangles, groups=['ground', 'wall'])
         >>> tmp.cleanup()
         """
-        return cls(_core.Scene.from_file(str(path), up_axis, lod))
+        return cls(_core.Scene.from_file(str(path), up_axis, lod, _terrain(terrain)))
+
+    @classmethod
+    def from_footprints(cls, path: Union[str, os.PathLike], *, height_field: Optional[str] = None,
+                        levels_field: Optional[str] = None, storey_height: float = 3.0,
+                        terrain: Union[None, str, os.PathLike] = None, strict: bool = False,
+                        base_z: float = 0.0) -> Scene:
+        """Buildings extruded from a GIS layer of footprints.
+
+        Each polygon of the file's first layer (GeoPackage, Shapefile,
+        GeoJSON: any vector layer GDAL reads, in a projected CRS in metres)
+        becomes a flat-roofed prism, holes and multipolygons included, its
+        height from ``height_field`` or else ``levels_field`` times
+        ``storey_height`` (OpenStreetMap's building:levels), standing on the
+        lowest ground under its corners.
+
+        Parameters
+        ----------
+        path : str or path-like
+            The layer's file.
+        height_field : str, optional
+            Field holding each building's height (m; a number, or text such
+            as "12 m").
+        levels_field : str, optional
+            Field holding its storeys, used where the height is missing.
+        storey_height : float, default 3.0
+            Metres per storey.
+        terrain : None, "infer" or str or path-like, default None
+            A DEM the buildings and nodes stand on (as :meth:`from_file`);
+            "infer" for footprints with z; None: the plane ``base_z``.
+        strict : bool, default False
+            A feature without a usable height raises instead of being
+            skipped (skipped ones are counted in :attr:`warnings`).
+        base_z : float, default 0.0
+            Height (m) of the plane footprints without z stand on when there
+            is no DEM.
+
+        Returns
+        -------
+        Scene
+            Groups are the features' ids; classes GroundSurface,
+            WallSurface, RoofSurface (and DEMTerrain).
+
+        Raises
+        ------
+        ValueError
+            For a layer in degrees (the message names a UTM zone to
+            reproject to), geometry that is not a polygon, an empty layer, a
+            self-intersecting ring or a missing field (each naming the
+            feature), and the DEM refusals of :meth:`from_file`.
+        RuntimeError
+            If GDAL cannot read the file.
+
+        Examples
+        --------
+        >>> import os, tempfile
+        >>> from attenuvis import visgraph as vg
+        >>> tmp = tempfile.TemporaryDirectory()
+        >>> path = os.path.join(tmp.name, "houses.geojson")
+        >>> with open(path, "w") as f:
+        ...     _ = f.write('{"type": "FeatureCollection", "crs": {"type": "name", "properties": '
+        ...                 '{"name": "urn:ogc:def:crs:EPSG::32632"}}, "features": ['
+        ...                 '{"type": "Feature", "properties": {"height": 9.5}, "geometry": {"type": "Polygon", '
+        ...                 '"coordinates": [[[500000, 5000000], [500010, 5000000], [500010, 5000010], '
+        ...                 '[500000, 5000010], [500000, 5000000]]]}}]}')
+        >>> scene = vg.Scene.from_footprints(path, height_field="height")
+        >>> scene.crs, scene.triangle_count, float(scene.bounds[1, 2])
+        ('EPSG:32632', 12, 9.5)
+        >>> tmp.cleanup()
+        """
+        if not height_field and not levels_field:
+            raise ValueError("from_footprints: give height_field, levels_field or both")
+        return cls(_core.Scene.from_footprints(str(path), height_field or "", levels_field or "",
+                                               float(storey_height), _terrain(terrain), bool(strict), float(base_z)))
 
     @classmethod
     def from_obj(cls, path: Union[str, os.PathLike], *, up_axis: str = "z") -> Scene:
@@ -268,8 +351,24 @@ class Scene:
         """What the reader noticed (an up axis that looks wrong, faces skipped)."""
         return self._cpp.warnings
 
+    @property
+    def crs(self) -> str:
+        """The scene's coordinate reference system as its file names it ("" when unknown)."""
+        return self._cpp.crs
+
+    @property
+    def ground(self) -> str:
+        """Where the ground added to the scene came from ("" when none was added)."""
+        return self._cpp.ground
+
     def __repr__(self) -> str:
         return f"Scene({self._cpp.format}, {self.triangle_count} triangles, groups={list(self.groups)})"
+
+
+def _terrain(terrain) -> str:
+    if terrain is None:
+        return ""
+    return os.fspath(terrain)
 
 
 def classic_layout_names() -> List[str]:
@@ -403,6 +502,104 @@ class VisibilityResult(NamedTuple):
     max_distance: Optional[np.ndarray]
     edges: Optional[Edges]
     stats: dict
+
+    def columns(self, labels: Optional[Sequence[str]] = None) -> dict:
+        """The scores as named columns, as the command line's CSV names them.
+
+        Parameters
+        ----------
+        labels : sequence of str, optional
+            One name per sigma (e.g. the conditions, "clear", "fog"); None
+            names them 0, 1, ...
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            "node", then "degree" (when exact), "sum:LABEL" and "avg:LABEL"
+            (avg only with the degree) per sigma, and "mean_distance",
+            "max_distance" when computed.
+
+        Raises
+        ------
+        ValueError
+            If ``labels`` does not have one name per sigma.
+
+        Examples
+        --------
+        >>> from attenuvis import visgraph as vg
+        >>> scene = vg.Scene.layout(2)
+        >>> r = vg.all_to_all(scene, vg.node_grid(scene, 10.0), [0.0, 0.01])
+        >>> list(r.columns(["clear", "fog"]))
+        ['node', 'degree', 'sum:clear', 'avg:clear', 'sum:fog', 'avg:fog']
+        """
+        k = len(self.sum)
+        names = [str(i) for i in range(k)] if labels is None else [str(label) for label in labels]
+        if len(names) != k:
+            raise ValueError(f"labels: expected one name per sigma ({k}), got {len(names)}")
+        out = {"node": np.arange(self.sum.shape[1])}
+        if self.degree is not None:
+            out["degree"] = self.degree
+        for i, name in enumerate(names):
+            out[f"sum:{name}"] = self.sum[i]
+            if self.degree is not None:
+                out[f"avg:{name}"] = self.average[i]
+        if self.mean_distance is not None:
+            out["mean_distance"] = self.mean_distance
+            out["max_distance"] = self.max_distance
+        return out
+
+    def to_geopandas(self, eyes: ArrayLike, crs=None, labels: Optional[Sequence[str]] = None):
+        """The scores as a GeoDataFrame of 3-D points, for a GIS.
+
+        Needs geopandas (Debian: python3-geopandas), imported only here: the
+        package itself works without it.
+
+        Parameters
+        ----------
+        eyes : array_like of float, shape (N, 3)
+            The eye points the pass was run on (its sources for
+            :func:`to_targets`).
+        crs : optional
+            Their CRS, anything geopandas accepts (``scene.crs``, "EPSG:28992").
+        labels : sequence of str, optional
+            Names of the sigmas, as :meth:`columns`.
+
+        Returns
+        -------
+        geopandas.GeoDataFrame
+            The columns of :meth:`columns` and a point geometry (x, y, z) per
+            node.
+
+        Raises
+        ------
+        ImportError
+            When geopandas is not installed.
+        ValueError
+            If ``eyes`` does not hold one point per node.
+
+        Examples
+        --------
+        >>> from attenuvis import visgraph as vg
+        >>> scene = vg.Scene.layout(2)
+        >>> eyes = vg.node_grid(scene, 10.0)
+        >>> r = vg.all_to_all(scene, eyes, [0.0, 0.01])
+        >>> try:
+        ...     frame = r.to_geopandas(eyes, "EPSG:28992", labels=["clear", "fog"])
+        ... except ImportError:  # geopandas is not installed
+        ...     frame = None
+        >>> frame is None or list(frame.columns)[:3] == ["node", "degree", "sum:clear"]
+        True
+        """
+        try:
+            import geopandas
+        except ImportError as e:
+            raise ImportError("to_geopandas needs geopandas (Debian: apt install python3-geopandas); "
+                              "columns() gives the same scores without it") from e
+        e = _eyes(eyes, "eyes")
+        if len(e) != self.sum.shape[1]:
+            raise ValueError(f"eyes: the result has {self.sum.shape[1]} nodes, eyes {len(e)} points")
+        geometry = geopandas.points_from_xy(e[:, 0], e[:, 1], e[:, 2])
+        return geopandas.GeoDataFrame(self.columns(labels), geometry=geometry, crs=crs)
 
 
 def _sigmas(sigmas) -> list:

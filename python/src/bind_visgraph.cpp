@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "attenuvis/visgraph/gis/city.hpp"
+#include "attenuvis/visgraph/ground.hpp"
 #include "attenuvis/visgraph/layouts.hpp"
 #include "attenuvis/visgraph/mesh.hpp"
 #include "attenuvis/visgraph/nodes.hpp"
@@ -41,6 +43,7 @@ struct PyScene {
   std::vector<std::string> default_walkable;  // shipped scenes: their walkable groups
   std::string format, crs;
   std::vector<std::string> warnings;
+  std::string ground;  // where the ground came from, when one was added (a DEM, inferred, a plane)
 };
 
 PyScene build(vg::Mesh mesh, std::vector<std::string> walkable, std::string format) {
@@ -55,18 +58,44 @@ PyScene build(vg::Mesh mesh, std::vector<std::string> walkable, std::string form
   return s;
 }
 
-PyScene scene_from_file(const std::string& path, const std::string& up_axis, const std::string& lod) {
-  vg::SceneFileOptions options;
-  options.obj_up_axis = vg::parse_up_axis(up_axis);
-  options.lod = lod;
-  vg::SceneFile file;
+// A scene file or a footprint layer, on a DEM (`terrain` a path), on the
+// ground inferred from its building bases (`terrain` "infer", ground.hpp) or
+// as it is ("").
+PyScene scene_from_city(const std::string& path, vg::gis::CityOptions options, const std::string& terrain) {
+  const bool infer = terrain == "infer";
+  if (!infer) options.terrain = terrain;
+  vg::gis::CityModel city;
+  std::string ground;
   {
     py::gil_scoped_release release;
-    file = vg::load_scene_file(path, options);
+    city = vg::gis::load_city(path, options);
+    ground = city.ground;
+    if (infer) ground = vg::add_ground(city.mesh, {}).description;
   }
-  PyScene s = build(std::move(file.mesh), {}, file.format);
-  s.warnings = file.warnings;
+  PyScene s = build(std::move(city.mesh), {}, city.format);
+  s.warnings = city.warnings;
+  s.ground = ground;
   return s;
+}
+
+PyScene scene_from_file(const std::string& path, const std::string& up_axis, const std::string& lod,
+                        const std::string& terrain) {
+  vg::gis::CityOptions options;
+  options.file.obj_up_axis = vg::parse_up_axis(up_axis);
+  options.file.lod = lod;
+  return scene_from_city(path, options, terrain);
+}
+
+PyScene scene_from_footprints(const std::string& path, const std::string& height_field,
+                              const std::string& levels_field, double storey_height, const std::string& terrain,
+                              bool strict, double plane_z) {
+  vg::gis::CityOptions options;
+  options.footprints.height_field = height_field;
+  options.footprints.levels_field = levels_field;
+  options.footprints.storey_height = storey_height;
+  options.footprints.strict = strict;
+  options.plane_z = plane_z;
+  return scene_from_city(path, options, terrain);
 }
 
 PyScene scene_from_spec(const std::string& spec) {
@@ -233,7 +262,11 @@ py::dict run(const PyScene& s, const std::vector<Eigen::Vector3d>& sources,
 
 void bind_visgraph(py::module_ module) {
   py::class_<PyScene>(module, "Scene")
-      .def_static("from_file", &scene_from_file, py::arg("path"), py::arg("up_axis") = "z", py::arg("lod") = "")
+      .def_static("from_file", &scene_from_file, py::arg("path"), py::arg("up_axis") = "z", py::arg("lod") = "",
+                  py::arg("terrain") = "")
+      .def_static("from_footprints", &scene_from_footprints, py::arg("path"), py::arg("height_field"),
+                  py::arg("levels_field"), py::arg("storey_height"), py::arg("terrain"), py::arg("strict"),
+                  py::arg("plane_z"))
       .def_static("from_spec", &scene_from_spec, py::arg("spec"))
       .def_static("from_arrays", &scene_from_arrays, py::arg("vertices"), py::arg("triangles"), py::arg("groups"),
                   py::arg("group_names"))
@@ -252,7 +285,8 @@ void bind_visgraph(py::module_ module) {
       .def_property_readonly("default_walkable", [](const PyScene& s) { return s.default_walkable; })
       .def_property_readonly("format", [](const PyScene& s) { return s.format; })
       .def_property_readonly("crs", [](const PyScene& s) { return s.crs; })
-      .def_property_readonly("warnings", [](const PyScene& s) { return s.warnings; });
+      .def_property_readonly("warnings", [](const PyScene& s) { return s.warnings; })
+      .def_property_readonly("ground", [](const PyScene& s) { return s.ground; });
 
   module.def("node_grid", &node_grid, py::arg("scene"), py::arg("spacing"), py::arg("walkable"),
              py::arg("eye_height"), py::arg("max_slope_deg"));

@@ -37,9 +37,14 @@ std::size_t Mesh::add_class(const std::string& name) {
 
 void add_ground_plane(Mesh& mesh, double margin) {
   if (mesh.triangles.empty()) return;
+  add_ground_plane_at(mesh, mesh_stats(mesh).lower.z(), margin);
+}
+
+void add_ground_plane_at(Mesh& mesh, double z, double margin) {
+  if (mesh.triangles.empty()) return;
   const MeshStats stats = mesh_stats(mesh);
   const double x0 = stats.lower.x() - margin, x1 = stats.upper.x() + margin;
-  const double y0 = stats.lower.y() - margin, y1 = stats.upper.y() + margin, z = stats.lower.z();
+  const double y0 = stats.lower.y() - margin, y1 = stats.upper.y() + margin;
   const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
   mesh.vertices.insert(mesh.vertices.end(), {{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}});
   mesh.triangles.push_back({base, base + 1, base + 2});  // counter-clockwise from above: normal +z

@@ -1,8 +1,10 @@
 // Node generation on walkable surfaces and node files.
 #include <attenuvis/visgraph/nodes.hpp>
 #include <attenuvis/visgraph/geojson.hpp>
+#include <attenuvis/visgraph/ground.hpp>
 #include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/mesh.hpp>
+#include <attenuvis/visgraph/terrain.hpp>
 #include <attenuvis/visgraph/work_estimate.hpp>
 
 #include <attenuvis/io/input_file.hpp>
@@ -46,7 +48,7 @@ std::vector<std::string> split_commas(const std::string& line) {
 
 std::vector<std::string> default_walkable_classes() {
   return {"TINRelief", "Road", "TransportSquare", "Square", "LandUse", "TrafficArea", "AuxiliaryTrafficArea",
-          "GroundSurface", kGroundPlaneClass};
+          "GroundSurface", kGroundPlaneClass, kInferredGroundClass, kTerrainClass};
 }
 
 namespace {

@@ -198,6 +198,7 @@ std::string summary_json(const ScoreTable& table, const RunInfo& info) {
   j["scene"] = {{"source", info.scene}, {"report", info.scene_report}};
   if (!info.scene_format.empty()) j["scene"]["format"] = info.scene_format;
   if (!info.crs.empty()) j["scene"]["crs"] = info.crs;
+  if (!info.ground.empty()) j["scene"]["ground"] = info.ground;
   if (!info.warnings.empty()) j["warnings"] = info.warnings;
   j["mode"] = info.mode;
   if (info.mode == "to-targets") j["targets"] = info.targets;

@@ -40,6 +40,19 @@ std::string up_axis_warning(const Mesh& mesh, const std::string& how_to_fix) {
          ": it looks like a model of the other up-axis convention (" + how_to_fix + ")";
 }
 
+// What kind of GIS vector layer the file's first bytes show, or "" for none:
+// such a file holds footprints, not a scene, and the OBJ reader would only
+// report a syntax error.
+std::string vector_layer_kind(const std::string& head) {
+  if (head.compare(0, 16, std::string("SQLite format 3\0", 16)) == 0) return "a GeoPackage (SQLite) file";
+  if (head.size() >= 4 && head.compare(0, 4, std::string("\x00\x00\x27\x0a", 4)) == 0) return "a Shapefile";
+  const auto brace = head.find_first_not_of(" \t\r\n");
+  if (brace != std::string::npos && head[brace] == '{' &&
+      (head.find("\"FeatureCollection\"") != std::string::npos || head.find("\"Feature\"") != std::string::npos))
+    return "GeoJSON";
+  return "";
+}
+
 }  // namespace
 
 SceneFile load_scene_file(const std::string& path, const SceneFileOptions& options) {
@@ -70,6 +83,10 @@ SceneFile load_scene_file(const std::string& path, const SceneFileOptions& optio
     if (report.invalid_surfaces)
       file.warnings.push_back(std::to_string(report.invalid_surfaces) +
                               " surfaces are self-intersecting and were triangulated in part");
+  } else if (const std::string kind = vector_layer_kind(head); !kind.empty()) {
+    throw std::invalid_argument(path + " is " + kind + " of GIS features, not a scene: footprints are extruded "
+                                "by a height field (attenuvis vg --height-field NAME, or --levels-field; "
+                                "Python: Scene.from_footprints)");
   } else {
     file.mesh = load_obj(path);
     file.format = "OBJ";

@@ -3,8 +3,10 @@
 #pragma once
 
 #include <attenuvis/visgraph/cityjson.hpp>
+#include <attenuvis/visgraph/footprints.hpp>
 #include <attenuvis/visgraph/generators.hpp>
 #include <attenuvis/visgraph/geojson.hpp>
+#include <attenuvis/visgraph/ground.hpp>
 #include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/mesh.hpp>
 #include <attenuvis/visgraph/nodes.hpp>
@@ -12,5 +14,6 @@
 #include <attenuvis/visgraph/outputs.hpp>
 #include <attenuvis/visgraph/scene.hpp>
 #include <attenuvis/visgraph/scene_file.hpp>
+#include <attenuvis/visgraph/terrain.hpp>
 #include <attenuvis/visgraph/visibility.hpp>
 #include <attenuvis/visgraph/work_estimate.hpp>

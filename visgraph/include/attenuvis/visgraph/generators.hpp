@@ -4,6 +4,7 @@
 #pragma once
 
 #include <attenuvis/visgraph/city.hpp>
+#include <attenuvis/visgraph/hillside.hpp>
 #include <attenuvis/visgraph/layouts.hpp>
 #include <attenuvis/visgraph/mesh.hpp>
 #include <attenuvis/visgraph/scene_spec.hpp>

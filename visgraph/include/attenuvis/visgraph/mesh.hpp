@@ -48,6 +48,8 @@ double walkable_area(const Mesh& mesh, const std::vector<std::string>& groups);
 inline constexpr const char* kGroundPlaneGroup = "ground-plane";
 inline constexpr const char* kGroundPlaneClass = "GroundPlane";
 void add_ground_plane(Mesh& mesh, double margin = 1.0);
+// The same rectangle at height z (ground.hpp chooses it for a given height).
+void add_ground_plane_at(Mesh& mesh, double z, double margin = 1.0);
 
 // For messages: the first `shown` names, comma-separated, then
 // " ... and N more" and, if given, `more_hint` (e.g. "(`attenuvis scene info

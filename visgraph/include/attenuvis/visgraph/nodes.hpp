@@ -58,8 +58,9 @@ GridEstimate estimate_grid(const Scene& scene, double spacing);
 
 // Classes people walk on by default (CityJSON city-object types and semantic
 // surfaces, including CityJSON 2.0 names): TINRelief, Road, TransportSquare,
-// Square, LandUse, TrafficArea, AuxiliaryTrafficArea, GroundSurface, and
-// GroundPlane (add_ground_plane).  Never RoofSurface.
+// Square, LandUse, TrafficArea, AuxiliaryTrafficArea, GroundSurface, and the
+// grounds attenuvis adds: GroundPlane (add_ground_plane), InferredGround
+// (ground.hpp) and DEMTerrain (terrain.hpp).  Never RoofSurface.
 std::vector<std::string> default_walkable_classes();
 
 // How many nodes stand on one class (or group, in a scene without classes).
@@ -94,7 +95,7 @@ NodeSet generate_nodes(const Scene& scene, const NodeGridOptions& options);
 // some triangle has a walkable class other than GroundSurface (a building's
 // floor lies under its roof: no ground to stand on).  Otherwise: more cells
 // got a node than found no surface at all.  False for a model of buildings
-// without terrain: add_ground_plane (mesh.hpp) gives it one.
+// without terrain: add_ground (ground.hpp) gives it one.
 bool found_ground(const Scene& scene, const NodeSet& grid);
 
 // Reads eye positions from a CSV file: one `x,y,z` per line (world frame,

@@ -76,6 +76,7 @@ struct RunInfo {
   std::string scene_report;       // describe(scene)
   std::string scene_format;       // "CityJSON 1.0", "OBJ", ... (empty for generated scenes)
   std::string crs;                // the scene's CRS, or empty
+  std::string ground;             // where the nodes' ground came from, in words, or empty
   std::vector<std::string> warnings;  // what the run warned about
   std::string mode;               // "all-to-all" or "to-targets"
   std::size_t targets = 0;

@@ -32,6 +32,9 @@ struct SceneFile {
 // y); either way `warnings` says when its extents look like the other
 // convention's (a vertical extent that is not its smallest and a horizontal
 // axis less than half as long, as a city exported y-up and read z-up).
+// A GeoPackage, Shapefile or GeoJSON file is refused with
+// std::invalid_argument saying that footprints need a height field
+// (visgraph/gis/city.hpp reads them).
 SceneFile load_scene_file(const std::string& path, const SceneFileOptions& options = {});
 
 }  // namespace attenuvis::visgraph
