@@ -12,5 +12,6 @@
 #include <attenuvis/visgraph/outputs.hpp>
 #include <attenuvis/visgraph/scene.hpp>
 #include <attenuvis/visgraph/scene_file.hpp>
+#include <attenuvis/visgraph/space_syntax.hpp>
 #include <attenuvis/visgraph/visibility.hpp>
 #include <attenuvis/visgraph/work_estimate.hpp>
