@@ -14,6 +14,7 @@ packages=(
   libnetcdf-dev                             # netCDF-4 tables
   pybind11-dev python3-dev python3-pytest  # the Python package (python/) and its tests
   python3-xarray python3-netcdf4           # optional there; its tests and examples use them
+  python3-networkx                         # the space-syntax measures' independent reference (tests, benchmark)
   libopenmpi-dev openmpi-bin               # optional: `mpirun -np N attenuvis vg` (ATTENUVIS_MPI)
 )
 # Callers add what only they need (scripts/test.sh: clang and its libFuzzer runtime).

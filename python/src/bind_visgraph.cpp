@@ -231,6 +231,8 @@ py::dict run(const PyScene& s, const std::vector<Eigen::Vector3d>& sources,
 
 }  // namespace
 
+const vg::Scene& scene_of(py::handle scene) { return *scene.cast<const PyScene&>().scene; }
+
 void bind_visgraph(py::module_ module) {
   py::class_<PyScene>(module, "Scene")
       .def_static("from_file", &scene_from_file, py::arg("path"), py::arg("up_axis") = "z", py::arg("lod") = "")
