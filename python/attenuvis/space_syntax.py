@@ -143,7 +143,7 @@ def _result(d, degree=None) -> SpaceSyntaxResult:
 def space_syntax(scene, eyes: ArrayLike, sigmas: ArrayLike, *, measures: Union[str, Sequence[str], None] = None,
                  radius: Union[int, str] = "n", threshold: float = KOSCHMIEDER_CONTRAST,
                  spacing: Optional[float] = None, origins: Optional[Sequence[int]] = None, threads: int = 0,
-                 progress: Optional[Callable[[int, int], None]] = None) -> SpaceSyntaxResult:
+                 graph: str = "auto", progress: Optional[Callable[[int, int], None]] = None) -> SpaceSyntaxResult:
     """The space-syntax measures of the eyes' visibility graph in each weather.
 
     Runs the exact visibility pass (every pair of eyes) and computes the
@@ -174,6 +174,9 @@ def space_syntax(scene, eyes: ArrayLike, sigmas: ArrayLike, *, measures: Union[s
         Eye indices for step-depth.
     threads : int, default 0
         Worker threads (0 = every core).  Results do not depend on it.
+    graph : {"auto", "bit-rows", "csr"}, default "auto"
+        How the lines of sight are held (N x N bits, or sorted neighbour
+        lists); "auto" takes the smaller.  Results do not depend on it.
     progress : callable, optional
         ``progress(pairs_done, pairs_total)`` during the pass.
 
@@ -201,14 +204,15 @@ def space_syntax(scene, eyes: ArrayLike, sigmas: ArrayLike, *, measures: Union[s
     cb = None if progress is None else (lambda done: progress(done, total))
     d = _core.space_syntax(scene._cpp, e, _sigmas(sigmas), _measure_list(measures, spacing), _radius(radius),
                            float(threshold), 0.0 if spacing is None else float(spacing),
-                           [] if origins is None else [int(o) for o in origins], int(threads), cb)
+                           [] if origins is None else [int(o) for o in origins], int(threads), str(graph), cb)
     return _result(d, d["degree"])
 
 
 def space_syntax_of_graph(eyes: ArrayLike, i: ArrayLike, j: ArrayLike, sigmas: ArrayLike, *,
                           measures: Union[str, Sequence[str], None] = None, radius: Union[int, str] = "n",
                           threshold: float = KOSCHMIEDER_CONTRAST, spacing: Optional[float] = None,
-                          origins: Optional[Sequence[int]] = None, threads: int = 0) -> SpaceSyntaxResult:
+                          origins: Optional[Sequence[int]] = None, threads: int = 0,
+                          graph: str = "auto") -> SpaceSyntaxResult:
     """The space-syntax measures of any graph given by its edges.
 
     The graph of nodes ``eyes`` with an edge (i[k], j[k]) for each k (each
@@ -230,5 +234,5 @@ def space_syntax_of_graph(eyes: ArrayLike, i: ArrayLike, j: ArrayLike, sigmas: A
     jj = np.ascontiguousarray(j, dtype=np.uint32)
     d = _core.space_syntax_edges(_eyes(eyes), ii, jj, _sigmas(sigmas), _measure_list(measures, spacing),
                                  _radius(radius), float(threshold), 0.0 if spacing is None else float(spacing),
-                                 [] if origins is None else [int(o) for o in origins], int(threads))
+                                 [] if origins is None else [int(o) for o in origins], int(threads), str(graph))
     return _result(d)

@@ -34,10 +34,18 @@ std::vector<Eigen::Vector3d> points(const Doubles& array, const char* what) {
   return out;
 }
 
+vg::GraphStorage storage_of(const std::string& graph) {
+  if (graph == "auto") return vg::GraphStorage::automatic;
+  if (graph == "bit-rows") return vg::GraphStorage::bit_rows;
+  if (graph == "csr") return vg::GraphStorage::csr;
+  throw std::invalid_argument("graph: expected 'auto', 'bit-rows' or 'csr', got '" + graph + "'");
+}
+
 vg::SpaceSyntaxOptions options(const std::vector<double>& sigmas, const std::string& measures, int radius,
                                double threshold, double spacing, const std::vector<std::uint32_t>& origins,
-                               int threads) {
+                               int threads, const std::string& graph) {
   vg::SpaceSyntaxOptions o;
+  o.storage = storage_of(graph);
   o.sigmas = sigmas;
   o.measures = vg::parse_measures(measures);
   o.radius = radius;
@@ -73,13 +81,13 @@ py::dict to_dict(const vg::SpaceSyntaxResult& r, std::size_t K) {
 
 py::dict from_edges(const Doubles& eyes, const Indices& i, const Indices& j, const std::vector<double>& sigmas,
                     const std::string& measures, int radius, double threshold, double spacing,
-                    const std::vector<std::uint32_t>& origins, int threads) {
+                    const std::vector<std::uint32_t>& origins, int threads, const std::string& graph) {
   const std::vector<Eigen::Vector3d> e = points(eyes, "eyes");
   if (i.ndim() != 1 || j.ndim() != 1 || i.size() != j.size())
     throw std::invalid_argument("edges: i and j must be 1-D arrays of the same length");
   std::vector<vg::Edge> edges(static_cast<std::size_t>(i.size()));
   for (std::size_t k = 0; k < edges.size(); ++k) edges[k] = {i.data()[k], j.data()[k], 0.0};
-  const vg::SpaceSyntaxOptions o = options(sigmas, measures, radius, threshold, spacing, origins, threads);
+  const vg::SpaceSyntaxOptions o = options(sigmas, measures, radius, threshold, spacing, origins, threads, graph);
   std::atomic<bool> cancel{false};
   const vg::SpaceSyntaxResult r = watched_call([&] { return vg::space_syntax(e, edges, o); }, cancel);
   return to_dict(r, sigmas.size());
@@ -87,9 +95,10 @@ py::dict from_edges(const Doubles& eyes, const Indices& i, const Indices& j, con
 
 py::dict from_scene(const vg::Scene& scene, const Doubles& eyes, const std::vector<double>& sigmas,
                     const std::string& measures, int radius, double threshold, double spacing,
-                    const std::vector<std::uint32_t>& origins, int threads, py::object progress) {
+                    const std::vector<std::uint32_t>& origins, int threads, const std::string& graph,
+                    py::object progress) {
   const std::vector<Eigen::Vector3d> e = points(eyes, "eyes");
-  const vg::SpaceSyntaxOptions o = options(sigmas, measures, radius, threshold, spacing, origins, threads);
+  const vg::SpaceSyntaxOptions o = options(sigmas, measures, radius, threshold, spacing, origins, threads, graph);
   vg::VisibilityOptions pass;
   pass.sigmas = sigmas;
   pass.threads = threads;
@@ -112,17 +121,18 @@ py::dict from_scene(const vg::Scene& scene, const Doubles& eyes, const std::vect
 void bind_space_syntax(py::module_ module) {
   module.def("space_syntax_edges", &from_edges, py::arg("eyes"), py::arg("i"), py::arg("j"), py::arg("sigmas"),
              py::arg("measures"), py::arg("radius"), py::arg("threshold"), py::arg("spacing"), py::arg("origins"),
-             py::arg("threads"));
+             py::arg("threads"), py::arg("graph"));
   module.def(
       "space_syntax",
       [](py::handle scene, const Doubles& eyes, const std::vector<double>& sigmas, const std::string& measures,
          int radius, double threshold, double spacing, const std::vector<std::uint32_t>& origins, int threads,
-         py::object progress) {
+         const std::string& graph, py::object progress) {
         return from_scene(scene_of(scene), eyes, sigmas, measures, radius, threshold, spacing, origins, threads,
-                          progress);
+                          graph, progress);
       },
       py::arg("scene"), py::arg("eyes"), py::arg("sigmas"), py::arg("measures"), py::arg("radius"),
-      py::arg("threshold"), py::arg("spacing"), py::arg("origins"), py::arg("threads"), py::arg("progress"));
+      py::arg("threshold"), py::arg("spacing"), py::arg("origins"), py::arg("threads"), py::arg("graph"),
+      py::arg("progress"));
 }
 
 }  // namespace attenuvis::python

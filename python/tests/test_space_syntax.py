@@ -157,3 +157,12 @@ def test_threads_do_not_change_the_result():
     b = vg.space_syntax(scene, eyes, [1.5e-4, 0.03], measures="all", threshold=0.5, spacing=2.5, threads=3)
     for name in a.measures:
         assert a[name].tobytes() == b[name].tobytes(), name
+
+
+def test_bit_rows_and_csr_agree():
+    eyes, i, j = grid_graph(5)
+    kw = dict(measures=EVERY, radius=2, threshold=0.02, spacing=1.5, origins=[1])
+    a = vg.space_syntax_of_graph(eyes, i, j, [0.0, 0.2], graph="bit-rows", **kw)
+    b = vg.space_syntax_of_graph(eyes, i, j, [0.0, 0.2], graph="csr", **kw)
+    for name in a.measures:
+        assert a[name].tobytes() == b[name].tobytes(), name

@@ -71,7 +71,7 @@ SpaceSyntaxEstimate estimate_space_syntax(std::size_t nodes, double pairs_bound,
   const double bits = 8 * n * words;
   // CSR: the pairs as they arrive (8 bytes) and the two-way lists (8 bytes).
   const double csr = 16 * pairs_bound + 8 * n;
-  e.bit_rows = bits <= csr;
+  e.bit_rows = o.storage == GraphStorage::automatic ? bits <= csr : o.storage == GraphStorage::bit_rows;
   e.graph_bytes = e.bit_rows ? bits : 8 * pairs_bound + 8 * n;
   bool thinned = false;
   for (double s : o.sigmas) thinned = thinned || (s > 0 && o.contrast_threshold > 0);

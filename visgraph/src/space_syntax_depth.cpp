@@ -29,26 +29,40 @@ inline bool any(const std::uint64_t* a) {
 DepthSweeper::DepthSweeper(const Storage& g)
     : g_(g), seen_(g.n * W, 0), frontier_(g.n * W, 0), next_(g.n * W, 0) {}
 
+// The origin bits of node v OR-ed into t (8 words).
+inline void merge(std::uint64_t* t, const std::uint64_t* f) {
+  for (std::size_t w = 0; w < W; ++w) t[w] |= f[w];
+}
+
 // Top-down: every frontier node ORs its origin bits into its neighbours.
-// Returns the neighbour lists read.
+// Returns the frontier nodes.  The neighbour loops are written out here
+// (not through for_each_neighbour) so that each clone compiles them for its
+// instruction set.
 ATTENUVIS_SWEEP_CLONES std::uint64_t DepthSweeper::push(std::size_t /*level_nodes*/) {
   std::fill(next_.begin(), next_.end(), 0);
   std::uint64_t read = 0;
+  std::uint64_t* next = next_.data();
   for (std::size_t v = 0; v < g_.n; ++v) {
     const std::uint64_t* f = frontier_.data() + v * W;
     if (!any(f)) continue;
     ++read;
-    for_each_neighbour(g_, v, [&](std::uint32_t u) {
-      std::uint64_t* t = next_.data() + std::size_t{u} * W;
-      for (std::size_t w = 0; w < W; ++w) t[w] |= f[w];
-    });
+    if (g_.dense) {
+      if (g_.first_word[v] > g_.last_word[v]) continue;
+      const std::uint64_t* r = g_.row(v);
+      for (std::size_t w = g_.first_word[v]; w <= g_.last_word[v]; ++w)
+        for (std::uint64_t x = r[w]; x; x &= x - 1) merge(next + (w * 64 + lowest_bit(x)) * W, f);
+    } else {
+      for (std::uint64_t p = g_.offset[v]; p < g_.offset[v + 1]; ++p) merge(next + std::size_t{g_.adjacency[p]} * W, f);
+    }
   }
   return read;
 }
 
 // Bottom-up: every node still missing some origin ORs its neighbours'
-// frontier bits, stopping once it has every missing one.
+// frontier bits, stopping once it has every missing one (checked every
+// eighth neighbour: the check costs as much as a merge).
 ATTENUVIS_SWEEP_CLONES void DepthSweeper::pull() {
+  const std::uint64_t* frontier = frontier_.data();
   for (std::size_t u = 0; u < g_.n; ++u) {
     std::uint64_t* t = next_.data() + u * W;
     const std::uint64_t* s = seen_.data() + u * W;
@@ -56,12 +70,32 @@ ATTENUVIS_SWEEP_CLONES void DepthSweeper::pull() {
     std::uint64_t open = 0;
     for (std::size_t w = 0; w < W; ++w) missing[w] = ~s[w] & valid_[w], open |= missing[w], t[w] = 0;
     if (!open) continue;
-    for_each_neighbour_until(g_, u, [&](std::uint32_t v) {
-      const std::uint64_t* f = frontier_.data() + std::size_t{v} * W;
+    const auto complete = [&] {
       std::uint64_t still = 0;
-      for (std::size_t w = 0; w < W; ++w) t[w] |= f[w], still |= missing[w] & ~t[w];
-      return still != 0;
-    });
+      for (std::size_t w = 0; w < W; ++w) still |= missing[w] & ~t[w];
+      return still == 0;
+    };
+    unsigned since_check = 0;
+    if (g_.dense) {
+      if (g_.first_word[u] > g_.last_word[u]) continue;
+      const std::uint64_t* r = g_.row(u);
+      for (std::size_t w = g_.first_word[u]; w <= g_.last_word[u]; ++w) {
+        for (std::uint64_t x = r[w]; x; x &= x - 1) merge(t, frontier + (w * 64 + lowest_bit(x)) * W);
+        since_check += static_cast<unsigned>(__builtin_popcountll(r[w]));
+        if (since_check >= 8) {
+          since_check = 0;
+          if (complete()) break;
+        }
+      }
+    } else {
+      for (std::uint64_t p = g_.offset[u]; p < g_.offset[u + 1]; ++p) {
+        merge(t, frontier + std::size_t{g_.adjacency[p]} * W);
+        if (++since_check == 8) {
+          since_check = 0;
+          if (complete()) break;
+        }
+      }
+    }
   }
 }
 

@@ -12,13 +12,6 @@
 
 namespace attenuvis::visgraph {
 
-double VisibilityGraph::Storage::distance(std::size_t i, std::size_t j) const {
-  const double dx = position[i].x() - position[j].x();
-  const double dy = position[i].y() - position[j].y();
-  const double dz = position[i].z() - position[j].z();
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
-}
-
 double VisibilityGraph::Storage::bytes() const {
   return 8.0 * (bits.size() + offset.size()) + 4.0 * (adjacency.size() + first_word.size() + last_word.size() +
                                                       degree.size() + caller.size() + internal.size()) +

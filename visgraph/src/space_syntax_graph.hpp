@@ -38,9 +38,14 @@ struct VisibilityGraph::Storage {
 
   const std::uint64_t* row(std::size_t i) const { return bits.data() + i * words; }
 
-  // d_ij as space_syntax.hpp defines it (no contraction: this file pair is
-  // compiled with -ffp-contract=off).
-  double distance(std::size_t i, std::size_t j) const;
+  // d_ij as space_syntax.hpp defines it (no contraction: the space-syntax
+  // files are compiled with -ffp-contract=off).
+  double distance(std::size_t i, std::size_t j) const {
+    const double dx = position[i].x() - position[j].x();
+    const double dy = position[i].y() - position[j].y();
+    const double dz = position[i].z() - position[j].z();
+    return std::sqrt(dx * dx + dy * dy + dz * dz);
+  }
   double bytes() const;
 };
 

@@ -28,33 +28,61 @@ void for_owned_blocks(std::size_t n, const Owned& owned, int threads,
   });
 }
 
+namespace {
+// Common-neighbour counts of every edge, summed per node: sum_j |N(i) & N(j)|
+// and the neighbours with a non-zero count.  With one process each edge is
+// counted once, from its lower end, and added to both (integer atomics: the
+// totals do not depend on the order); otherwise each owned node counts its
+// own edges.
+void common_counts(const Storage& g, const Owned& owned, int threads, std::vector<std::uint64_t>& common,
+                   std::vector<std::uint64_t>& linked) {
+  common.assign(g.n, 0);
+  linked.assign(g.n, 0);
+  const bool once = owned.count == 1;
+  for_owned_blocks(g.n, owned, threads, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      for_each_neighbour(g, i, [&](std::uint32_t j) {
+        if (once && j < i) return;
+        const std::uint64_t c = common_neighbours(g, i, j);
+        const std::uint64_t l = c > 0 ? 1 : 0;
+        if (!once) {
+          common[i] += c, linked[i] += l;
+          return;
+        }
+        __atomic_fetch_add(&common[i], c, __ATOMIC_RELAXED);
+        __atomic_fetch_add(&common[j], c, __ATOMIC_RELAXED);
+        __atomic_fetch_add(&linked[i], l, __ATOMIC_RELAXED);
+        __atomic_fetch_add(&linked[j], l, __ATOMIC_RELAXED);
+      });
+  });
+}
+}  // namespace
+
 LocalColumns local_measures(const Storage& g, const Owned& owned, bool clustering, int threads) {
   LocalColumns c;
   for (auto* v : {&c.connectivity, &c.first_moment, &c.second_moment, &c.clustering, &c.control, &c.linked_neighbours})
     v->assign(g.n, 0.0);
+  std::vector<std::uint64_t> common, linked;
+  if (clustering) common_counts(g, owned, threads, common, linked);
   for_owned_blocks(g.n, owned, threads, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const std::uint32_t k = g.degree[i];
       double first = 0, second = 0, control = 0;
-      std::uint64_t common = 0, linked = 0;
       for_each_neighbour(g, i, [&](std::uint32_t j) {
         const double d = g.distance(i, j);
         first += d;
         second += d * d;
         control += 1.0 / g.degree[j];
-        if (clustering) {
-          const std::uint64_t c_ij = common_neighbours(g, i, j);
-          common += c_ij;
-          linked += c_ij > 0;
-        }
       });
       c.connectivity[i] = k;
       c.first_moment[i] = first;
       c.second_moment[i] = second;
       // depthmapX writes -1 for a node with at most one neighbour.
       c.control[i] = k > 1 ? control : -1.0;
-      c.clustering[i] = k > 1 ? static_cast<double>(common) / (static_cast<double>(k) * (k - 1.0)) : -1.0;
-      c.linked_neighbours[i] = static_cast<double>(linked);
+      if (clustering) {
+        c.clustering[i] = k > 1 ? static_cast<double>(common[i]) / (static_cast<double>(k) * (k - 1.0)) : -1.0;
+        c.linked_neighbours[i] = static_cast<double>(linked[i]);
+      }
     }
   });
   return c;
@@ -124,40 +152,49 @@ std::vector<double> onnela_clustering(const Storage& g, double sigma, const Owne
 }
 }  // namespace
 
-WeightedColumns weighted_measures(const Storage& g, double sigma, const Owned& owned, bool control,
-                                  bool clustering, int threads) {
-  WeightedColumns c;
-  c.sum.assign(g.n, 0.0);
-  c.first_moment.assign(g.n, 0.0);
+std::vector<WeightedColumns> weighted_measures(const Storage& g, const std::vector<double>& sigmas, const Owned& owned,
+                                              bool control, bool clustering, int threads) {
+  const std::size_t K = sigmas.size();
+  std::vector<WeightedColumns> c(K);
+  for (WeightedColumns& w : c) w.sum.assign(g.n, 0.0), w.first_moment.assign(g.n, 0.0);
+  tbb::enumerable_thread_specific<Row> rows;
   // S_S of every node (control reads the neighbours'), the moment of the owned ones.
   for_owned_blocks(g.n, Owned{}, threads, [&](std::size_t begin, std::size_t end) {
+    Row& row = rows.local();
     for (std::size_t i = begin; i < end; ++i) {
-      double sum = 0, moment = 0;
-      for_each_neighbour(g, i, [&](std::uint32_t j) {
-        const double d = g.distance(i, j);
-        const double contrast = std::exp(-sigma * d);
-        sum += contrast;
-        moment += contrast * d;
-      });
-      c.sum[i] = sum;
-      c.first_moment[i] = owned(i) ? moment : 0.0;
+      row.gather(g, i);
+      for (std::size_t k = 0; k < K; ++k) {
+        row.weigh(sigmas[k]);
+        double sum = 0, moment = 0;
+        for (std::size_t t = 0; t < row.distance.size(); ++t)
+          sum += row.contrast[t], moment += row.contrast[t] * row.distance[t];
+        c[k].sum[i] = sum;
+        c[k].first_moment[i] = owned(i) ? moment : 0.0;
+      }
     }
   });
   if (control) {
-    c.control.assign(g.n, 0.0);
+    for (WeightedColumns& w : c) w.control.assign(g.n, 0.0);
     for_owned_blocks(g.n, owned, threads, [&](std::size_t begin, std::size_t end) {
+      Row& row = rows.local();
       for (std::size_t i = begin; i < end; ++i) {
-        double total = 0;
-        for_each_neighbour(g, i, [&](std::uint32_t j) { total += std::exp(-sigma * g.distance(i, j)) / c.sum[j]; });
-        c.control[i] = g.degree[i] > 1 ? total : -1.0;
+        row.gather(g, i);
+        for (std::size_t k = 0; k < K; ++k) {
+          row.weigh(sigmas[k]);
+          double total = 0;
+          for (std::size_t t = 0; t < row.distance.size(); ++t) total += row.contrast[t] / c[k].sum[row.partner[t]];
+          c[k].control[i] = g.degree[i] > 1 ? total : -1.0;
+        }
       }
     });
   }
-  if (clustering) c.clustering = onnela_clustering(g, sigma, owned, threads);
-  // Only the owned nodes' sums leave this process (the others were needed
-  // here only for control).
-  for (std::size_t i = 0; i < g.n; ++i)
-    if (!owned(i)) c.sum[i] = 0.0;
+  for (std::size_t k = 0; k < K; ++k) {
+    if (clustering) c[k].clustering = onnela_clustering(g, sigmas[k], owned, threads);
+    // Only the owned nodes' sums leave this process (the others were needed
+    // here only for control).
+    for (std::size_t i = 0; i < g.n; ++i)
+      if (!owned(i)) c[k].sum[i] = 0.0;
+  }
   return c;
 }
 

@@ -39,10 +39,11 @@ LocalColumns local_measures(const Storage& g, const Owned& owned, bool clusterin
 struct WeightedColumns {
   std::vector<double> sum, first_moment, control, clustering;
 };
-// sum and first_moment always; control and clustering when asked.  The
-// sum S_S is computed for every node (control reads its neighbours').
-WeightedColumns weighted_measures(const Storage& g, double sigma, const Owned& owned, bool control,
-                                  bool clustering, int threads);
+// For each sigma (weathers that share this graph): sum and first_moment
+// always, control and clustering when asked.  The sum S_S is computed for
+// every node (control reads its neighbours').
+std::vector<WeightedColumns> weighted_measures(const Storage& g, const std::vector<double>& sigmas, const Owned& owned,
+                                              bool control, bool clustering, int threads);
 
 // Shortest-path lengths (Dijkstra, edge length d) from every owned origin:
 // visit(origin, lengths) with lengths[j] = l_ij (infinity where j is not
@@ -60,7 +61,50 @@ constexpr double kThroughVisionScale = 4294967296.0;  // 2^32
 ThroughVision through_vision(const Storage& g, double spacing, const std::vector<double>& sigmas, double eps,
                              const Owned& owned, int threads);
 
-// C_ij >= eps (eps = 0: every line of sight).
-inline bool kept_line(double sigma, double d, double eps) { return eps <= 0 || std::exp(-sigma * d) >= eps; }
+// C_ij = exp(-sigma d) >= eps (eps = 0: every line of sight).  Decided by
+// d against R = ln(1/eps)/sigma, except within a relative 1e-9 of R, where
+// the roundings of exp and of R could disagree and exp itself decides.
+class Threshold {
+ public:
+  Threshold(double sigma, double eps) : sigma_(sigma), eps_(eps) {
+    every_ = eps <= 0 || sigma <= 0;
+    const double r = every_ ? 0.0 : std::log(1.0 / eps) / sigma;
+    low_ = r * (1 - 1e-9);
+    high_ = r * (1 + 1e-9);
+  }
+  bool keeps(double d) const {
+    if (every_ || d < low_) return true;
+    if (d > high_) return false;
+    return std::exp(-sigma_ * d) >= eps_;
+  }
+
+ private:
+  double sigma_, eps_, low_ = 0, high_ = 0;
+  bool every_ = true;
+};
+
+// c[t] = exp(-sigma d[t]) for t < n, to about 1 ulp (a vectorised
+// exponential: Cody-Waite reduction and a degree-13 Taylor polynomial; see
+// space_syntax_contrast.cpp), the same bits on every instruction set.
+void contrasts(double sigma, const double* d, double* c, std::size_t n);
+
+// A row's neighbours and their distances, gathered once for the sums over it.
+struct Row {
+  std::vector<std::uint32_t> partner;
+  std::vector<double> distance, contrast;
+  void gather(const Storage& g, std::size_t i) {
+    partner.clear();
+    distance.clear();
+    for_each_neighbour(g, i, [&](std::uint32_t j) {
+      partner.push_back(j);
+      distance.push_back(g.distance(i, j));
+    });
+  }
+  // contrast[t] = exp(-sigma distance[t]).
+  void weigh(double sigma) {
+    contrast.resize(distance.size());
+    contrasts(sigma, distance.data(), contrast.data(), distance.size());
+  }
+};
 
 }  // namespace attenuvis::visgraph::space_syntax_detail

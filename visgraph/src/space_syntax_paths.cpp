@@ -178,6 +178,8 @@ ThroughVision through_vision(const Storage& g, double spacing, const std::vector
   tbb::enumerable_thread_specific<Sums> local([&] {
     return Sums{std::vector<std::int64_t>(K * g.n, 0), std::vector<std::int64_t>(K * g.n, 0)};
   });
+  std::vector<Threshold> threshold;
+  for (double sigma : sigmas) threshold.emplace_back(sigma, eps);
   for_owned_blocks(g.n, owned, threads, [&](std::size_t begin, std::size_t end) {
     Sums& sums = local.local();
     std::vector<std::int64_t> in(K), weight(K);
@@ -187,9 +189,8 @@ ThroughVision through_vision(const Storage& g, double spacing, const std::vector
         const double d = g.distance(i, j);
         bool any = false;
         for (std::size_t k = 0; k < K; ++k) {
-          const double contrast = std::exp(-sigmas[k] * d);
-          in[k] = eps <= 0 || contrast >= eps;
-          weight[k] = in[k] ? std::llround(contrast * kThroughVisionScale) : 0;
+          in[k] = threshold[k].keeps(d);
+          weight[k] = in[k] ? std::llround(std::exp(-sigmas[k] * d) * kThroughVisionScale) : 0;
           any = any || in[k];
         }
         if (!any) return;

@@ -78,12 +78,14 @@ void plan_graphs(const Storage& g, const SpaceSyntaxOptions& o, std::vector<std:
   kept.assign(K, 0);
   same.assign(K, -1);
   std::vector<std::uint8_t> differs(K * K, 0), in(K, 0);
+  std::vector<Threshold> threshold;
+  for (double sigma : o.sigmas) threshold.emplace_back(sigma, eps);
   for (std::size_t i = 0; i < g.n; ++i)
     for_each_neighbour(g, i, [&](std::uint32_t j) {
       if (j < i) return;
       const double d = g.distance(i, j);
       for (std::size_t k = 0; k < K; ++k) {
-        in[k] = kept_line(o.sigmas[k], d, eps);
+        in[k] = threshold[k].keeps(d);
         kept[k] += in[k];
         for (std::size_t m = 0; m < k; ++m) differs[k * K + m] |= in[k] != in[m];
       }
@@ -100,8 +102,14 @@ void unweighted_measures(const Storage& gk, const SpaceSyntaxOptions& o, const O
   const std::string r = radius_suffix(o.radius);
   const bool local = m.has(Measure::connectivity) || m.has(Measure::clustering) || m.has(Measure::control) ||
                      m.has(Measure::controllability);
+  // One set of sweeps serves the global measures and controllability's
+  // nodes at depth 2 (a radius of 1 stops the sweeps too early for them).
+  GlobalColumns gl;
+  const bool controllability = m.has(Measure::controllability);
+  if (m.any_global()) gl = global_measures(gk, o.radius, controllability, owned, o.threads);
+  else if (controllability) gl = global_measures(gk, 2, true, owned, o.threads);
   if (local) {
-    const LocalColumns l = local_measures(gk, owned, m.has(Measure::clustering) || m.has(Measure::controllability), o.threads);
+    const LocalColumns l = local_measures(gk, owned, m.has(Measure::clustering) || controllability, o.threads);
     if (m.has(Measure::connectivity)) {
       cols.at("connectivity", k) = l.connectivity;
       cols.at("point_first_moment", k) = l.first_moment;
@@ -109,17 +117,15 @@ void unweighted_measures(const Storage& gk, const SpaceSyntaxOptions& o, const O
     }
     if (m.has(Measure::clustering)) cols.at("clustering", k) = l.clustering;
     if (m.has(Measure::control)) cols.at("control", k) = l.control;
-    if (m.has(Measure::controllability)) {
-      const GlobalColumns two = global_measures(gk, 2, true, owned, o.threads);
+    if (controllability) {
       std::vector<double>& c = cols.at("controllability", k);
       for (std::size_t i = 0; i < gk.n; ++i) {
         const double degree = l.connectivity[i];
-        c[i] = degree > 1 ? degree / (1.0 + l.linked_neighbours[i] + two.at_depth_two[i]) : -1.0;
+        c[i] = degree > 1 ? degree / (1.0 + l.linked_neighbours[i] + gl.at_depth_two[i]) : -1.0;
       }
     }
   }
   if (m.any_global()) {
-    const GlobalColumns gl = global_measures(gk, o.radius, false, owned, o.threads);
     if (m.has(Measure::mean_depth)) {
       cols.at("mean_depth" + r, k) = gl.mean_depth;
       cols.at("node_count" + r, k) = gl.node_count;
@@ -148,17 +154,24 @@ void unweighted_measures(const Storage& gk, const SpaceSyntaxOptions& o, const O
   }
 }
 
-void weighted(const Storage& gk, const SpaceSyntaxOptions& o, const Owned& owned, std::size_t k, Columns& cols) {
+// The contrast-weighted measures of the conditions in `group`, which share G_k.
+void weighted(const Storage& gk, const SpaceSyntaxOptions& o, const Owned& owned, const std::vector<std::size_t>& group,
+              Columns& cols) {
   const MeasureSet& m = o.measures;
   if (!m.has(Measure::connectivity) && !m.has(Measure::control) && !m.has(Measure::clustering_weighted)) return;
-  const WeightedColumns w = weighted_measures(gk, o.sigmas[k], owned, m.has(Measure::control),
-                                              m.has(Measure::clustering_weighted), o.threads);
-  if (m.has(Measure::connectivity)) {
-    cols.at("connectivity_weighted", k) = w.sum;
-    cols.at("first_moment_weighted", k) = w.first_moment;
+  std::vector<double> sigmas;
+  for (std::size_t k : group) sigmas.push_back(o.sigmas[k]);
+  std::vector<WeightedColumns> w = weighted_measures(gk, sigmas, owned, m.has(Measure::control),
+                                                     m.has(Measure::clustering_weighted), o.threads);
+  for (std::size_t t = 0; t < group.size(); ++t) {
+    const std::size_t k = group[t];
+    if (m.has(Measure::connectivity)) {
+      cols.at("connectivity_weighted", k) = std::move(w[t].sum);
+      cols.at("first_moment_weighted", k) = std::move(w[t].first_moment);
+    }
+    if (m.has(Measure::control)) cols.at("control_weighted", k) = std::move(w[t].control);
+    if (m.has(Measure::clustering_weighted)) cols.at("clustering_weighted", k) = std::move(w[t].clustering);
   }
-  if (m.has(Measure::control)) cols.at("control_weighted", k) = w.control;
-  if (m.has(Measure::clustering_weighted)) cols.at("clustering_weighted", k) = w.clustering;
 }
 
 void refuse_metric_beyond_cap(const Storage& g, const Owned& owned) {
@@ -276,21 +289,21 @@ SpaceSyntaxResult space_syntax(const VisibilityGraph& graph, const SpaceSyntaxOp
   for (std::size_t k = 0; k < K; ++k) {
     if (same[k] >= 0) continue;
     std::unique_ptr<Storage> own;
-    const double sigma = o.sigmas[k], eps = o.contrast_threshold;
+    const Threshold threshold(o.sigmas[k], o.contrast_threshold);
     if (kept[k] < g.m)
-      own = std::make_unique<Storage>(thinned(g, [&](std::size_t i, std::size_t j) { return kept_line(sigma, g.distance(i, j), eps); }));
+      own = std::make_unique<Storage>(
+          thinned(g, [&](std::size_t i, std::size_t j) { return threshold.keeps(g.distance(i, j)); }));
     const Storage& gk = own ? *own : g;
     std::vector<std::size_t> group = {k};
     for (std::size_t m = k + 1; m < K; ++m)
       if (same[m] == static_cast<int>(k)) group.push_back(m);
     unweighted_measures(gk, o, owned, k, cols, components[k]);
-    for (std::size_t m : group) {
+    for (std::size_t m : group)
       if (m != k) {
         for (const std::string& name : cols.order()) cols.at(name, m) = cols.at(name, k);
         components[m] = components[k];
       }
-      weighted(gk, o, owned, m, cols);
-    }
+    weighted(gk, o, owned, group, cols);
     if (o.measures.has(Measure::metric)) {
       if (own) metric_measures(gk, o, owned, group, false, cols);
       else metric_on_g.insert(metric_on_g.end(), group.begin(), group.end());

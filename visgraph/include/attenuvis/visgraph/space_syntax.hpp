@@ -192,8 +192,13 @@ struct SpaceSyntaxShare {
   std::function<void(std::vector<std::int64_t>&)> sum_integers;
 };
 
+// How the lines of sight are held: chosen from the estimate (the smaller of
+// N x N bits and 8 bytes per line bound), or forced.  Results are the same.
+enum class GraphStorage { automatic, bit_rows, csr };
+
 struct SpaceSyntaxOptions {
   std::vector<double> sigmas;                       // one G_k each (1/m, finite, >= 0)
+  GraphStorage storage = GraphStorage::automatic;
   double contrast_threshold = kKoschmiederContrast;  // eps in [0, 1); 0 keeps every line of sight
   int radius = 0;                                   // steps for the global measures; 0 = n (unlimited)
   MeasureSet measures;
