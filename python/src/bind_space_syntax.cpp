@@ -1,7 +1,7 @@
 // attenuvis._attenuvis.visgraph.space_syntax*: the space-syntax measures
 // (visgraph/space_syntax.hpp) as NumPy arrays, one row per sigma.  The pass
 // and the measures run through watched_call: Ctrl-C stops the pass between
-// rows (the measures after it finish their step first).
+// rows and the measures between blocks of 512 nodes.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -87,8 +87,9 @@ py::dict from_edges(const Doubles& eyes, const Indices& i, const Indices& j, con
     throw std::invalid_argument("edges: i and j must be 1-D arrays of the same length");
   std::vector<vg::Edge> edges(static_cast<std::size_t>(i.size()));
   for (std::size_t k = 0; k < edges.size(); ++k) edges[k] = {i.data()[k], j.data()[k], 0.0};
-  const vg::SpaceSyntaxOptions o = options(sigmas, measures, radius, threshold, spacing, origins, threads, graph);
+  vg::SpaceSyntaxOptions o = options(sigmas, measures, radius, threshold, spacing, origins, threads, graph);
   std::atomic<bool> cancel{false};
+  o.cancel = &cancel;
   const vg::SpaceSyntaxResult r = watched_call([&] { return vg::space_syntax(e, edges, o); }, cancel);
   return to_dict(r, sigmas.size());
 }
@@ -98,7 +99,7 @@ py::dict from_scene(const vg::Scene& scene, const Doubles& eyes, const std::vect
                     const std::vector<std::uint32_t>& origins, int threads, const std::string& graph,
                     py::object progress) {
   const std::vector<Eigen::Vector3d> e = points(eyes, "eyes");
-  const vg::SpaceSyntaxOptions o = options(sigmas, measures, radius, threshold, spacing, origins, threads, graph);
+  vg::SpaceSyntaxOptions o = options(sigmas, measures, radius, threshold, spacing, origins, threads, graph);
   vg::VisibilityOptions pass;
   pass.sigmas = sigmas;
   pass.threads = threads;
@@ -106,6 +107,7 @@ py::dict from_scene(const vg::Scene& scene, const Doubles& eyes, const std::vect
   std::atomic<bool> cancel{false};
   pass.pairs_done = &done;
   pass.cancel = &cancel;
+  o.cancel = &cancel;
   const vg::SpaceSyntaxRun run = watched_call([&] { return vg::space_syntax(scene, e, pass, o); }, cancel, [&] {
     if (!progress.is_none()) progress(done.load());
   });

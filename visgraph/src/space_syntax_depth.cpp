@@ -60,9 +60,11 @@ ATTENUVIS_SWEEP_CLONES std::uint64_t DepthSweeper::push(std::size_t /*level_node
 
 // Bottom-up: every node still missing some origin ORs its neighbours'
 // frontier bits, stopping once it has every missing one (checked every
-// eighth neighbour: the check costs as much as a merge).
-ATTENUVIS_SWEEP_CLONES void DepthSweeper::pull() {
+// eighth neighbour: the check costs as much as a merge).  Returns the
+// neighbours read.
+ATTENUVIS_SWEEP_CLONES std::uint64_t DepthSweeper::pull() {
   const std::uint64_t* frontier = frontier_.data();
+  std::uint64_t read = 0;
   for (std::size_t u = 0; u < g_.n; ++u) {
     std::uint64_t* t = next_.data() + u * W;
     const std::uint64_t* s = seen_.data() + u * W;
@@ -81,7 +83,9 @@ ATTENUVIS_SWEEP_CLONES void DepthSweeper::pull() {
       const std::uint64_t* r = g_.row(u);
       for (std::size_t w = g_.first_word[u]; w <= g_.last_word[u]; ++w) {
         for (std::uint64_t x = r[w]; x; x &= x - 1) merge(t, frontier + (w * 64 + lowest_bit(x)) * W);
-        since_check += static_cast<unsigned>(__builtin_popcountll(r[w]));
+        const auto merged = static_cast<unsigned>(__builtin_popcountll(r[w]));
+        since_check += merged;
+        read += merged;
         if (since_check >= 8) {
           since_check = 0;
           if (complete()) break;
@@ -90,6 +94,7 @@ ATTENUVIS_SWEEP_CLONES void DepthSweeper::pull() {
     } else {
       for (std::uint64_t p = g_.offset[u]; p < g_.offset[u + 1]; ++p) {
         merge(t, frontier + std::size_t{g_.adjacency[p]} * W);
+        ++read;
         if (++since_check == 8) {
           since_check = 0;
           if (complete()) break;
@@ -97,6 +102,7 @@ ATTENUVIS_SWEEP_CLONES void DepthSweeper::pull() {
       }
     }
   }
+  return read;
 }
 
 bool DepthSweeper::settle(std::size_t d, SweepDepths& out, std::uint64_t& push_work, std::uint64_t& pull_work) {
@@ -146,11 +152,19 @@ void DepthSweeper::run(std::size_t first, std::size_t origins, int max_depth, Sw
     push_work += g_.degree[v];
   }
   for (std::size_t v = 0; v < g_.n; ++v) pull_work += g_.degree[v];
+  // Push reads every frontier node's list whole; pull reads at most the
+  // lists of the nodes still open, and stops early in each once it has
+  // found all that node's missing origins, which happens often in dense
+  // graphs and rarely in sparse ones.  The share of the open lists that the
+  // last pull read predicts the next one's cost.
+  double pull_share = 0.25;
   for (std::size_t d = 1; max_depth <= 0 || d <= static_cast<std::size_t>(max_depth); ++d) {
-    // Pull reads at most the lists of the nodes still open and usually stops
-    // early in each; push reads every frontier list whole.
-    if (4 * push_work > pull_work) pull();
-    else push(0);
+    if (pull_share * static_cast<double>(pull_work) < static_cast<double>(push_work)) {
+      const std::uint64_t read = pull();
+      pull_share = pull_work ? std::max(0.01, static_cast<double>(read) / static_cast<double>(pull_work)) : 0.25;
+    } else {
+      push(0);
+    }
     if (!settle(d, out, push_work, pull_work)) {
       out.levels = d;  // the last level reached nothing
       out.counts.resize(d * kSweepOrigins);

@@ -39,7 +39,7 @@ class DepthSweeper {
 
  private:
   std::uint64_t push(std::size_t level_nodes);
-  void pull();
+  std::uint64_t pull();
   // Moves next into frontier and seen; counts the new bits at depth d.
   bool settle(std::size_t d, SweepDepths& out, std::uint64_t& push_work, std::uint64_t& pull_work);
 

@@ -22,7 +22,7 @@ void for_owned_blocks(std::size_t n, const Owned& owned, int threads,
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, blocks, 1), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t b = r.begin(); b != r.end(); ++b) {
         const std::size_t begin = b * kOwnedBlock;
-        if (owned(begin)) body(begin, std::min(n, begin + kOwnedBlock));
+        if (owned(begin) && !owned.cancelled()) body(begin, std::min(n, begin + kOwnedBlock));
       }
     });
   });
@@ -159,7 +159,7 @@ std::vector<WeightedColumns> weighted_measures(const Storage& g, const std::vect
   for (WeightedColumns& w : c) w.sum.assign(g.n, 0.0), w.first_moment.assign(g.n, 0.0);
   tbb::enumerable_thread_specific<Row> rows;
   // S_S of every node (control reads the neighbours'), the moment of the owned ones.
-  for_owned_blocks(g.n, Owned{}, threads, [&](std::size_t begin, std::size_t end) {
+  for_owned_blocks(g.n, Owned{0, 1, owned.cancel}, threads, [&](std::size_t begin, std::size_t end) {
     Row& row = rows.local();
     for (std::size_t i = begin; i < end; ++i) {
       row.gather(g, i);

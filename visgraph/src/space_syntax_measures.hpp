@@ -6,6 +6,7 @@
 
 #include "space_syntax_graph.hpp"
 
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -19,7 +20,9 @@ namespace attenuvis::visgraph::space_syntax_detail {
 constexpr std::size_t kOwnedBlock = 512;
 struct Owned {
   int index = 0, count = 1;
+  const std::atomic<bool>* cancel = nullptr;  // set: blocks not yet started are skipped
   bool operator()(std::size_t i) const { return static_cast<int>((i / kOwnedBlock) % count) == index; }
+  bool cancelled() const { return cancel && cancel->load(); }
 };
 
 // Runs body(begin, end) over [0, n) in blocks of kOwnedBlock nodes on the

@@ -279,7 +279,7 @@ SpaceSyntaxResult space_syntax(const VisibilityGraph& graph, const SpaceSyntaxOp
   const Storage& g = graph.storage();
   validate(o, g);
   const std::size_t K = o.sigmas.size();
-  const Owned owned{o.share.index, o.share.count};
+  const Owned owned{o.share.index, o.share.count, o.cancel};
   Columns cols(K, g.n);
   std::vector<std::uint64_t> kept;
   std::vector<int> same;
@@ -311,6 +311,7 @@ SpaceSyntaxResult space_syntax(const VisibilityGraph& graph, const SpaceSyntaxOp
   }
   if (o.measures.has(Measure::metric)) metric_measures(g, o, owned, metric_on_g, true, cols);
   if (o.measures.has(Measure::through_vision)) through_vision_measures(g, o, owned, cols);
+  if (owned.cancelled()) throw Cancelled();
   join_shares(o, owned, cols, g.n);
   SpaceSyntaxResult result = caller_order(g, o, cols);
   result.edges = kept;

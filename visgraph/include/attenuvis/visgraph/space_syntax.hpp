@@ -128,6 +128,7 @@
 
 #include <Eigen/Core>
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -206,6 +207,9 @@ struct SpaceSyntaxOptions {
   std::vector<std::uint32_t> depth_origins;         // step_depth: origin nodes
   int threads = 0;                                  // 0 = all cores
   SpaceSyntaxShare share;
+  // Once this reads true the measures stop after the blocks of nodes in
+  // flight and space_syntax throws Cancelled (visibility.hpp).
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 // How the graph is held and what the measures will cost, known before the
