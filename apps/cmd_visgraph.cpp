@@ -265,7 +265,8 @@ void check_arguments(const VgArguments& a) {
                        {"--nodes", a.nodes_file},
                        {"--targets", a.targets_file}});
   check_option_ranges(a);
-  check_space_syntax_arguments(a.space_syntax, !a.targets_file.empty() || !a.target_point.empty());
+  check_space_syntax_arguments(a.space_syntax, !a.targets_file.empty() || !a.target_point.empty(),
+                               a.prune_below > 0 || a.deprecated_tolerance > 0);
   for (const std::string* path : {&a.out, &a.ply, &a.heatmap, &a.summary, &a.edges, &a.geojson})
     if (!path->empty()) io::require_regular_or_absent(*path);
 }

@@ -65,7 +65,7 @@ void add_space_syntax_options(CLI::App* vgc, SpaceSyntaxArguments& a) {
   vgc->add_option("--depth-from", a.depth_from, "step-depth origins x,y,z[;x,y,z...] (each snapped to the nearest node)");
 }
 
-void check_space_syntax_arguments(const SpaceSyntaxArguments& a, bool with_targets) {
+void check_space_syntax_arguments(const SpaceSyntaxArguments& a, bool with_targets, bool pruned) {
   if (!a.wanted()) {
     if (!a.depth_from.empty()) throw std::invalid_argument("--depth-from: give --measures step-depth as well");
     return;
@@ -78,6 +78,9 @@ void check_space_syntax_arguments(const SpaceSyntaxArguments& a, bool with_targe
                                 " is outside [0, 1)");
   if (with_targets)
     throw std::invalid_argument("--measures needs every pair of nodes: leave out --targets and --target-point");
+  if (pruned)
+    throw std::invalid_argument("--measures needs every line of sight: leave out --prune-below (--contrast-threshold "
+                                "keeps the lines by contrast, exactly)");
   if (measures.has(vg::Measure::step_depth) != !a.depth_from.empty())
     throw std::invalid_argument("--measures step-depth and --depth-from go together");
 }

@@ -25,8 +25,8 @@ struct SpaceSyntaxArguments {
 void add_space_syntax_options(CLI::App* vg, SpaceSyntaxArguments& a);
 
 // Refuses, before any work, values out of range and space syntax with
-// targets (it needs every pair).
-void check_space_syntax_arguments(const SpaceSyntaxArguments& a, bool with_targets);
+// targets or pruning (it needs every line of sight).
+void check_space_syntax_arguments(const SpaceSyntaxArguments& a, bool with_targets, bool pruned);
 
 // The options for the pass's conditions and nodes; `grid_spacing` is the
 // node grid's (0 for nodes from a file: through vision then needs --spacing).

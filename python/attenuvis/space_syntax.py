@@ -197,7 +197,7 @@ def space_syntax(scene, eyes: ArrayLike, sigmas: ArrayLike, *, measures: Union[s
     >>> eyes = vg.node_grid(scene, 5.0)
     >>> r = vg.space_syntax(scene, eyes, [1.5e-4, 2.9e-2], measures="integration,clustering", threshold=0.5)
     >>> r["integration_hh"].shape, r.lines
-    ((2, 96), [3405, 1236])
+    ((2, 96), [3405, 1756])
     """
     e = _eyes(eyes)
     total = len(e) * (len(e) - 1) // 2
@@ -219,6 +219,26 @@ def space_syntax_of_graph(eyes: ArrayLike, i: ArrayLike, j: ArrayLike, sigmas: A
     pair once, i != j); distances are |eyes[i] - eyes[j]|.  Otherwise as
     :func:`space_syntax`, e.g. for an edge list written by ``attenuvis vg
     --edges`` or a graph from another program.
+
+    Parameters
+    ----------
+    eyes : array_like of float, shape (N, 3)
+        Node positions (m); the distances d are taken from them.
+    i, j : array_like of int
+        The edges' ends (indices into ``eyes``).
+    sigmas, measures, radius, threshold, spacing, origins, threads, graph
+        As :func:`space_syntax`.
+
+    Returns
+    -------
+    SpaceSyntaxResult
+        Without ``degree`` (there is no pass).
+
+    Raises
+    ------
+    ValueError
+        As :func:`space_syntax`, and for an edge given twice or joining a
+        node to itself.
 
     Examples
     --------
