@@ -79,6 +79,9 @@ struct LayoutSyntax {
   double seconds = 0;
 };
 
+// The seed's 1 m grid; 2 m in quick mode.
+double layout_spacing(const Context& ctx) { return ctx.options.quick ? 2.0 : 1.0; }
+
 LayoutSyntax layout_syntax(Context& ctx, int k, const std::vector<VgCondition>& conds) {
   ctx.step("space syntax", "layout " + std::to_string(k));
   LayoutSyntax out;
@@ -86,7 +89,7 @@ LayoutSyntax layout_syntax(Context& ctx, int k, const std::vector<VgCondition>& 
   out.name = vg::classic_layout_name(k);
   const vg::Scene scene(vg::classic_layout(k));
   vg::NodeGridOptions grid;
-  grid.spacing = 1.0;
+  grid.spacing = layout_spacing(ctx);
   grid.eye_height = 1.7;
   grid.walkable = vg::classic_layout_walkable_groups();
   const std::vector<Eigen::Vector3d> eyes = vg::generate_nodes(scene, grid).eyes;
@@ -123,7 +126,8 @@ void write_layout_files(Context& ctx, Section& s, const std::vector<LayoutSyntax
 void layouts_table(Context& ctx, Section& s, const std::vector<LayoutSyntax>& runs,
                    const std::vector<VgCondition>& conds) {
   Table t{"space_syntax_layouts",
-          "The five layouts at 1 m, each weather's graph at contrast " + format_number(kLayoutContrast, 2) +
+          "The five layouts at " + format_number(layout_spacing(ctx), 2) + " m, each weather's graph at contrast " +
+              format_number(kLayoutContrast, 2) +
               ": lines of sight kept, components, and the means of visual integration [HH], clustering and mean depth",
           {"layout", "name", "weather", "sigma [1/m]", "range at this contrast [m]", "lines of sight", "components",
            "mean integration [HH]", "mean clustering", "mean mean depth", "same graph as"},
@@ -159,9 +163,10 @@ void layout_figures(Section& s, const std::vector<LayoutSyntax>& runs, const std
   s.figure({"space_syntax_integration",
             "Visual integration [HH] of each layout (rows) in clear weather, rain 8 mm/h, heavy advection fog and "
             "dry snow 4 mm/h (columns; the seed's sigma), each weather's graph keeping the lines whose contrast is "
-            "at least half the clear one; one colour scale. Blank: undefined (depthmapX's -1).",
+            "at least half the clear one; one logarithmic colour scale (the single block's open floor integrates "
+            "several times more than the others). Blank: undefined (depthmapX's -1).",
             {{"kind", "node_maps"}, {"panels", maps("integration_hh")}, {"ncols", conds.size()},
-             {"common_scale", true}, {"colorbar", "visual integration [HH]"}, {"panel_size", 2.3}}});
+             {"common_scale", true}, {"log", true}, {"colorbar", "visual integration [HH]"}, {"panel_size", 2.3}}});
   s.figure({"space_syntax_clustering",
             "Visual clustering coefficient, as above (one colour scale, 0 to 1).",
             {{"kind", "node_maps"}, {"panels", maps("clustering")}, {"ncols", conds.size()}, {"common_scale", true},
@@ -263,6 +268,21 @@ double correlation(const std::vector<double>& a, const std::vector<double>& b) {
   return ab / std::sqrt(aa * bb);
 }
 
+// Whether rain left every layout's graph as the clear one, said from the results.
+std::string rain_sentence(const std::vector<LayoutSyntax>& runs, const std::vector<VgCondition>& conds) {
+  for (std::size_t k = 0; k < conds.size(); ++k) {
+    if (conds[k].condition != "rain:8") continue;
+    bool all_clear = true;
+    for (const LayoutSyntax& l : runs) all_clear = all_clear && l.r.same_graph_as[k] == 0;
+    return all_clear ? " Rain 8 mm/h keeps every line of the five layouts at this contrast (its range, " +
+                           sig(std::log(2.0) / conds[k].sigma, 3) + " m, exceeds their diagonal), so its maps are "
+                           "the clear ones."
+                     : " Rain 8 mm/h removes some lines too (its range is " + sig(std::log(2.0) / conds[k].sigma, 3) +
+                           " m).";
+  }
+  return "";
+}
+
 // What changes, in numbers computed here.
 void what_changes(Context& ctx, Section& s, const std::vector<LayoutSyntax>& runs, const std::vector<VgCondition>& conds) {
   std::size_t fog_k = 0;
@@ -285,8 +305,7 @@ void what_changes(Context& ctx, Section& s, const std::vector<LayoutSyntax>& run
          "surroundings. Over the five layouts the mean visual integration [HH] goes from " + sig(clear, 3) +
          " in clear weather to " + sig(fog, 3) + " in fog, the mean clustering from " + sig(cl_clear, 3) + " to " +
          sig(cl_fog, 3) + ", and the correlation between a layout's clear and fog integration maps is " + sig(r, 2) +
-         " on average: fog does not scale the map, it redraws it. Rain 8 mm/h keeps every line of the 50 m layouts "
-         "at this contrast (its range exceeds the layouts' diagonal), so its maps are the clear ones.");
+         " on average: fog does not scale the map, it redraws it." + rain_sentence(runs, conds));
 }
 }  // namespace
 
@@ -311,7 +330,8 @@ void section_space_syntax(Context& ctx, Section& s, const SeedConditions& seed, 
   layouts_table(ctx, s, runs, conds);
   layout_figures(s, runs, conds);
   what_changes(ctx, s, runs, conds);
-  s.summary.push_back("five layouts, four weathers at contrast 0.5: pass and measures " + sig(seconds, 3) + " s");
+  s.summary.push_back("five layouts at " + sig(layout_spacing(ctx), 2) + " m, four weathers at contrast 0.5: pass and "
+                      "measures " + sig(seconds, 3) + " s");
   ctx.set("space_syntax.layouts_seconds", seconds);
   if (city.graph) {
     city_syntax(ctx, s, city, seed);

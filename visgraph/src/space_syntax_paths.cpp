@@ -60,7 +60,8 @@ struct Dijkstra {
       heap.push({length[v], v});
     });
     while (!heap.empty()) {
-      const auto [l, u] = heap.top();
+      const double l = heap.top().first;
+      const std::uint32_t u = heap.top().second;
       heap.pop();
       if (l > length[u]) continue;  // a stale entry
       close(u);

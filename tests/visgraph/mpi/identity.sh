@@ -45,7 +45,7 @@ case $scenes in
   city)
     "$attenuvis" scene city --rings 1 --out city.obj
     same city city.obj --spacing 4 --conditions clear,fog:advection,rain:8 --distances
-    same city_syntax city.obj --spacing 4 --conditions clear,fog:advection \
+    same city_syntax city.obj --spacing 6 --conditions clear,fog:advection \
       --measures connectivity,clustering,control,controllability,mean-depth,integration,entropy,through-vision,component
     ;;
   *)
