@@ -105,10 +105,10 @@ vg::SpaceSyntaxOptions space_syntax_options(const SpaceSyntaxArguments& a, const
 }
 
 vg::GraphStorage graph_storage(const std::string& text) {
-  if (text == "auto") return vg::GraphStorage::automatic;
-  if (text == "bit-rows") return vg::GraphStorage::bit_rows;
-  if (text == "csr") return vg::GraphStorage::csr;
-  throw std::invalid_argument("--graph: expected auto, bit-rows or csr, got '" + text + "'");
+  vg::GraphStorage storage = vg::GraphStorage::automatic;
+  if (!vg::parse_graph_storage(text, storage))
+    throw std::invalid_argument("--graph: expected auto, bit-rows or csr, got '" + text + "'");
+  return storage;
 }
 
 void check_space_syntax_memory(const vg::SpaceSyntaxEstimate& estimate, std::size_t nodes, bool allow_large) {

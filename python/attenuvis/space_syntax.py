@@ -40,6 +40,9 @@ from numpy.typing import ArrayLike
 
 from . import _attenuvis
 
+# visgraph imports this module after its own helpers are defined.
+from .visgraph import _eyes, _sigmas
+
 _core = _attenuvis.visgraph
 
 __all__ = ["SpaceSyntaxResult", "space_syntax", "space_syntax_of_graph", "KOSCHMIEDER_CONTRAST"]
@@ -114,23 +117,6 @@ def _radius(radius: Union[int, str]) -> int:
     return int(radius)
 
 
-def _sigmas(sigmas) -> list:
-    s = np.atleast_1d(np.asarray(sigmas, dtype=np.float64))
-    if s.ndim != 1 or s.size == 0:
-        raise ValueError("sigmas: a number or a 1-D sequence of extinction coefficients in 1/m")
-    bad = np.flatnonzero(~(np.isfinite(s) & (s >= 0)))
-    if bad.size:
-        raise ValueError(f"sigmas[{bad[0]}]: {s[bad[0]]} is not a finite extinction coefficient >= 0 (1/m)")
-    return [float(v) for v in s]
-
-
-def _eyes(a) -> np.ndarray:
-    e = np.ascontiguousarray(a, dtype=np.float64)
-    if e.ndim != 2 or e.shape[1] != 3:
-        raise ValueError(f"eyes: expected an (N, 3) array of x, y, z in metres, got shape {e.shape}")
-    return e
-
-
 def _result(d, degree=None) -> SpaceSyntaxResult:
     stats = {k: d[k] for k in ("bit_rows", "graph_bytes", "seconds") if k in d}
     for k in ("pass_seconds", "pairs_visible"):
@@ -199,7 +185,7 @@ def space_syntax(scene, eyes: ArrayLike, sigmas: ArrayLike, *, measures: Union[s
     >>> r["integration_hh"].shape, r.lines
     ((2, 96), [3405, 1756])
     """
-    e = _eyes(eyes)
+    e = _eyes(eyes, "eyes")
     total = len(e) * (len(e) - 1) // 2
     cb = None if progress is None else (lambda done: progress(done, total))
     d = _core.space_syntax(scene._cpp, e, _sigmas(sigmas), _measure_list(measures, spacing), _radius(radius),
@@ -252,7 +238,7 @@ def space_syntax_of_graph(eyes: ArrayLike, i: ArrayLike, j: ArrayLike, sigmas: A
     """
     ii = np.ascontiguousarray(i, dtype=np.uint32)
     jj = np.ascontiguousarray(j, dtype=np.uint32)
-    d = _core.space_syntax_edges(_eyes(eyes), ii, jj, _sigmas(sigmas), _measure_list(measures, spacing),
+    d = _core.space_syntax_edges(_eyes(eyes, "eyes"), ii, jj, _sigmas(sigmas), _measure_list(measures, spacing),
                                  _radius(radius), float(threshold), 0.0 if spacing is None else float(spacing),
                                  [] if origins is None else [int(o) for o in origins], int(threads), str(graph))
     return _result(d)

@@ -25,20 +25,11 @@ namespace {
 using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
 using Indices = py::array_t<std::uint32_t, py::array::c_style | py::array::forcecast>;
 
-std::vector<Eigen::Vector3d> points(const Doubles& array, const char* what) {
-  if (array.ndim() != 2 || array.shape(1) != 3)
-    throw std::invalid_argument(std::string(what) + ": expected an (N, 3) array of x, y, z in metres");
-  const double* p = array.data();
-  std::vector<Eigen::Vector3d> out(static_cast<std::size_t>(array.shape(0)));
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = {p[3 * i], p[3 * i + 1], p[3 * i + 2]};
-  return out;
-}
-
 vg::GraphStorage storage_of(const std::string& graph) {
-  if (graph == "auto") return vg::GraphStorage::automatic;
-  if (graph == "bit-rows") return vg::GraphStorage::bit_rows;
-  if (graph == "csr") return vg::GraphStorage::csr;
-  throw std::invalid_argument("graph: expected 'auto', 'bit-rows' or 'csr', got '" + graph + "'");
+  vg::GraphStorage storage = vg::GraphStorage::automatic;
+  if (!vg::parse_graph_storage(graph, storage))
+    throw std::invalid_argument("graph: expected 'auto', 'bit-rows' or 'csr', got '" + graph + "'");
+  return storage;
 }
 
 vg::SpaceSyntaxOptions options(const std::vector<double>& sigmas, const std::string& measures, int radius,

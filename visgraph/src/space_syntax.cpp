@@ -64,6 +64,14 @@ MeasureSet parse_measures(const std::string& list) {
   return set;
 }
 
+bool parse_graph_storage(const std::string& text, GraphStorage& storage) {
+  if (text == "auto") storage = GraphStorage::automatic;
+  else if (text == "bit-rows") storage = GraphStorage::bit_rows;
+  else if (text == "csr") storage = GraphStorage::csr;
+  else return false;
+  return true;
+}
+
 SpaceSyntaxEstimate estimate_space_syntax(std::size_t nodes, double pairs_bound, const SpaceSyntaxOptions& o) {
   SpaceSyntaxEstimate e;
   const double n = static_cast<double>(nodes);

@@ -38,7 +38,7 @@ inline void merge(std::uint64_t* t, const std::uint64_t* f) {
 // Returns the frontier nodes.  The neighbour loops are written out here
 // (not through for_each_neighbour) so that each clone compiles them for its
 // instruction set.
-ATTENUVIS_SWEEP_CLONES std::uint64_t DepthSweeper::push(std::size_t /*level_nodes*/) {
+ATTENUVIS_SWEEP_CLONES std::uint64_t DepthSweeper::push() {
   std::fill(next_.begin(), next_.end(), 0);
   std::uint64_t read = 0;
   std::uint64_t* next = next_.data();
@@ -163,7 +163,7 @@ void DepthSweeper::run(std::size_t first, std::size_t origins, int max_depth, Sw
       const std::uint64_t read = pull();
       pull_share = pull_work ? std::max(0.01, static_cast<double>(read) / static_cast<double>(pull_work)) : 0.25;
     } else {
-      push(0);
+      push();
     }
     if (!settle(d, out, push_work, pull_work)) {
       out.levels = d;  // the last level reached nothing

@@ -38,7 +38,7 @@ class DepthSweeper {
   void run(std::size_t first, std::size_t origins, int max_depth, SweepDepths& out);
 
  private:
-  std::uint64_t push(std::size_t level_nodes);
+  std::uint64_t push();
   std::uint64_t pull();
   // Moves next into frontier and seen; counts the new bits at depth d.
   bool settle(std::size_t d, SweepDepths& out, std::uint64_t& push_work, std::uint64_t& pull_work);

@@ -196,6 +196,8 @@ struct SpaceSyntaxShare {
 // How the lines of sight are held: chosen from the estimate (the smaller of
 // N x N bits and 8 bytes per line bound), or forced.  Results are the same.
 enum class GraphStorage { automatic, bit_rows, csr };
+// "auto", "bit-rows" or "csr"; false (and `storage` unchanged) otherwise.
+bool parse_graph_storage(const std::string& text, GraphStorage& storage);
 
 struct SpaceSyntaxOptions {
   std::vector<double> sigmas;                       // one G_k each (1/m, finite, >= 0)
