@@ -5,6 +5,7 @@
 #include "path_clashes.hpp"
 #include "process_group.hpp"
 #include "vg_city_options.hpp"
+#include "vg_space_syntax.hpp"
 #include "weather_options.hpp"
 
 #include <attenuvis/io/number_text.hpp>
@@ -51,6 +52,7 @@ struct VgArguments {
   bool no_culling = false;
   std::string up_axis = "z", lod;
   CityArguments city;  // --terrain, footprints, --ground-plane, --gpkg (vg_city_options.hpp)
+  SpaceSyntaxArguments space_syntax;  // --measures and its options (vg_space_syntax.hpp)
 };
 
 std::vector<std::string> split(const std::string& text, char separator) {
@@ -298,6 +300,8 @@ void check_arguments(const VgArguments& a) {
                        {"--terrain", a.city.terrain}});
   check_option_ranges(a);
   ground_plane_choice(a.city, a.eye_height);  // refuses a bad --ground-plane before anything is read
+  check_space_syntax_arguments(a.space_syntax, !a.targets_file.empty() || !a.target_point.empty(),
+                               a.prune_below > 0 || a.deprecated_tolerance > 0);
   for (const std::string* path : {&a.out, &a.ply, &a.heatmap, &a.summary, &a.edges, &a.geojson, &a.city.gpkg})
     if (!path->empty()) io::require_regular_or_absent(*path);
 }
@@ -312,6 +316,8 @@ struct VgRun {
   std::unique_ptr<vg::NodeSet> grid;  // null for nodes given in a file
   std::vector<Eigen::Vector3d> eyes, targets;
   vg::VisibilityResult result;
+  std::unique_ptr<vg::GraphCollector> graph;  // with --measures: the lines of sight, kept for the measures
+  vg::SpaceSyntaxResult measures;
 };
 
 // Eyes from --nodes or the node grid (which may give the scene a ground
@@ -347,6 +353,37 @@ vg::VisibilityOptions pass_options(const VgArguments& a, const std::vector<vg::C
   return options;
 }
 
+// With --measures the pass's lines of sight go into a graph (its memory
+// checked first), beside any other edge sink.
+void keep_lines_of_sight(const VgArguments& a, VgRun& run, const vg::WorkEstimate& work,
+                         vg::VisibilityOptions& options) {
+  vg::SpaceSyntaxOptions probe;
+  probe.sigmas = options.sigmas;
+  probe.measures = vg::parse_measures(a.space_syntax.measures);
+  probe.contrast_threshold = a.space_syntax.contrast_threshold;
+  probe.storage = graph_storage(a.space_syntax.graph);
+  probe.threads = a.threads;
+  const vg::SpaceSyntaxEstimate estimate = vg::estimate_space_syntax(run.eyes.size(), work.pairs, probe);
+  check_space_syntax_memory(estimate, run.eyes.size(), a.allow_large);
+  if (!a.quiet)
+    std::cerr << "space syntax: the lines of sight as " << (estimate.bit_rows ? "bit rows" : "CSR lists") << ", "
+              << io::significant(estimate.peak_bytes / 1e6, 3) << " MB at most\n";
+  run.graph = std::make_unique<vg::GraphCollector>(run.eyes, estimate.bit_rows);
+  options.edge_sink = run.graph->sink();
+}
+
+// The measures on the pass's graph, every process its share.
+void measure_space_syntax(const VgArguments& a, VgRun& run) {
+  std::vector<double> sigmas;
+  for (const vg::ConditionInfo& c : run.conditions) sigmas.push_back(c.sigma);
+  const double spacing = run.grid ? run.grid->spacing : a.spacing_given ? a.spacing : 0.0;
+  const vg::SpaceSyntaxOptions options = space_syntax_options(a.space_syntax, sigmas, run.eyes, spacing, a.threads);
+  run.measures = vg::space_syntax(run.graph->finish(options.share), options);
+  run.graph.reset();
+  if (!a.quiet)
+    std::cerr << "space syntax: " << run.measures.columns.size() << " columns in " << run.measures.seconds << " s\n";
+}
+
 // The visibility pass, once its work is known to fit (check_work).  With
 // --edges the edge list streams into its staged temporary (never held
 // whole).
@@ -357,6 +394,7 @@ void run_pass(const VgArguments& a, VgRun& run, io::StagedFiles& staged) {
   if (!a.quiet)
     std::cerr << "work: " << io::significant(work.pairs, 3) << " pairs to consider, "
               << io::significant(work.bytes / 1e6, 3) << " MB of accumulators\n";
+  if (a.space_syntax.wanted()) keep_lines_of_sight(a, run, work, options);
   auto pass = [&] {
     run.result = run.targets.empty() ? vg::all_to_all(*run.scene, run.eyes, options)
                                      : vg::to_targets(*run.scene, run.eyes, run.targets, options);
@@ -369,13 +407,16 @@ void run_pass(const VgArguments& a, VgRun& run, io::StagedFiles& staged) {
   std::ofstream out(edges_temporary, std::ios::binary | std::ios::trunc);
   out << (run.targets.empty() ? "i,j,distance\n" : "node,target,distance\n");
   out.precision(std::numeric_limits<double>::max_digits10);
-  options.edge_sink = [&out](const std::vector<vg::Edge>& edges) {
+  options.edge_sink = [&out, graph = options.edge_sink](const std::vector<vg::Edge>& edges) {
+    if (graph) graph(edges);
     for (const vg::Edge& e : edges) out << e.i << "," << e.j << "," << e.distance << "\n";
   };
   pass();
   out.close();
   if (!out) throw std::runtime_error("error while writing '" + a.edges + "' (disk full?)");
 }
+
+int run_radius(const VgArguments& a) { return a.space_syntax.radius == "n" ? 0 : std::stoi(a.space_syntax.radius); }
 
 vg::RunInfo run_info(const VgArguments& a, const VgRun& run) {
   vg::RunInfo info;
@@ -391,6 +432,11 @@ vg::RunInfo run_info(const VgArguments& a, const VgRun& run) {
   info.wavelength_m = run.wavelength_m;
   info.threads = a.threads;
   info.conditions = run.conditions;
+  if (a.space_syntax.wanted()) {
+    info.space_syntax = &run.measures;
+    info.contrast_threshold = a.space_syntax.contrast_threshold;
+    info.radius = run_radius(a);
+  }
   info.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run.start).count();
   return info;
 }
@@ -458,11 +504,13 @@ void run_vg(const VgArguments& given) {
 
   io::StagedFiles staged;
   run_pass(a, run, staged);
+  if (a.space_syntax.wanted()) measure_space_syntax(a, run);
 
   vg::ScoreTable table;
   table.eyes = &run.eyes;
   table.result = &run.result;
   for (const vg::ConditionInfo& c : run.conditions) table.labels.push_back(c.label);
+  table.extra = vg::space_syntax_columns(run.measures, table.labels);
   // The sum score by default: the average is highest in closed courtyards
   // and lowest in open streets, the opposite of a visibility map's reading.
   const std::vector<std::string> panels =
@@ -524,6 +572,7 @@ void register_visgraph(CLI::App& app) {
   vgc->add_option("--color-by", args->color_by, "one score column for --ply/--heatmap (default sum:FIRST)");
   vgc->add_option("--summary", args->summary, "JSON summary");
   vgc->add_option("--edges", args->edges, "CSV edge list i,j,distance (O(edges) output)");
+  add_space_syntax_options(vgc, args->space_syntax);
   vgc->add_flag("--quiet", args->quiet, "no report or progress on stderr");
   vgc->add_flag("--no-culling", args->no_culling,
                 "cast every pair (same results; the reference the exact culling is tested against)");

@@ -2,6 +2,7 @@
 #include "process_group.hpp"
 
 #include <algorithm>
+#include <string>
 #include <cstdint>
 #include <cstdlib>
 #include <iostream>
@@ -66,6 +67,52 @@ visgraph::PassShare process_share() {
   return share;
 }
 
+namespace {
+// MPI counts are int: every collective below goes in chunks of at most 2^30 elements.
+constexpr std::size_t kChunk = std::size_t{1} << 30;
+
+template <class T>
+void all_reduce(std::vector<T>& v, MPI_Datatype type, MPI_Op op, const char* what) {
+  for (std::size_t at = 0; at < v.size(); at += kChunk)
+    if (MPI_Allreduce(MPI_IN_PLACE, v.data() + at, static_cast<int>(std::min(kChunk, v.size() - at)), type, op,
+                      MPI_COMM_WORLD) != MPI_SUCCESS)
+      throw std::runtime_error(std::string("MPI: ") + what + " failed");
+}
+
+// Every process's vector, concatenated in process order, on every process:
+// the lengths first, then each process's part broadcast from it.
+void all_gather(std::vector<std::uint64_t>& v) {
+  std::vector<std::uint64_t> lengths(static_cast<std::size_t>(count_), 0);
+  lengths[static_cast<std::size_t>(rank_)] = v.size();
+  all_reduce(lengths, MPI_UINT64_T, MPI_SUM, "the sizes of the edge lists");
+  std::vector<std::uint64_t> all;
+  for (int r = 0; r < count_; ++r) {
+    std::vector<std::uint64_t> part = r == rank_ ? v : std::vector<std::uint64_t>(lengths[static_cast<std::size_t>(r)]);
+    for (std::size_t at = 0; at < part.size(); at += kChunk)
+      if (MPI_Bcast(part.data() + at, static_cast<int>(std::min(kChunk, part.size() - at)), MPI_UINT64_T, r,
+                    MPI_COMM_WORLD) != MPI_SUCCESS)
+        throw std::runtime_error("MPI: gathering the lines of sight failed");
+    all.insert(all.end(), part.begin(), part.end());
+  }
+  v.swap(all);
+}
+}  // namespace
+
+visgraph::SpaceSyntaxShare space_syntax_share() {
+  visgraph::SpaceSyntaxShare share;
+  share.index = rank_;
+  share.count = count_;
+  if (count_ > 1) {
+    share.or_words = [](std::vector<std::uint64_t>& v) { all_reduce(v, MPI_UINT64_T, MPI_BOR, "joining the graph's bit rows"); };
+    share.gather = [](std::vector<std::uint64_t>& v) { all_gather(v); };
+    share.sum = [](std::vector<double>& v) { all_reduce(v, MPI_DOUBLE, MPI_SUM, "joining the space-syntax measures"); };
+    share.sum_integers = [](std::vector<std::int64_t>& v) {
+      all_reduce(v, MPI_INT64_T, MPI_SUM, "joining the through-vision counts");
+    };
+  }
+  return share;
+}
+
 void synchronize_processes() {
   if (joined_ && count_ > 1 && MPI_Barrier(MPI_COMM_WORLD) != MPI_SUCCESS)
     throw std::runtime_error("MPI: the processes could not meet before writing the outputs");
@@ -89,6 +136,7 @@ void start_process_group(int*, char***) {
 }
 void finish_process_group() {}
 visgraph::PassShare process_share() { return {}; }
+visgraph::SpaceSyntaxShare space_syntax_share() { return {}; }
 void synchronize_processes() {}
 void abort_process_group(const std::string& message) {
   std::cerr << message << std::flush;

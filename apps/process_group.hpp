@@ -5,6 +5,7 @@
 // nothing of it (visgraph takes a PassShare with a combine step).
 #pragma once
 
+#include <attenuvis/visgraph/space_syntax.hpp>
 #include <attenuvis/visgraph/visibility.hpp>
 
 #include <string>
@@ -26,6 +27,10 @@ inline bool is_root_process() { return process_rank() == 0; }
 // combine step sums the integer accumulators exactly and takes the maxima
 // over all of them (every process receives the totals).
 visgraph::PassShare process_share();
+// This process's share of the space-syntax measures: the graph joined from
+// every process's edges (an OR of bit rows, or the pairs gathered), the
+// per-node results summed exactly.
+visgraph::SpaceSyntaxShare space_syntax_share();
 
 // Waits until every process has come here.  The first process stages its
 // outputs only after every other one has passed its last check, so that no

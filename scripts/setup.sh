@@ -16,6 +16,7 @@ packages=(
   libgdal-dev gdal-bin python3-gdal         # DEMs, footprint layers, GeoPackage out; gdal-bin and python3-gdal for their tests and docs
   pybind11-dev python3-dev python3-pytest  # the Python package (python/) and its tests
   python3-xarray python3-netcdf4           # optional there; its tests and examples use them
+  python3-networkx                         # the space-syntax measures' independent reference (tests, benchmark)
   libopenmpi-dev openmpi-bin               # optional: `mpirun -np N attenuvis vg` (ATTENUVIS_MPI)
 )
 # Callers add what only they need (scripts/test.sh: clang and its libFuzzer runtime).

@@ -39,7 +39,8 @@ from . import _attenuvis
 
 _core = _attenuvis.visgraph
 
-__all__ = ["Scene", "node_grid", "all_to_all", "to_targets", "VisibilityResult", "Edges", "classic_layout_names"]
+__all__ = ["Scene", "node_grid", "all_to_all", "to_targets", "VisibilityResult", "Edges", "classic_layout_names",
+           "space_syntax", "space_syntax_of_graph", "SpaceSyntaxResult", "KOSCHMIEDER_CONTRAST"]
 
 
 class Scene:
@@ -780,3 +781,7 @@ def to_targets(scene: Scene, sources: ArrayLike, targets: ArrayLike, sigmas: Arr
     d = _core.to_targets(scene._cpp, s, t, _sigmas(sigmas), _prune_below(prune_below, tolerance), float(max_distance),
                          bool(distance_stats), int(threads), bool(edges), cb)
     return _result(d)
+
+
+# The space-syntax measures on these graphs (space_syntax.py).
+from .space_syntax import KOSCHMIEDER_CONTRAST, SpaceSyntaxResult, space_syntax, space_syntax_of_graph  # noqa: E402

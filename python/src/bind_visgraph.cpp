@@ -102,14 +102,6 @@ PyScene scene_from_spec(const std::string& spec) {
   return build(vg::scene_from_spec(spec), vg::default_walkable_groups(spec), spec);
 }
 
-std::vector<Eigen::Vector3d> points(const Doubles& array, const char* what) {
-  if (array.ndim() != 2 || array.shape(1) != 3)
-    throw std::invalid_argument(std::string(what) + ": expected an (N, 3) array of x, y, z in metres");
-  const double* p = array.data();
-  std::vector<Eigen::Vector3d> out(static_cast<std::size_t>(array.shape(0)));
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = {p[3 * i], p[3 * i + 1], p[3 * i + 2]};
-  return out;
-}
 
 Doubles to_array(const std::vector<Eigen::Vector3d>& v) {
   Doubles out({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
@@ -259,6 +251,18 @@ py::dict run(const PyScene& s, const std::vector<Eigen::Vector3d>& sources,
 }
 
 }  // namespace
+
+std::vector<Eigen::Vector3d> points(const py::array_t<double, py::array::c_style | py::array::forcecast>& array,
+                                    const char* what) {
+  if (array.ndim() != 2 || array.shape(1) != 3)
+    throw std::invalid_argument(std::string(what) + ": expected an (N, 3) array of x, y, z in metres");
+  const double* p = array.data();
+  std::vector<Eigen::Vector3d> out(static_cast<std::size_t>(array.shape(0)));
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = {p[3 * i], p[3 * i + 1], p[3 * i + 2]};
+  return out;
+}
+
+const vg::Scene& scene_of(py::handle scene) { return *scene.cast<const PyScene&>().scene; }
 
 void bind_visgraph(py::module_ module) {
   py::class_<PyScene>(module, "Scene")

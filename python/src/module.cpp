@@ -9,5 +9,7 @@ PYBIND11_MODULE(_attenuvis, module) {
   module.doc() = "attenuvis C++ core (use the attenuvis package, not this module)";
   attenuvis::python::bind_mie(module.def_submodule("mie", "Lorenz-Mie scattering by a homogeneous sphere"));
   attenuvis::python::bind_weather(module.def_submodule("weather", "Weather conditions and their extinction"));
-  attenuvis::python::bind_visgraph(module.def_submodule("visgraph", "Weather-weighted visibility graph"));
+  pybind11::module_ visgraph = module.def_submodule("visgraph", "Weather-weighted visibility graph");
+  attenuvis::python::bind_visgraph(visgraph);
+  attenuvis::python::bind_space_syntax(visgraph);
 }

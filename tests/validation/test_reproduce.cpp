@@ -148,10 +148,11 @@ TEST_CASE("reproduce --quick: report files and key numbers", "[validation][slow]
     REQUIRE(verdict != std::string::npos);
     CHECK(verdict < html.find("<img"));
     CHECK(verdict < html.find("<section id=\"guide\""));
-    // Then the seed's story in the paper's order (scenes, layouts, city), the sigma
-    // values, and what the seed does not have (Mie validation, performance).
+    // Then the seed's story in the paper's order (scenes, layouts, city), its
+    // next step (space syntax in weather), the sigma values, and what the seed
+    // does not have (Mie validation, performance).
     std::size_t last = verdict;
-    for (const char* id : {"scenes", "layouts", "city", "weather", "mie", "performance"}) {
+    for (const char* id : {"scenes", "layouts", "city", "space_syntax", "weather", "mie", "performance"}) {
       INFO("section " << id);
       const auto at = html.find(std::string("<section id=\"") + id + "\"");
       REQUIRE(at != std::string::npos);

@@ -214,6 +214,7 @@ class StagingDirectory {
 void run_sections(Context& ctx, Report& report) {
   detail::SeedConditions seed;
   detail::CityPerformance city_perf;
+  detail::CityLines city_lines;
   struct Step {
     const char* id;
     const char* title;
@@ -221,18 +222,20 @@ void run_sections(Context& ctx, Report& report) {
     std::function<void(Section&)> run;
   };
   const std::vector<Step> steps = {
-      {"weather", "Extinction coefficients: the seed's sigma values and the models behind them", 3,
+      {"weather", "Extinction coefficients: the seed's sigma values and the models behind them", 4,
        [&](Section& s) { detail::section_weather(ctx, s, seed); }},
       {"scenes", "The scenes: five classic layouts and a city", 0, [&](Section& s) { detail::section_scenes(ctx, s); }},
       {"layouts", "The five layouts: degree, S_S in clear weather and in weather, single-point maps", 1,
        [&](Section& s) { detail::section_layouts(ctx, s, seed); }},
       {"city", "The city: S_S, P1, P2, P3 and the seed's conclusion", 2,
-       [&](Section& s) { detail::section_city(ctx, s, seed, city_perf); }},
-      {"optics", "Bulk optics of the fogs: scattering, absorption, g, backscatter, lidar ratio, phase function", 4,
+       [&](Section& s) { detail::section_city(ctx, s, seed, city_perf, city_lines); }},
+      {"space_syntax", "Space syntax in weather", 3,
+       [&](Section& s) { detail::section_space_syntax(ctx, s, seed, city_lines); }},
+      {"optics", "Bulk optics of the fogs: scattering, absorption, g, backscatter, lidar ratio, phase function", 5,
        [&](Section& s) { detail::section_optics(ctx, s); }},
-      {"mie", "Mie validation: published tables and a 50-digit reference", 5,
+      {"mie", "Mie validation: published tables and a 50-digit reference", 6,
        [&](Section& s) { detail::section_mie(ctx, s); }},
-      {"performance", "Visibility-graph performance", 6,
+      {"performance", "Visibility-graph performance", 7,
        [&](Section& s) { detail::section_performance(ctx, s, city_perf); }},
   };
   std::vector<std::pair<int, Section>> computed;

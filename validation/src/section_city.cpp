@@ -13,6 +13,7 @@
 #include "attenuvis/visgraph/generators.hpp"
 #include "attenuvis/visgraph/nodes.hpp"
 #include "attenuvis/visgraph/scene.hpp"
+#include "attenuvis/visgraph/space_syntax.hpp"
 #include "attenuvis/visgraph/visibility.hpp"
 #include "heartbeat.hpp"
 #include "section_scenes.hpp"
@@ -101,7 +102,7 @@ void describe_city(Section& s, const CityScene& c, bool quick) {
 
 // ---- Exact all-to-all -------------------------------------------------------------
 vg::VisibilityResult exact_all_to_all(Context& ctx, Section& s, const CityScene& c,
-                                      const std::vector<VgCondition>& conds, CityPerformance& perf) {
+                                      const std::vector<VgCondition>& conds, CityPerformance& perf, CityLines& lines) {
   const std::size_t n = c.eyes.size();
   ctx.step("city", "all-to-all over " + std::to_string(n) + " nodes (" +
                        format_number(0.5 * double(n) * double(n - 1), 3) + " pairs, exact)");
@@ -109,10 +110,16 @@ vg::VisibilityResult exact_all_to_all(Context& ctx, Section& s, const CityScene&
   vopt.sigmas = sigmas_of(conds);
   vopt.threads = ctx.threads;
   vopt.progress = ctx.options.progress != nullptr;  // pairs done, rate and time left, once a second
+  // The lines of sight are kept for the space-syntax section (bit rows: one
+  // bit per pair of nodes).
+  vg::GraphCollector collector(c.eyes, /*bit_rows=*/true);
+  vopt.edge_sink = collector.sink();
   vg::VisibilityResult all = [&] {
     const ExternalProgress pairs_line;  // visgraph reports pairs done, rate and time left
     return vg::all_to_all(c.scene, c.eyes, vopt);
   }();
+  lines.eyes = c.eyes;
+  lines.graph = std::make_unique<vg::VisibilityGraph>(collector.finish());
   perf.city_nodes = n;
   perf.city_pairs = all.pairs_total;
   perf.city_exact_seconds = all.seconds;
@@ -449,7 +456,7 @@ void pruning_study(Context& ctx, const CityScene& c, const CityScores& r, CityPe
 
 }  // namespace
 
-void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerformance& perf) {
+void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerformance& perf, CityLines& lines) {
   const bool quick = ctx.options.quick;
   ctx.step("city", "generating the city");
   const CityScene c(quick);
@@ -458,9 +465,10 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
   CityScores r;
   r.conds = city_conditions(seed);
   describe_city(s, c, quick);
-  r.all = exact_all_to_all(ctx, s, c, r.conds, perf);
+  r.all = exact_all_to_all(ctx, s, c, r.conds, perf, lines);
   const int junction = central_junction(c);
   r.points = choose_points(s, c, junction, r.all.sum[0]);
+  for (const Point& p : r.points) lines.points.push_back(p.node), lines.point_names.push_back(p.name);
   r.point_c = single_point_runs(ctx, c, r.conds, r.points);
 
   points_table(ctx, s, c, r);

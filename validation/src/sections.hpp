@@ -11,7 +11,10 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
 #include "attenuvis/validation/report.hpp"
+#include "attenuvis/visgraph/space_syntax.hpp"
 #include "attenuvis/weather/condition.hpp"
 #include "attenuvis/validation/reproduce.hpp"
 
@@ -124,6 +127,15 @@ struct CityPerformance {
   double prune_sigma = 0;
 };
 
+// The city's lines of sight and its points P1-P3, kept by the city section's
+// exact pass for the space-syntax section (one pass serves both).
+struct CityLines {
+  std::vector<Eigen::Vector3d> eyes;
+  std::unique_ptr<visgraph::VisibilityGraph> graph;  // null until the city section has run
+  std::vector<std::size_t> points;                   // node indices of P1, P2, P3
+  std::vector<std::string> point_names;
+};
+
 void section_mie(Context& ctx, Section& s);
 // The Mie section's speed tables against an earlier core (ctx.mie_baseline),
 // or the sentence saying how to get them (section_mie_speed.cpp).
@@ -131,7 +143,8 @@ void section_mie_speed(Context& ctx, Section& s);
 void section_weather(Context& ctx, Section& s, SeedConditions& seed);
 void section_optics(Context& ctx, Section& s);  // section_optics.cpp
 void section_layouts(Context& ctx, Section& s, const SeedConditions& seed);
-void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerformance& perf);
+void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerformance& perf, CityLines& lines);
+void section_space_syntax(Context& ctx, Section& s, const SeedConditions& seed, CityLines& city);  // section_space_syntax.cpp
 void section_performance(Context& ctx, Section& s, const CityPerformance& city);
 
 // Shared helpers (reproduce.cpp).

@@ -63,6 +63,14 @@ std::vector<std::string> score_columns(const ScoreTable& table) {
     columns.push_back("max_distance");
   }
   if (has_pruning(r)) columns.push_back("sum_error_bound");
+  for (const NodeColumn& c : table.extra) columns.push_back(c.name);
+  return columns;
+}
+
+std::vector<NodeColumn> space_syntax_columns(const SpaceSyntaxResult& result, const std::vector<std::string>& labels) {
+  std::vector<NodeColumn> columns;
+  for (const SpaceSyntaxColumn& c : result.columns)
+    columns.push_back({c.measure + ":" + labels.at(c.condition), &c.values});
   return columns;
 }
 
@@ -77,6 +85,8 @@ std::vector<double> score_values(const ScoreTable& table, const std::string& col
     for (std::size_t c = 3; c < columns.size(); ++c) list += (list.empty() ? "" : ", ") + columns[c];
     throw std::invalid_argument("no score column '" + column + "' (available: " + list + ")");
   }
+  for (const NodeColumn& c : table.extra)
+    if (column == c.name) return *c.values;
   for (std::size_t k = 0; k < table.labels.size(); ++k) {
     if (column == "sum:" + table.labels[k]) {
       for (std::size_t i = 0; i < N; ++i) v[i] = r.sum[k][i];
@@ -262,6 +272,24 @@ std::string summary_json(const ScoreTable& table, const RunInfo& info) {
                   {"note", r.pruning_note},
                   {"max_sum_error_bound", worst_bound},
                   {"fixed_point_rounding_bound_per_partner", std::ldexp(1.0, -41)}};
+  if (info.space_syntax) {
+    const SpaceSyntaxResult& ss = *info.space_syntax;
+    json per_condition = json::array();
+    for (std::size_t k = 0; k < ss.edges.size(); ++k)
+      per_condition.push_back({{"label", k < info.conditions.size() ? info.conditions[k].label : std::to_string(k)},
+                               {"lines_of_sight", ss.edges[k]},
+                               {"components", ss.components[k]},
+                               {"same_graph_as",
+                                ss.same_graph_as[k] < 0 || static_cast<std::size_t>(ss.same_graph_as[k]) >= info.conditions.size()
+                                    ? json(nullptr)
+                                    : json(info.conditions[static_cast<std::size_t>(ss.same_graph_as[k])].label)}});
+    j["space_syntax"] = {{"contrast_threshold", info.contrast_threshold},
+                         {"radius", info.radius > 0 ? json(info.radius) : json("n")},
+                         {"graph", ss.bit_rows ? "bit rows" : "CSR"},
+                         {"graph_bytes", ss.graph_bytes},
+                         {"seconds", ss.seconds},
+                         {"conditions", per_condition}};
+  }
   j["threads"] = info.threads;
   j["time_s"] = {{"visibility", r.seconds}, {"culling", r.culling_seconds}, {"total", info.total_seconds}};
   j["pairs_per_s"] = r.seconds > 0 ? static_cast<double>(r.pairs_total) / r.seconds : 0.0;

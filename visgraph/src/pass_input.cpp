@@ -24,8 +24,6 @@ void validate(const VisibilityOptions& o) {
                                 std::to_string(o.share.count) + " does not exist");
   if (o.share.count > 1 && !o.share.combine)
     throw std::invalid_argument("visibility: a pass in several shares needs a combine step");
-  if (o.share.count > 1 && o.edge_sink)
-    throw std::invalid_argument("visibility: the edge list is written by a single process only");
 }
 
 // The fixed-point sums cannot overflow.  Every contribution is

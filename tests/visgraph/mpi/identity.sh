@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # `mpirun -np NP attenuvis vg ...` writes byte-identical files to one process
 # (the same program started without a launcher): the shares of the pass are
-# integer fixed-point sums, reduced exactly, whatever the process count.
+# integer fixed-point sums, reduced exactly, whatever the process count; the
+# space-syntax measures join every share's lines of sight and each node's
+# values come from one process.
 # usage: identity.sh ATTENUVIS MPIEXEC NP WORKDIR layouts|city
 set -euo pipefail
 attenuvis=$1 mpiexec=$2 np=$3 dir=$4 scenes=$5
@@ -33,10 +35,18 @@ case $scenes in
     same pruned layout:3 --conditions sigma:4 --prune-below 1e-3
     same limited layout:0 --conditions sigma:0.01 --max-distance 10 --distances
     same target layout:4 --conditions sigma:0.01,fog:advection --target-point 1,1,1.7 --distances
+    # Space syntax: every measure on bit rows (the rows OR-ed) and on CSR
+    # lists (the pairs gathered), with a radius and step depth.
+    same syntax layout:2 --spacing 2 --conditions clear,fog:advection --measures all,step-depth \
+      --contrast-threshold 0.5 --depth-from 10,10,1.7
+    same syntax_csr layout:4 --spacing 2 --conditions clear,snow:dry:4 --measures all --contrast-threshold 0.5 \
+      --graph csr --radius 3
     ;;
   city)
     "$attenuvis" scene city --rings 1 --out city.obj
     same city city.obj --spacing 4 --conditions clear,fog:advection,rain:8 --distances
+    same city_syntax city.obj --spacing 6 --conditions clear,fog:advection \
+      --measures connectivity,clustering,control,controllability,mean-depth,integration,entropy,through-vision,component
     ;;
   *)
     echo "unknown scene set '$scenes'" >&2

@@ -14,6 +14,7 @@
 #include <attenuvis/visgraph/outputs.hpp>
 #include <attenuvis/visgraph/scene.hpp>
 #include <attenuvis/visgraph/scene_file.hpp>
+#include <attenuvis/visgraph/space_syntax.hpp>
 #include <attenuvis/visgraph/terrain.hpp>
 #include <attenuvis/visgraph/visibility.hpp>
 #include <attenuvis/visgraph/work_estimate.hpp>

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <attenuvis/visgraph/nodes.hpp>
+#include <attenuvis/visgraph/space_syntax.hpp>
 #include <attenuvis/visgraph/visibility.hpp>
 
 #include <Eigen/Core>
@@ -15,16 +16,29 @@
 
 namespace attenuvis::visgraph {
 
+// A column of per-node values computed beside the pass (the space-syntax
+// measures), carried by every writer like the pass's own columns.
+struct NodeColumn {
+  std::string name;                          // e.g. integration_hh:fog:advection
+  const std::vector<double>* values = nullptr;  // one per node
+};
+
 // A visibility result with the names the user gave its conditions.
 struct ScoreTable {
   const std::vector<Eigen::Vector3d>* eyes = nullptr;  // world frame
   const VisibilityResult* result = nullptr;
   std::vector<std::string> labels;                     // one per sigma, as the user wrote it
+  std::vector<NodeColumn> extra;                       // after the pass's columns, in this order
 };
+
+// The space-syntax measures as node columns named MEASURE:LABEL (measure
+// by measure, each condition in turn), pointing into `result`.
+std::vector<NodeColumn> space_syntax_columns(const SpaceSyntaxResult& result, const std::vector<std::string>& labels);
 
 // Column names in CSV order: x,y,z, then degree (when exact), for each label
 // sum:L followed by avg:L (avg only when degree is exact),
-// mean_distance,max_distance (when computed), sum_error_bound (when pruning).
+// mean_distance,max_distance (when computed), sum_error_bound (when pruning),
+// then the extra columns.
 std::vector<std::string> score_columns(const ScoreTable& table);
 // Values of one score column ("degree", "sum:L", "avg:L", "mean_distance",
 // "max_distance", "sum_error_bound"); throws std::invalid_argument naming
@@ -85,11 +99,16 @@ struct RunInfo {
   int threads = 0;
   double total_seconds = 0;
   std::vector<ConditionInfo> conditions;
+  // The space-syntax measures, when computed: their graphs and options.
+  const SpaceSyntaxResult* space_syntax = nullptr;
+  double contrast_threshold = 0;
+  int radius = 0;  // 0 = n
 };
 
 // JSON summary: nodes (and where the grid put them), pairs cast, visible
 // fraction, min/max/mean per score, sigma with units and convention, pruning
-// bound, time, pairs/s.  A few kB whatever the scene: lists of groups are
+// bound, time, pairs/s; with space syntax its threshold, radius, and per
+// condition the lines kept and the components.  A few kB whatever the scene: lists of groups are
 // cut to their first entries.
 std::string summary_json(const ScoreTable& table, const RunInfo& info);
 

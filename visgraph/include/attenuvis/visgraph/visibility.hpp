@@ -95,7 +95,9 @@ struct ProgressReport {
 // and maximum over all shares.  Integer addition is exact and associative
 // and every pair is decided and cast exactly as in one process, so the
 // result is bit-identical to a one-process pass for any number of shares.
-// The edge list is not available from a shared pass.
+// An edge sink in a shared pass receives the visible pairs this share
+// decided: every visible pair reaches exactly one share, and the shares'
+// edges together are the one-process edge list (in another order).
 struct PassShare {
   int index = 0;  // this process's share, 0 <= index < count
   int count = 1;
