@@ -96,6 +96,11 @@ class PairCulling {
   std::size_t leaf_count() const { return leaf_nodes_.size(); }
   // Rows of leaf l, increasing.
   const std::uint32_t* leaf_rows(std::size_t l, std::size_t& count) const;
+  // Every row once, leaf after leaf (leaf_rows(l) starts at leaf_first(l)):
+  // the order in which the pass lays out its nodes, so that a leaf's nodes
+  // are contiguous.
+  const std::vector<std::uint32_t>& leaf_order() const { return rows_; }
+  std::size_t leaf_first(std::size_t l) const { return nodes_[leaf_nodes_[l]].begin; }
   // Every leaf some of whose pairs with leaf l are not blocked (l itself
   // included when it is), with the verdict.
   void partner_blocks(std::size_t l, std::vector<Block>& out) const;
