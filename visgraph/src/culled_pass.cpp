@@ -50,43 +50,59 @@ struct LeafPass {
   Progress& progress;
 };
 
-BlockSide side_of(const LeafPass& lp, std::size_t leaf) {
-  std::size_t count = 0;
-  lp.culling.leaf_rows(leaf, count);
+// The nodes of leaves [begin, end) as a block side (contiguous in leaf order).
+BlockSide side_of(const LeafPass& lp, std::size_t begin, std::size_t end) {
   const Points& P = lp.layout.points;
-  return BlockSide{P.x.data(), P.y.data(), P.z.data(), lp.culling.leaf_first(leaf), static_cast<int>(count)};
+  const std::size_t first = lp.culling.leaf_first(begin);
+  return BlockSide{P.x.data(), P.y.data(), P.z.data(), first,
+                   static_cast<int>(lp.culling.leaf_end(end - 1) - first)};
 }
 
-// The blocks of leaf l decided in sight, each pair of leaves once (by the
-// one with the smaller index), scored as dense blocks.
-void score_visible_blocks(const LeafPass& lp, std::size_t leaf, ThreadState& ts) {
+// Leaf `leaf` against the runs of leaves decided in sight: each pair of
+// leaves once (by the one with the smaller index), the later leaves of a
+// run as one run of columns.
+void score_visible_runs(const LeafPass& lp, std::size_t leaf, ThreadState& ts) {
   const Pass& pass = lp.pass;
   PhaseClock clock(pass.time_phases);
-  const BlockSide rows = side_of(lp, leaf);
+  const BlockSide rows = side_of(lp, leaf, leaf + 1);
   std::uint64_t pairs = 0;
-  for (const PairCulling::Block& block : ts.blocks) {
-    if (block.verdict != Verdict::visible || block.leaf < leaf) continue;
-    const bool same = block.leaf == leaf;
-    const BlockSide cols = same ? rows : side_of(lp, block.leaf);
+  const auto score = [&](const BlockSide& cols, bool same) {
     const BlockCounts counts =
         score_visible_block(rows, cols, same, pass.neg_sigma.data(), pass.K, pass.max_distance, ts.acc.data(), pass.N,
                             pass.keep_max ? ts.max_distance.data() : nullptr);
     ts.visible += counts.visible;
     ts.coincident += counts.coincident;
-    pairs += same ? static_cast<std::uint64_t>(rows.count) * (rows.count - 1) / 2
+    pairs += same ? static_cast<std::uint64_t>(rows.count) * static_cast<std::uint64_t>(rows.count - 1) / 2
                   : static_cast<std::uint64_t>(rows.count) * static_cast<std::uint64_t>(cols.count);
+  };
+  for (const PairCulling::Run& run : ts.runs) {
+    if (run.verdict != Verdict::visible || run.leaf_end <= leaf) continue;
+    const bool inside = run.leaf_begin <= leaf;
+    if (inside) score(rows, true);
+    const std::size_t from = inside ? leaf + 1 : run.leaf_begin;
+    if (from < run.leaf_end) score(side_of(lp, from, run.leaf_end), false);
   }
   ts.seconds.score += clock.lap();
   if (pairs) lp.progress.add(pairs);
 }
 
+// The leaves whose packets the rows of a leaf run: every leaf of the runs
+// cast, and with `dense` false those in sight as well.
+void expand_runs(const std::vector<PairCulling::Run>& runs, bool dense, std::vector<PairCulling::Block>& blocks) {
+  blocks.clear();
+  for (const PairCulling::Run& run : runs) {
+    if (dense && run.verdict == Verdict::visible) continue;
+    for (std::uint32_t leaf = run.leaf_begin; leaf < run.leaf_end; ++leaf) blocks.push_back({leaf, run.verdict});
+  }
+}
+
 // The rows of leaf `leaf` whose x-order row lies in [row_begin, row_end),
-// each against its partners after it (x order) in the leaves not culled as
-// blocked: partners culled as visible go through the policy without rays
-// (unless `dense` scored them already), the rest are cast.  Edges of a row
-// are put in partner order, as in the row-by-row pass.
-void run_leaf_rows(const LeafPass& lp, std::size_t leaf, std::size_t row_begin, std::size_t row_end, bool dense,
-                   ThreadState& ts, RowEdges* row_edges) {
+// each against its partners after it (x order) in the leaves of ts.blocks:
+// partners culled as visible go through the policy without rays, the rest
+// are cast.  Edges of a row are put in partner order, as in the row-by-row
+// pass.
+void run_leaf_rows(const LeafPass& lp, std::size_t leaf, std::size_t row_begin, std::size_t row_end, ThreadState& ts,
+                   RowEdges* row_edges) {
   const Pass& pass = lp.pass;
   std::size_t count = 0;
   const std::uint32_t* rows = lp.culling.leaf_rows(leaf, count);
@@ -101,7 +117,6 @@ void run_leaf_rows(const LeafPass& lp, std::size_t leaf, std::size_t row_begin, 
     begin_row(ts);
     std::uint64_t done = 0;
     for (const PairCulling::Block& block : ts.blocks) {
-      if (dense && block.verdict == Verdict::visible) continue;
       std::size_t n = 0;
       const std::uint32_t* partners = lp.culling.leaf_rows(block.leaf, n);
       if (n == 0 || partners[n - 1] <= row) continue;
@@ -152,9 +167,10 @@ std::vector<std::uint32_t> run_culled_pass(const Scene& scene, const Pass& rows_
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         ThreadState& ts = states.local();
                         for (std::size_t leaf = range.begin(); leaf != range.end(); ++leaf) {
-                          culling->partner_blocks(leaf, ts.blocks);
-                          if (dense) score_visible_blocks(lp, leaf, ts);
-                          run_leaf_rows(lp, leaf, block, block_end, dense, ts, row_edges);
+                          culling->partner_runs(leaf, ts.runs);
+                          if (dense) score_visible_runs(lp, leaf, ts);
+                          expand_runs(ts.runs, dense, ts.blocks);
+                          run_leaf_rows(lp, leaf, block, block_end, ts, row_edges);
                         }
                       });
   });

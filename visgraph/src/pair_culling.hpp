@@ -104,6 +104,15 @@ class PairCulling {
   // Every leaf some of whose pairs with leaf l are not blocked (l itself
   // included when it is), with the verdict.
   void partner_blocks(std::size_t l, std::vector<Block>& out) const;
+  // The same as runs of consecutive leaves (one per record; their nodes are
+  // contiguous in leaf order): leaves [leaf_begin, leaf_end).
+  struct Run {
+    std::uint32_t leaf_begin, leaf_end;
+    Verdict verdict;
+  };
+  void partner_runs(std::size_t l, std::vector<Run>& out) const;
+  // One past the last position of leaf l's nodes in leaf_order().
+  std::size_t leaf_end(std::size_t l) const { return nodes_[leaf_nodes_[l]].end; }
 
   std::uint64_t pairs_blocked() const { return pairs_blocked_; }  // unordered pairs decided blocked
   std::uint64_t pairs_visible() const { return pairs_visible_; }  // unordered pairs decided visible

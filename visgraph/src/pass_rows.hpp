@@ -63,6 +63,7 @@ struct ThreadState {
   std::vector<std::int64_t> acc;
   std::vector<double> max_distance;
   std::vector<std::uint32_t> candidates, cast_candidates;
+  std::vector<PairCulling::Run> runs;
   std::vector<PairCulling::Block> blocks;
   std::vector<std::pair<std::uint32_t, double>> matches;
   std::vector<std::int64_t> c_fixed, row;  // row: per-lane totals of the current row

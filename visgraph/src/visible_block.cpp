@@ -39,6 +39,7 @@ struct RowAgainstColumns {
 // order like the doubles, and reduce as integers: vectorised), counts.
 struct BlockTotals {
   std::int64_t* col;
+  bool distances;  // distance sums and maxima (distance statistics)
   std::int64_t col_max_bits[kLanes];
   std::int64_t visible = 0, coincident = 0;
 };
@@ -92,14 +93,16 @@ inline void score_row(const RowAgainstColumns& r, const double* neg_sigma, int K
   row_total[0] += degree;
   row_max_bits = row_max_bits > far ? row_max_bits : far;
   alignas(64) double value[kFlat], x[kFlat], vis_flat[kFlat];
-  for (int l = 0; l < kLanes; ++l) value[l] = vis[l] * dist[l] * kDistanceScale;
-  std::int64_t distance_sum = 0;
-  for (int l = 0; l < kLanes; ++l) {
-    const std::int64_t f = round_fixed(value[l]);
-    distance_sum += f;
-    t.col[kLanes + l] += f;
+  if (t.distances) {
+    for (int l = 0; l < kLanes; ++l) value[l] = vis[l] * dist[l] * kDistanceScale;
+    std::int64_t distance_sum = 0;
+    for (int l = 0; l < kLanes; ++l) {
+      const std::int64_t f = round_fixed(value[l]);
+      distance_sum += f;
+      t.col[kLanes + l] += f;
+    }
+    row_total[1] += distance_sum;
   }
-  row_total[1] += distance_sum;
   for (int k0 = 0; k0 < K; k0 += kFlat / kLanes) {
     const int m = (K - k0 < kFlat / kLanes ? K - k0 : kFlat / kLanes) * kLanes;
     for (int e = 0; e < m; e += kLanes) {
@@ -122,6 +125,7 @@ inline void score_row(const RowAgainstColumns& r, const double* neg_sigma, int K
   }
 }
 
+// Rows against at most 16 columns.
 template <Isa isa>
 inline BlockCounts score_block_lanes(const BlockSide& rows, const BlockSide& cols, bool same, const double* neg_sigma,
                                      int K, double max_distance, std::int64_t* acc, std::size_t N,
@@ -142,6 +146,7 @@ inline BlockCounts score_block_lanes(const BlockSide& rows, const BlockSide& col
   std::int64_t row_stack[kStackSlots];
   std::vector<std::int64_t> heap(slots > kStackSlots ? slots * (kLanes + 1) : 0);
   BlockTotals t;
+  t.distances = max_distance_of != nullptr;
   t.col = slots > kStackSlots ? heap.data() : col_stack;
   std::int64_t* row_total = slots > kStackSlots ? heap.data() + slots * kLanes : row_stack;
   for (std::size_t e = 0; e < slots * kLanes; ++e) t.col[e] = 0;
@@ -164,19 +169,36 @@ inline BlockCounts score_block_lanes(const BlockSide& rows, const BlockSide& col
   return BlockCounts{static_cast<std::uint64_t>(t.visible), static_cast<std::uint64_t>(t.coincident)};
 }
 
+// Rows against any number of columns, 16 at a time.
+template <Isa isa>
+inline BlockCounts score_run_lanes(const BlockSide& rows, const BlockSide& cols, bool same, const double* neg_sigma,
+                                   int K, double max_distance, std::int64_t* acc, std::size_t N,
+                                   double* max_distance_of) {
+  if (same) return score_block_lanes<isa>(rows, cols, true, neg_sigma, K, max_distance, acc, N, max_distance_of);
+  BlockCounts total;
+  for (int c0 = 0; c0 < cols.count; c0 += kLanes) {
+    const BlockSide part{cols.x, cols.y, cols.z, cols.first + static_cast<std::size_t>(c0), std::min(kLanes, cols.count - c0)};
+    const BlockCounts counts =
+        score_block_lanes<isa>(rows, part, false, neg_sigma, K, max_distance, acc, N, max_distance_of);
+    total.visible += counts.visible;
+    total.coincident += counts.coincident;
+  }
+  return total;
+}
+
 using BlockFunction = BlockCounts (*)(const BlockSide&, const BlockSide&, bool, const double*, int, double,
                                       std::int64_t*, std::size_t, double*);
 #ifdef ATTENUVIS_X86_DISPATCH
 __attribute__((target("avx2"), flatten)) BlockCounts score_block_avx2(
     const BlockSide& rows, const BlockSide& cols, bool same, const double* neg_sigma, int K, double max_distance,
     std::int64_t* acc, std::size_t N, double* max_distance_of) {
-  return score_block_lanes<Isa::avx2>(rows, cols, same, neg_sigma, K, max_distance, acc, N, max_distance_of);
+  return score_run_lanes<Isa::avx2>(rows, cols, same, neg_sigma, K, max_distance, acc, N, max_distance_of);
 }
 #endif
 __attribute__((flatten)) BlockCounts score_block_baseline(const BlockSide& rows, const BlockSide& cols, bool same,
                                                          const double* neg_sigma, int K, double max_distance,
                                                          std::int64_t* acc, std::size_t N, double* max_distance_of) {
-  return score_block_lanes<Isa::baseline>(rows, cols, same, neg_sigma, K, max_distance, acc, N, max_distance_of);
+  return score_run_lanes<Isa::baseline>(rows, cols, same, neg_sigma, K, max_distance, acc, N, max_distance_of);
 }
 
 BlockFunction block_function(Isa isa) {

@@ -24,7 +24,6 @@
 #include <immintrin.h>
 
 #include <algorithm>
-#include <vector>
 
 namespace attenuvis::visgraph::detail {
 
@@ -77,119 +76,151 @@ ATTENUVIS_AVX512 inline __m512d scaled_exp8(__m512d x, const ExpTable& table) {
   return _mm512_mul_pd(_mm512_castsi512_pd(scaled_bits), p);
 }
 
-// One half (8 lanes) of a row: the pairs in sight, their distances (0 for
-// the others).
-struct Half {
+// Columns are taken 8 at a time, straight from the contiguous coordinate
+// and accumulator arrays; a tile of columns (their coordinates and
+// accumulator slots stay in L1) is run through by every row in turn, and a
+// row's totals are reduced once per tile.
+constexpr int kTile = 256;
+
+// What a chunk of sigmas is asked to do.
+struct Chunk {
+  double max_distance;
+  bool first;      // also counts degree, coincident pairs, distance sums and maxima
+  bool distances;  // distance sums and maxima (distance statistics)
+  const double* neg_sigma;
+  int k0;          // its sigmas are neg_sigma[0 ..), slots 2 + k0 ..
+};
+
+// Eight columns against one row: the pairs in sight and their distances (0
+// for the others).
+struct Lanes {
   __mmask8 visible;
   __m512d distance;
 };
 
-struct Block {
-  const double *bx, *by, *bz;  // 16 padded columns
-  std::int64_t* col;           // col[s * 16 + l]
-  double* col_max;             // 16 lanes, or null
-};
-
-ATTENUVIS_AVX512 inline Half half_row(const Block& b, int h, __m512d ox, __m512d oy, __m512d oz, __mmask8 active,
-                                      double max_distance, std::uint64_t& coincident) {
-  const __m512d dx = _mm512_sub_pd(_mm512_load_pd(b.bx + 8 * h), ox);
-  const __m512d dy = _mm512_sub_pd(_mm512_load_pd(b.by + 8 * h), oy);
-  const __m512d dz = _mm512_sub_pd(_mm512_load_pd(b.bz + 8 * h), oz);
+ATTENUVIS_AVX512 inline Lanes eight_columns(const BlockSide& cols, std::size_t j, __mmask8 real, __m512d ox,
+                                            __m512d oy, __m512d oz, double max_distance, int& coincident) {
+  const __m512d dx = _mm512_sub_pd(_mm512_maskz_loadu_pd(real, cols.x + j), ox);
+  const __m512d dy = _mm512_sub_pd(_mm512_maskz_loadu_pd(real, cols.y + j), oy);
+  const __m512d dz = _mm512_sub_pd(_mm512_maskz_loadu_pd(real, cols.z + j), oz);
   const __m512d d = _mm512_maskz_sqrt_pd(
       0xFF, _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz)));
   const __mmask8 apart = _mm512_cmp_pd_mask(d, _mm512_set1_pd(kCoincident), _CMP_GE_OQ);
   const __mmask8 within = _mm512_cmp_pd_mask(d, _mm512_set1_pd(max_distance), _CMP_LE_OQ);
-  coincident += static_cast<std::uint64_t>(__builtin_popcount(active & static_cast<__mmask8>(~apart)));
-  const __mmask8 visible = active & apart & within;
-  return Half{visible, _mm512_maskz_mov_pd(visible, d)};
+  coincident = __builtin_popcount(real & static_cast<__mmask8>(~apart));
+  const __mmask8 visible = real & apart & within;
+  return Lanes{visible, _mm512_maskz_mov_pd(visible, d)};
 }
 
-// Row totals of one row against the block's columns: degree, distance, one
-// per sigma (row_total), column totals added in place.
-ATTENUVIS_AVX512 inline void score_row(const Block& b, const double* row_xyz, __mmask16 active, const double* neg_sigma,
-                                       int K, double max_distance, const ExpTable& table, std::int64_t* row_total,
-                                       double& row_max, BlockCounts& counts) {
-  const __m512d ox = _mm512_set1_pd(row_xyz[0]), oy = _mm512_set1_pd(row_xyz[1]), oz = _mm512_set1_pd(row_xyz[2]);
-  const Half half[2] = {
-      half_row(b, 0, ox, oy, oz, static_cast<__mmask8>(active & 0xFF), max_distance, counts.coincident),
-      half_row(b, 1, ox, oy, oz, static_cast<__mmask8>(active >> 8), max_distance, counts.coincident)};
-  const __m512i one = _mm512_set1_epi64(1);
-  __m512i degree = _mm512_setzero_si512(), distance = _mm512_setzero_si512();
-  for (int h = 0; h < 2; ++h) {
-    __m512i* col_degree = reinterpret_cast<__m512i*>(b.col + 8 * h);
-    __m512i* col_distance = reinterpret_cast<__m512i*>(b.col + 16 + 8 * h);
-    const __m512i v = _mm512_maskz_mov_epi64(half[h].visible, one);
-    const __m512i f = round_to_fixed(_mm512_mul_pd(half[h].distance, _mm512_set1_pd(kDistanceScale)));
-    degree = _mm512_add_epi64(degree, v);
-    distance = _mm512_add_epi64(distance, f);
-    _mm512_store_si512(col_degree, _mm512_add_epi64(_mm512_load_si512(col_degree), v));
-    _mm512_store_si512(col_distance, _mm512_add_epi64(_mm512_load_si512(col_distance), f));
-    if (b.col_max) {
-      _mm512_store_pd(b.col_max + 8 * h,
-                      _mm512_maskz_max_pd(0xFF, _mm512_load_pd(b.col_max + 8 * h), half[h].distance));
-      row_max = std::max(row_max, max_lanes(half[h].distance));
+// acc[j .. j + 8) += v on the real lanes.
+ATTENUVIS_AVX512 inline void add_to(std::int64_t* at, __mmask8 real, __m512i v) {
+  _mm512_mask_storeu_epi64(at, real, _mm512_add_epi64(_mm512_maskz_loadu_epi64(real, at), v));
+}
+
+// A row's totals over one tile.
+template <int KC>
+struct RowTotals {
+  std::int64_t degree;
+  __m512i distance;
+  __m512d farthest;
+  __m512i c[KC > 0 ? KC : 1];
+};
+
+// Row i against columns [j, j + 8) (real lanes): their credits in place,
+// the row's in `row`.
+template <int KC>
+ATTENUVIS_AVX512 inline void score_lanes(const BlockSide& cols, std::size_t j, __mmask8 real, const double* o,
+                                         const Chunk& chunk, const ExpTable& table, std::int64_t* acc, std::size_t N,
+                                         double* max_distance_of, RowTotals<KC>& row, BlockCounts& counts) {
+  int coincident = 0;
+  const Lanes lanes = eight_columns(cols, j, real, _mm512_set1_pd(o[0]), _mm512_set1_pd(o[1]), _mm512_set1_pd(o[2]),
+                                    chunk.max_distance, coincident);
+  if (chunk.first) {
+    counts.coincident += static_cast<std::uint64_t>(coincident);
+    row.degree += __builtin_popcount(lanes.visible);
+    _mm512_mask_storeu_epi64(acc + j, lanes.visible,
+                             _mm512_add_epi64(_mm512_maskz_loadu_epi64(lanes.visible, acc + j), _mm512_set1_epi64(1)));
+    if (chunk.distances) {
+      const __m512i f = round_to_fixed(_mm512_mul_pd(lanes.distance, _mm512_set1_pd(kDistanceScale)));
+      row.distance = _mm512_add_epi64(row.distance, f);
+      add_to(acc + N + j, real, f);
+      row.farthest = _mm512_maskz_max_pd(0xFF, row.farthest, lanes.distance);
+      double* m = max_distance_of + j;
+      _mm512_mask_storeu_pd(m, real, _mm512_maskz_max_pd(0xFF, _mm512_maskz_loadu_pd(real, m), lanes.distance));
     }
   }
-  const std::int64_t row_degree = sum_lanes(degree);
-  counts.visible += static_cast<std::uint64_t>(row_degree);
-  row_total[0] += row_degree;
-  row_total[1] += sum_lanes(distance);
-  for (int k = 0; k < K; ++k) {
-    const __m512d s = _mm512_set1_pd(neg_sigma[k]);
-    __m512i sum = _mm512_setzero_si512();
-    for (int h = 0; h < 2; ++h) {
-      const __m512d x =
-          _mm512_maskz_max_pd(0xFF, _mm512_mul_pd(s, half[h].distance), _mm512_set1_pd(kLowestArgument));
-      const __m512i c = round_to_fixed(_mm512_maskz_mov_pd(half[h].visible, scaled_exp8(x, table)));
-      __m512i* col = reinterpret_cast<__m512i*>(b.col + 16 * (2 + k) + 8 * h);
-      _mm512_store_si512(col, _mm512_add_epi64(_mm512_load_si512(col), c));
-      sum = _mm512_add_epi64(sum, c);
-    }
-    row_total[2 + k] += sum_lanes(sum);
+  for (int k = 0; k < KC; ++k) {
+    const __m512d x = _mm512_maskz_max_pd(0xFF, _mm512_mul_pd(_mm512_set1_pd(chunk.neg_sigma[k]), lanes.distance),
+                                          _mm512_set1_pd(kLowestArgument));
+    const __m512i v = round_to_fixed(_mm512_maskz_mov_pd(lanes.visible, scaled_exp8(x, table)));
+    row.c[k] = _mm512_add_epi64(row.c[k], v);
+    add_to(acc + static_cast<std::size_t>(2 + chunk.k0 + k) * N + j, real, v);
   }
+}
+
+// The rows against columns [from, to) of cols (same: the pairs a < b of
+// one leaf), for the sigmas of `chunk`.
+template <int KC>
+ATTENUVIS_AVX512 inline void score_tile(const BlockSide& rows, const BlockSide& cols, bool same, std::size_t from,
+                                        std::size_t to, const Chunk& chunk, const ExpTable& table, std::int64_t* acc,
+                                        std::size_t N, double* max_distance_of, BlockCounts& counts) {
+  for (int a = 0; a < rows.count; ++a) {
+    const std::size_t i = rows.first + static_cast<std::size_t>(a);
+    const double o[3] = {rows.x[i], rows.y[i], rows.z[i]};
+    RowTotals<KC> row;
+    row.degree = 0;
+    row.distance = _mm512_setzero_si512();
+    row.farthest = _mm512_setzero_pd();
+    for (int k = 0; k < KC; ++k) row.c[k] = _mm512_setzero_si512();
+    const std::size_t start = same ? std::max(from, i + 1) : from;
+    for (std::size_t j = start; j < to; j += 8) {
+      const __mmask8 real = static_cast<__mmask8>(to - j >= 8 ? 0xFF : (1u << (to - j)) - 1u);
+      score_lanes<KC>(cols, j, real, o, chunk, table, acc, N, max_distance_of, row, counts);
+    }
+    if (chunk.first) {
+      counts.visible += static_cast<std::uint64_t>(row.degree);
+      acc[i] += row.degree;
+      if (chunk.distances) {
+        acc[N + i] += sum_lanes(row.distance);
+        max_distance_of[i] = std::max(max_distance_of[i], max_lanes(row.farthest));
+      }
+    }
+    for (int k = 0; k < KC; ++k) acc[static_cast<std::size_t>(2 + chunk.k0 + k) * N + i] += sum_lanes(row.c[k]);
+  }
+}
+
+template <int KC>
+ATTENUVIS_AVX512 inline void score_chunk(const BlockSide& rows, const BlockSide& cols, bool same, const Chunk& chunk,
+                                         const ExpTable& table, std::int64_t* acc, std::size_t N,
+                                         double* max_distance_of, BlockCounts& counts) {
+  const std::size_t end = cols.first + static_cast<std::size_t>(cols.count);
+  for (std::size_t from = cols.first; from < end; from += kTile)
+    score_tile<KC>(rows, cols, same, from, std::min(end, from + kTile), chunk, table, acc, N, max_distance_of, counts);
 }
 }  // namespace
 
 __attribute__((target("avx512f"))) BlockCounts score_visible_block_avx512(
     const BlockSide& rows, const BlockSide& cols, bool same, const double* neg_sigma, int K, double max_distance,
     std::int64_t* acc, std::size_t N, double* max_distance_of) {
-  alignas(64) double bx[kLanes] = {}, by[kLanes] = {}, bz[kLanes] = {}, col_max[kLanes] = {};
-  for (int l = 0; l < cols.count; ++l) {
-    bx[l] = cols.x[cols.first + static_cast<std::size_t>(l)];
-    by[l] = cols.y[cols.first + static_cast<std::size_t>(l)];
-    bz[l] = cols.z[cols.first + static_cast<std::size_t>(l)];
-  }
-  const std::size_t slots = 2 + static_cast<std::size_t>(K);
-  std::vector<std::int64_t> heap;
-  alignas(64) std::int64_t col_stack[(2 + 8) * kLanes];
-  std::int64_t row_stack[2 + 8];
-  if (slots > 2 + 8) heap.assign(slots * (kLanes + 1) + 8, 0);
-  // The heap block's columns start on a 64-byte boundary.
-  std::int64_t* heap_col = heap.empty() ? nullptr
-      : heap.data() + (8 - (reinterpret_cast<std::uintptr_t>(heap.data()) / sizeof(std::int64_t)) % 8) % 8;
-  std::int64_t* col = heap.empty() ? col_stack : heap_col;
-  std::int64_t* row_total = heap.empty() ? row_stack : heap_col + slots * kLanes;
-  std::fill(col, col + slots * kLanes, 0);
-  const Block b{bx, by, bz, col, max_distance_of ? col_max : nullptr};
   const ExpTable table{_mm512_loadu_pd(kExp2TableScaled.v), _mm512_loadu_pd(kExp2TableScaled.v + 8),
                        _mm512_loadu_pd(kExp2TableScaled.v + 16), _mm512_loadu_pd(kExp2TableScaled.v + 24)};
-  const __mmask16 columns = static_cast<__mmask16>((1u << cols.count) - 1u);
   BlockCounts counts;
-  for (int a = 0; a < rows.count; ++a) {
-    const std::size_t i = rows.first + static_cast<std::size_t>(a);
-    const __mmask16 active = same ? static_cast<__mmask16>(columns & ~((2u << a) - 1u)) : columns;
-    std::fill(row_total, row_total + slots, 0);
-    double row_max = 0;
-    const double xyz[3] = {rows.x[i], rows.y[i], rows.z[i]};
-    score_row(b, xyz, active, neg_sigma, K, max_distance, table, row_total, row_max, counts);
-    for (std::size_t s = 0; s < slots; ++s) acc[s * N + i] += row_total[s];
-    if (max_distance_of) max_distance_of[i] = std::max(max_distance_of[i], row_max);
-  }
-  for (int l = 0; l < cols.count; ++l) {
-    const std::size_t j = cols.first + static_cast<std::size_t>(l);
-    for (std::size_t s = 0; s < slots; ++s) acc[s * N + j] += col[s * kLanes + static_cast<std::size_t>(l)];
-    if (max_distance_of) max_distance_of[j] = std::max(max_distance_of[j], col_max[l]);
-  }
+  // Sigmas four at a time (the distances are recomputed per chunk, a small
+  // part of four exps); the first chunk also does the counts.
+  Chunk chunk{max_distance, true, max_distance_of != nullptr, neg_sigma, 0};
+  do {
+    const int n = std::min(4, K - chunk.k0);
+    switch (n) {
+      case 4: score_chunk<4>(rows, cols, same, chunk, table, acc, N, max_distance_of, counts); break;
+      case 3: score_chunk<3>(rows, cols, same, chunk, table, acc, N, max_distance_of, counts); break;
+      case 2: score_chunk<2>(rows, cols, same, chunk, table, acc, N, max_distance_of, counts); break;
+      case 1: score_chunk<1>(rows, cols, same, chunk, table, acc, N, max_distance_of, counts); break;
+      default: score_chunk<0>(rows, cols, same, chunk, table, acc, N, max_distance_of, counts); break;
+    }
+    chunk.first = false;
+    chunk.k0 += std::max(n, 1);
+    chunk.neg_sigma = neg_sigma + chunk.k0;
+  } while (chunk.k0 < K);
   return counts;
 }
 

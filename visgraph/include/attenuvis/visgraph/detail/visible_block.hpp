@@ -19,8 +19,8 @@
 
 namespace attenuvis::visgraph::detail {
 
-// Nodes first .. first + count - 1 (count <= 16) of coordinate arrays that
-// hold a leaf's nodes contiguously.
+// Nodes first .. first + count - 1 of coordinate arrays that hold them
+// contiguously: a leaf (count <= 16), or as columns a run of leaves.
 struct BlockSide {
   const double *x, *y, *z;
   std::size_t first;
@@ -31,12 +31,14 @@ struct BlockCounts {
   std::uint64_t visible = 0, coincident = 0;
 };
 
-// Every pair (a, b), a of `rows`, b of `cols` (same: rows and cols are one
-// leaf, pairs a < b only), in sight.  Credits both ends in the slot-major
-// accumulators acc[s * N + node] (s = degree, distance in units of 2^-20 m,
-// one slot per sigma: C in units of 2^-40) and, if max_distance_of is not
-// null, raises max_distance_of[node] to the largest visible distance.
-// Pairs farther than max_distance are not lines of sight.
+// Every pair (a, b), a of `rows` (at most 16), b of `cols` (any number; same:
+// rows and cols are one leaf, pairs a < b only), in sight.  Credits both ends in the slot-major
+// accumulators acc[s * N + node] (s = 0: degree; s = 2 + k: C for sigma k in
+// units of 2^-40) and, if max_distance_of is not null (distance
+// statistics), also slot 1 (distance in units of 2^-20 m) and
+// max_distance_of[node], raised to the largest visible distance; slot 1 is
+// left alone otherwise.  Pairs farther than max_distance are not lines of
+// sight.
 BlockCounts score_visible_block(const BlockSide& rows, const BlockSide& cols, bool same, const double* neg_sigma,
                                 int K, double max_distance, std::int64_t* acc, std::size_t N,
                                 double* max_distance_of);
