@@ -333,7 +333,8 @@ void pruning_study(const Args& a, const vg::Scene& city, const std::vector<Eigen
 void print_floors_header() {
   std::printf("\nfloors: the engine (exact, culling on) against raw Embree casting every pair (no scoring) and a raw "
               "vectorised scoring loop (every pair in sight, no rays); CPU seconds of the process, best of the repeats; "
-              "phases from one more run with phase timing (cluster: wall s; packets, score, rays: thread-seconds)\n");
+              "the engine's CPU split by phase (cluster classification, packet decisions, scoring, rays) from the "
+              "shares measured in one more run with phase timing\n");
   std::printf("%-26s %7s %11s %2s %3s %8s %8s %6s %8s %8s %8s %8s %9s %9s %9s %8s %8s %8s\n", "workload", "nodes",
               "pairs", "K", "thr", "sight[%]", "block[%]", "cast%", "cluster", "packets", "score", "rays", "engine",
               "Embree", "scoring", "Embree/", "engine/", "ns/pair");

@@ -40,6 +40,17 @@ class CullGeometry {
   // `margin` (every segment then passes through its interior, so enters it
   // through its watertight surface).
   bool solid_blocks(std::uint32_t triangle, const Box3& a, const Box3& b, double margin) const;
+  // The same two tests (planar occluder, convex solid) for one segment from
+  // point a to point b: true when the occluder or the solid of `triangle`
+  // blocks it with `margin`.  The case of boxes that are points, without
+  // their setup: packets test each of their sight lines this way.
+  bool segment_blocked(std::uint32_t triangle, const double* a, const double* b, double margin) const;
+  // segment_blocked from `point` to each partner l < n (n <= 16) at once:
+  // the bit mask of the lanes blocked.  `partners` is the partners'
+  // bounding box, for a quick answer when the occluder's plane does not
+  // pass between the point and all of them.
+  std::uint32_t lanes_blocked(std::uint32_t triangle, const double* point, const double* x, const double* y,
+                              const double* z, int n, const Box3& partners, double margin) const;
   // The solid of a triangle, or -1: callers skip a solid already tried.
   std::int32_t solid_of(std::uint32_t triangle) const { return solid_of_[triangle]; }
 
@@ -63,6 +74,8 @@ class CullGeometry {
     double centre[3];
     double slack = 0;  // largest distance of a vertex beyond a face plane (non-planar quads)
   };
+  static std::uint32_t occluder_lanes(const Occluder& o, double sa, double side, double inside, const double* point,
+                                      const double* x, const double* y, const double* z, int n);
   std::uint32_t build(std::uint32_t first, std::uint32_t count, std::vector<double>& centroid);
   void build_occluders(const unsigned* index);
   void pair_quad_triangles(const unsigned* index, std::vector<std::uint32_t>& partner,

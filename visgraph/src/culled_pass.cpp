@@ -1,6 +1,7 @@
 // The all-to-all pass over leaf clusters (culled_pass.hpp).
 #include "culled_pass.hpp"
 
+#include "packet_culling.hpp"
 #include "pair_culling.hpp"
 #include "progress.hpp"
 #include "scene_access.hpp"
@@ -48,6 +49,7 @@ struct LeafPass {
   const LeafLayout& layout;
   const std::vector<std::uint32_t>& rank_of;  // x-order row of each caller index (edges only)
   Progress& progress;
+  const PacketCulling& packets;
 };
 
 // The nodes of leaves [begin, end) as a block side (contiguous in leaf order).
@@ -96,11 +98,33 @@ void expand_runs(const std::vector<PairCulling::Run>& runs, bool dense, std::vec
   }
 }
 
+// After this many packets of one pair of leaves in a row are left to
+// rays, the pair's remaining packets are cast without trying (a pair that
+// is not blocked near its first rows rarely is further on).
+constexpr std::uint8_t kPacketMisses = 3;
+
+// What a row does with one packet of a pair of leaves left to rays
+// (packet_culling.hpp): cast it, or, decided, score it without rays or
+// skip it.
+Verdict decide_packet(const LeafPass& lp, std::size_t i, std::size_t j0, int k, std::size_t b, ThreadState& ts) {
+  if (!lp.packets.active() || ts.packet_misses[b] >= kPacketMisses) return Verdict::cast;
+  PhaseClock clock(lp.pass.time_phases);
+  const Points& P = lp.layout.points;
+  const double point[3] = {P.x[i], P.y[i], P.z[i]};
+  const Verdict v =
+      lp.packets.decide(point, P.x.data() + j0, P.y.data() + j0, P.z.data() + j0, k, ts.packet_hints[b], ts.near_hints);
+  ts.packet_misses[b] = v == Verdict::cast ? static_cast<std::uint8_t>(ts.packet_misses[b] + 1) : 0;
+  if (v == Verdict::blocked) ts.packet_blocked += static_cast<std::uint64_t>(k);
+  if (v == Verdict::visible) ts.packet_visible += static_cast<std::uint64_t>(k);
+  ts.seconds.classify += clock.lap();
+  return v;
+}
+
 // The rows of leaf `leaf` whose x-order row lies in [row_begin, row_end),
 // each against its partners after it (x order) in the leaves of ts.blocks:
 // partners culled as visible go through the policy without rays, the rest
-// are cast.  Edges of a row are put in partner order, as in the row-by-row
-// pass.
+// are decided packet by packet or cast.  Edges of a row are put in partner
+// order, as in the row-by-row pass.
 void run_leaf_rows(const LeafPass& lp, std::size_t leaf, std::size_t row_begin, std::size_t row_end, ThreadState& ts,
                    RowEdges* row_edges) {
   const Pass& pass = lp.pass;
@@ -109,6 +133,9 @@ void run_leaf_rows(const LeafPass& lp, std::size_t leaf, std::size_t row_begin, 
   const std::size_t first = lp.culling.leaf_first(leaf);
   const std::uint32_t* from = std::lower_bound(rows, rows + count, static_cast<std::uint32_t>(row_begin));
   const std::uint32_t* to = std::lower_bound(rows, rows + count, static_cast<std::uint32_t>(row_end));
+  ts.packet_hints.assign(ts.blocks.size(), PacketCulling::Hints{});
+  ts.packet_misses.assign(ts.blocks.size(), 0);
+  ts.near_hints = PacketCulling::Hints{};
   for (const std::uint32_t* r = from; r != to; ++r) {
     const std::uint32_t row = *r;
     const std::size_t i = first + static_cast<std::size_t>(r - rows);  // position
@@ -116,15 +143,17 @@ void run_leaf_rows(const LeafPass& lp, std::size_t leaf, std::size_t row_begin, 
     if (edges) edges->clear();
     begin_row(ts);
     std::uint64_t done = 0;
-    for (const PairCulling::Block& block : ts.blocks) {
+    for (std::size_t b = 0; b < ts.blocks.size(); ++b) {
+      const PairCulling::Block& block = ts.blocks[b];
       std::size_t n = 0;
       const std::uint32_t* partners = lp.culling.leaf_rows(block.leaf, n);
       if (n == 0 || partners[n - 1] <= row) continue;
       const std::uint32_t* after = partners[0] > row ? partners : std::upper_bound(partners, partners + n, row);
       const std::size_t j0 = lp.culling.leaf_first(block.leaf) + static_cast<std::size_t>(after - partners);
       const int k = static_cast<int>(partners + n - after);
-      add_packet(pass, i, nullptr, j0, k, ts, edges, block.verdict == Verdict::cast);
       done += static_cast<std::uint64_t>(k);
+      const Verdict v = block.verdict == Verdict::cast ? decide_packet(lp, i, j0, k, b, ts) : block.verdict;
+      if (v != Verdict::blocked) add_packet(pass, i, nullptr, j0, k, ts, edges, v == Verdict::cast);
     }
     end_row(pass, i, ts);
     if (edges) {
@@ -160,7 +189,8 @@ std::vector<std::uint32_t> run_culled_pass(const Scene& scene, const Pass& rows_
   pass.caller = layout.caller.data();
   std::vector<std::uint32_t> rank_of(options.edge_sink ? N : 0);
   for (std::size_t p = 0; p < rank_of.size(); ++p) rank_of[layout.caller[p]] = layout.row[p];
-  const LeafPass lp{pass, *culling, layout, rank_of, progress};
+  const PacketCulling packets(culling->scene(), culling->geometry(), culling->margin());
+  const LeafPass lp{pass, *culling, layout, rank_of, progress, packets};
   run_row_blocks(options, N, N, [&](std::size_t block, std::size_t block_end, RowEdges* row_edges) {
     const bool dense = row_edges == nullptr;
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, culling->leaf_count(), 1),

@@ -114,6 +114,11 @@ class PairCulling {
   // One past the last position of leaf l's nodes in leaf_order().
   std::size_t leaf_end(std::size_t l) const { return nodes_[leaf_nodes_[l]].end; }
 
+  // The tests a pass uses to decide packets one by one (packet_culling.hpp);
+  // null without classification.
+  const CullGeometry* geometry() const { return geometry_.get(); }
+  RTCScene scene() const { return scene_; }
+
   std::uint64_t pairs_blocked() const { return pairs_blocked_; }  // unordered pairs decided blocked
   std::uint64_t pairs_visible() const { return pairs_visible_; }  // unordered pairs decided visible
   std::uint64_t cluster_tests() const { return tests_; }

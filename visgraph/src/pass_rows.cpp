@@ -7,15 +7,8 @@
 
 #include <algorithm>
 
-#include <time.h>
-
 namespace attenuvis::visgraph::detail {
 
-double thread_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 void begin_row(ThreadState& ts) { std::fill(ts.row.begin(), ts.row.end(), 0); }
 

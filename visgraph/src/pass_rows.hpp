@@ -8,12 +8,14 @@
 #include <attenuvis/visgraph/visibility.hpp>
 
 #include "node_points.hpp"
+#include "packet_culling.hpp"
 #include "pair_culling.hpp"
 
 #include <embree3/rtcore.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -21,7 +23,7 @@
 
 namespace attenuvis::visgraph::detail {
 
-// CPU seconds spent in each part of a pass, summed over its threads; measured
+// Seconds spent in each part of a pass, summed over its threads; measured
 // only when VisibilityOptions::phase_times asks (reading the clock around
 // every packet costs a few percent).
 struct PhaseSeconds {
@@ -30,28 +32,27 @@ struct PhaseSeconds {
   double rays = 0;      // inside Embree
 };
 
-// The calling thread's CPU time, seconds (on a shared machine a thread's
-// wall time also counts the time it waited for a core).
-double thread_cpu_seconds();
-
-// A clock that reads the thread's CPU time only when enabled: lap() returns
-// the seconds since the previous lap (0 when disabled).
+// A clock that reads the time only when enabled: lap() returns the seconds
+// since the previous lap (0 when disabled).  Steady (wall) time: a thread's
+// CPU clock is a system call, ~20 times dearer, too dear to read around
+// every packet; on a shared machine the phases therefore also count time a
+// thread waited for a core, and callers compare their shares.
 class PhaseClock {
  public:
   explicit PhaseClock(bool enabled) : enabled_(enabled) {
-    if (enabled_) last_ = thread_cpu_seconds();
+    if (enabled_) last_ = std::chrono::steady_clock::now();
   }
   double lap() {
     if (!enabled_) return 0;
-    const double now = thread_cpu_seconds();
-    const double s = now - last_;
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last_).count();
     last_ = now;
     return s;
   }
 
  private:
   bool enabled_;
-  double last_ = 0;
+  std::chrono::steady_clock::time_point last_;
 };
 
 // Per-thread state.  Accumulators are slot-major: acc[s * N + i] with slots
@@ -65,6 +66,9 @@ struct ThreadState {
   std::vector<std::uint32_t> candidates, cast_candidates;
   std::vector<PairCulling::Run> runs;
   std::vector<PairCulling::Block> blocks;
+  std::vector<PacketCulling::Hints> packet_hints;  // per block: occluders that blocked its last packets
+  PacketCulling::Hints near_hints;                  // of the leaf's rows, whatever the block
+  std::vector<std::uint8_t> packet_misses;  // per block: packets in a row left undecided
   std::vector<std::pair<std::uint32_t, double>> matches;
   std::vector<std::int64_t> c_fixed, row;  // row: per-lane totals of the current row
   std::uint64_t cast = 0, visible = 0, coincident = 0;

@@ -93,9 +93,11 @@ struct FloorComparison {
   std::uint64_t pairs = 0;
   std::uint64_t culled_visible = 0, culled_blocked = 0, cast = 0;  // engine: how each pair was decided
   Timing engine_cpu, engine_wall, rays_cpu, scoring_cpu;          // zero when not measured
-  // Engine phases: clustering and classifying cluster pairs (wall seconds,
-  // on the pass's threads); deciding packets, scoring and rays
-  // (thread-seconds).
+  // The engine's CPU time split by phase: clustering and classifying
+  // cluster pairs, deciding packets, scoring, rays.  Estimated: each
+  // phase's share of the time the phase-timed run measured in them (steady
+  // clock, so on a loaded machine waiting is counted too, alike for all)
+  // times engine_cpu.best_s.
   double cluster_s = 0, packet_s = 0, score_s = 0, rays_s = 0;
   // Engine speed over each floor's: rays_cpu / engine_cpu (> 1: the
   // engine beats casting every pair), and engine_cpu / scoring_cpu (the

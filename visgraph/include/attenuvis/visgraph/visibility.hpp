@@ -164,9 +164,10 @@ struct VisibilityResult {
   std::uint64_t pairs_culled_visible = 0;   // culling: pairs decided in sight without rays
   std::uint64_t pairs_culled_blocked = 0;   // culling: pairs decided blocked without rays
   double culling_seconds = 0;               // culling: clustering and classification
-  // With VisibilityOptions::phase_times: thread-seconds (summed over the
-  // pass's threads, this process only) spent deciding packets of cluster
-  // pairs left undecided, scoring pairs, and inside Embree.
+  // With VisibilityOptions::phase_times: thread-seconds (steady clock,
+  // summed over the pass's threads, this process only) spent deciding
+  // packets of cluster pairs left undecided, scoring pairs, and inside
+  // Embree.
   double packet_culling_seconds = 0, score_seconds = 0, ray_seconds = 0;
   std::string pruning_note;                 // what pruning dropped and why (empty: not asked)
   double seconds = 0;                       // wall time of the pass
