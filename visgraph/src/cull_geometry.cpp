@@ -620,12 +620,26 @@ bool CullGeometry::segment_blocked(std::uint32_t triangle, const double* a, cons
   return true;
 }
 
-std::uint32_t CullGeometry::lanes_blocked(std::uint32_t triangle, const double* point, const double* x, const double* y,
-                                          const double* z, int n, const Box3& partners, double margin) const {
+void bound_lines(PacketLines& lines) {
+  Box3& b = lines.box;
+  b.lo[0] = b.hi[0] = lines.x[0], b.lo[1] = b.hi[1] = lines.y[0], b.lo[2] = b.hi[2] = lines.z[0];
+  double longest = 0;
+  for (int l = 0; l < lines.n; ++l) {
+    const double q[3] = {lines.x[l], lines.y[l], lines.z[l]};
+    for (int c = 0; c < 3; ++c) b.lo[c] = std::min(b.lo[c], q[c]), b.hi[c] = std::max(b.hi[c], q[c]);
+    const V3 d = sub(q, lines.point);
+    longest = std::max(longest, dot(d.data(), d.data()));
+  }
+  lines.longest = std::sqrt(longest);
+}
+
+std::uint32_t CullGeometry::lanes_blocked(std::uint32_t triangle, const PacketLines& lines, double margin) const {
   // The planar occluder for all lanes at once, branch-free (segment_blocked's
   // first test; a triangle's unused fourth edge never fails).  A quad's depth
-  // term uses a bound for all lanes: |q - point| <= the farthest partner,
+  // term uses a bound for all lanes: |q - point| <= the longest line,
   // |s_a| + |s_b| >= |s_a| + side: a larger margin, never a smaller one.
+  const double* point = lines.point;
+  const int n = lines.n;
   std::uint32_t blocked = 0;
   const Occluder& o = occluders_[occluder_of_[triangle]];
   const double sa = dot(o.n, point) - o.c;
@@ -633,26 +647,19 @@ std::uint32_t CullGeometry::lanes_blocked(std::uint32_t triangle, const double* 
   // Some of the partners' box beyond the plane on the far side, by `side`.
   double far_side = sa < 0 ? -o.c : o.c;
   for (int c = 0; c < 3; ++c) {
-    const double mid = 0.5 * (partners.lo[c] + partners.hi[c]), half = 0.5 * (partners.hi[c] - partners.lo[c]);
+    const double mid = 0.5 * (lines.box.lo[c] + lines.box.hi[c]), half = 0.5 * (lines.box.hi[c] - lines.box.lo[c]);
     far_side += (sa < 0 ? o.n[c] : -o.n[c]) * mid + std::abs(o.n[c]) * half;
   }
   if (o.edges > 0 && std::abs(sa) >= side && far_side >= side) {
-    double inside = margin;
-    if (o.depth > 0) {
-      double farthest = 0;
-      for (int l = 0; l < n; ++l) {
-        const double q[3] = {x[l], y[l], z[l]};
-        farthest = std::max(farthest, dot(sub(q, point).data(), sub(q, point).data()));
-      }
-      inside += o.depth + o.depth * std::sqrt(farthest) / (std::abs(sa) + side);
-    }
-    blocked = occluder_lanes(o, sa, side, inside, point, x, y, z, n);
+    const double inside =
+        margin + (o.depth > 0 ? o.depth + o.depth * lines.longest / (std::abs(sa) + side) : 0.0);
+    blocked = occluder_lanes(o, sa, side, inside, point, lines.x, lines.y, lines.z, n);
   }
   const std::uint32_t all = (1u << n) - 1u;
   if (blocked == all || solid_of_[triangle] < 0) return blocked;
   for (int l = 0; l < n; ++l) {
     if (blocked >> l & 1u) continue;
-    const double q[3] = {x[l], y[l], z[l]};
+    const double q[3] = {lines.x[l], lines.y[l], lines.z[l]};
     if (segment_blocked(triangle, point, q, margin)) blocked |= 1u << l;
   }
   return blocked;

@@ -23,11 +23,11 @@ void remember(PacketCulling::Hints& hints, std::uint32_t t) {
 }
 }  // namespace
 
-std::uint32_t PacketCulling::unblocked(std::uint32_t t, const Packet& p, std::uint32_t open) const {
-  return open & ~geometry_->lanes_blocked(t, p.point, p.x, p.y, p.z, p.n, p.box, margin_);
+std::uint32_t PacketCulling::unblocked(std::uint32_t t, const PacketLines& p, std::uint32_t open) const {
+  return open & ~geometry_->lanes_blocked(t, p, margin_);
 }
 
-Verdict PacketCulling::all_in_sight(const Packet& p) const {
+Verdict PacketCulling::all_in_sight(const PacketLines& p) const {
   Box3 a;
   for (int c = 0; c < 3; ++c) a.lo[c] = a.hi[c] = p.point[c];
   return geometry_->hull_is_empty(a, p.box, margin_) ? Verdict::visible : Verdict::cast;
@@ -36,13 +36,9 @@ Verdict PacketCulling::all_in_sight(const Packet& p) const {
 Verdict PacketCulling::decide(const double* point, const double* x, const double* y, const double* z, int n,
                               Hints& hints, Hints& near) const {
   if (!geometry_ || n <= 0) return Verdict::cast;
-  Packet p{point, x, y, z, n, {}};
-  p.box.lo[0] = p.box.hi[0] = x[0], p.box.lo[1] = p.box.hi[1] = y[0], p.box.lo[2] = p.box.hi[2] = z[0];
-  for (int l = 1; l < n; ++l) {
-    p.box.lo[0] = std::min(p.box.lo[0], x[l]), p.box.hi[0] = std::max(p.box.hi[0], x[l]);
-    p.box.lo[1] = std::min(p.box.lo[1], y[l]), p.box.hi[1] = std::max(p.box.hi[1], y[l]);
-    p.box.lo[2] = std::min(p.box.lo[2], z[l]), p.box.hi[2] = std::max(p.box.hi[2], z[l]);
-  }
+  PacketLines p;
+  p.point = point, p.x = x, p.y = y, p.z = z, p.n = n;
+  bound_lines(p);
   const std::uint32_t all = (1u << n) - 1u;
   std::uint32_t open = all;
   for (const Hints* list : {&hints, &near})

@@ -44,19 +44,17 @@ class PacketCulling {
 
   // Row `point` against partners (x[l], y[l], z[l]), l < n <= 16 (local
   // frame).  `hints`: of this pair of leaves; `near`: of the row's leaf
-  // (the walls around its rows, whatever the partners).
+  // (the walls around its rows, whatever the partners).  `near` carries
+  // over between pairs of leaves, so with pass shares (each its own pairs
+  // of clusters) the count of packets decided here may differ from one
+  // process's; each decision is exact, so no result does.
   Verdict decide(const double* point, const double* x, const double* y, const double* z, int n, Hints& hints,
                  Hints& near) const;
 
  private:
-  struct Packet {
-    const double *point, *x, *y, *z;
-    int n;
-    Box3 box;  // of the partners
-  };
   // Clears the bits of the lanes in `open` that triangle t's occluders block.
-  std::uint32_t unblocked(std::uint32_t t, const Packet& p, std::uint32_t open) const;
-  Verdict all_in_sight(const Packet& p) const;
+  std::uint32_t unblocked(std::uint32_t t, const PacketLines& p, std::uint32_t open) const;
+  Verdict all_in_sight(const PacketLines& p) const;
 
   RTCScene scene_;
   const CullGeometry* geometry_;
