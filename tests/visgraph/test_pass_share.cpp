@@ -99,11 +99,14 @@ void check_shares(const Pass& pass, vg::VisibilityOptions options, int count) {
     CHECK(same_bits(r.mean_distance, one.mean_distance));
     CHECK(same_bits(r.max_distance, one.max_distance));
     CHECK(r.pruned == one.pruned);
-    CHECK(r.pairs_cast == one.pairs_cast);
     CHECK(r.pairs_visible == one.pairs_visible);
     CHECK(r.coincident_pairs == one.coincident_pairs);
     CHECK(r.pairs_culled_visible == one.pairs_culled_visible);
-    CHECK(r.pairs_culled_blocked == one.pairs_culled_blocked);
+    // A packet left to rays is first tried against the occluders that
+    // blocked the row's last packets, which depend on the pairs of clusters
+    // dealt to the share (packet_culling.hpp): how the undecided pairs split
+    // between rays and packet culling may differ, never their sum or a result.
+    CHECK(r.pairs_cast + r.pairs_culled_blocked == one.pairs_cast + one.pairs_culled_blocked);
   }
   CHECK(one.pairs_visible > 0);  // the scene has something to share
 }

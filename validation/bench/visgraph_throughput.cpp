@@ -7,16 +7,30 @@
 //  2. the city all-to-all time, exact and with range pruning;
 //  3. the extra memory of an all-to-all at ~10,000 nodes without edge output
 //     (peak RSS from /proc/self/status, and operator-new bytes counted here);
-//  4. S_S error against run time for eps in {0, 1e-12, 1e-9, 1e-6, 1e-3}.
+//  4. S_S error against run time for eps in {0, 1e-12, 1e-9, 1e-6, 1e-3};
+//  5. the floors: on an open plane (every pair in sight; 1 and 4
+//     conditions), the Delfshaven CityJSON (real LoD2 buildings) and the
+//     five layouts, the engine against raw Embree casting every pair and
+//     against a raw vectorised scoring loop, in CPU seconds, with the pairs
+//     culled in sight / blocked / cast and the time in classification,
+//     scoring and rays.
 //
 // Usage: visgraph_throughput [--quick] [--threads 1,2] [--repeats N]
 //                            [--city-rings N] [--no-city] [--no-single] [--brute] [--no-pruning]
+//                            [--floors-only] [--no-floors] [--plane M] [--cityjson PATH] [--cityjson-spacing S]
 // --brute: also time the engine with culling off (every pair cast);
-// --no-pruning: skip the error-against-time study.
+// --no-pruning: skip the error-against-time study;
+// --floors-only / --no-floors: run only / skip study 5; --plane: side of
+// the open plane (m, 1 m grid; default 200, quick 100); --cityjson: the
+// Delfshaven file (default ../shared/data/cityjson/ next to the source
+// tree; skipped when absent), at --cityjson-spacing m (default 3, the
+// CLI's default spacing there; quick 8).
 // --quick: 1 m layouts only, one repeat, a one-ring city, no single-ray loop
-// on the city (about a minute on two cores).
+// on the city, the small floors workloads (a few minutes on two cores).
 #include <attenuvis/validation/visgraph_benchmark.hpp>
+#include <attenuvis/visgraph/cityjson.hpp>
 #include <attenuvis/visgraph/generators.hpp>
+#include <attenuvis/visgraph/mesh.hpp>
 #include <attenuvis/visgraph/nodes.hpp>
 #include <attenuvis/visgraph/scene.hpp>
 #include <attenuvis/visgraph/visibility.hpp>
@@ -27,6 +41,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <malloc.h>
 #include <new>
@@ -110,7 +125,18 @@ struct Args {
   bool single = true;
   bool brute = false;  // also time the engine with culling off
   bool pruning = true;  // the error-against-time study on the city
+  bool floors = true, floors_only = false;
+  double plane = 200;
+  std::string cityjson = ATTENUVIS_SHARED_DATA_DIR "/cityjson/rotterdam-delfshaven-3-20.city.json";
+  double cityjson_spacing = 3;
 };
+
+double parse_positive(const std::string& text) {
+  std::size_t used = 0;
+  const double v = std::stod(text, &used);
+  if (used != text.size() || !(v > 0)) throw std::invalid_argument("expected a positive number, got '" + text + "'");
+  return v;
+}
 
 std::vector<int> parse_int_list(const std::string& text) {
   std::vector<int> out;
@@ -127,7 +153,7 @@ std::vector<int> parse_int_list(const std::string& text) {
 
 Args parse(int argc, char** argv) {
   Args a;
-  bool rings_given = false, repeats_given = false;
+  bool rings_given = false, repeats_given = false, plane_given = false, spacing_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
     auto value = [&]() -> std::string {
@@ -142,15 +168,23 @@ Args parse(int argc, char** argv) {
     else if (s == "--no-single") a.single = false;
     else if (s == "--brute") a.brute = true;
     else if (s == "--no-pruning") a.pruning = false;
+    else if (s == "--floors-only") a.floors_only = true;
+    else if (s == "--no-floors") a.floors = false;
+    else if (s == "--plane") a.plane = parse_positive(value()), plane_given = true;
+    else if (s == "--cityjson") a.cityjson = value();
+    else if (s == "--cityjson-spacing") a.cityjson_spacing = parse_positive(value()), spacing_given = true;
     else if (s == "--help" || s == "-h") {
       std::cout << "usage: visgraph_throughput [--quick] [--threads 1,2] [--repeats N] [--city-rings N] [--no-city] "
-                   " [--no-single] [--brute] [--no-pruning]\n";
+                   " [--no-single] [--brute] [--no-pruning] [--floors-only] [--no-floors] [--plane M] [--cityjson PATH]"
+                   " [--cityjson-spacing S]\n";
       std::exit(0);
     } else throw std::invalid_argument("unknown argument '" + s + "'");
   }
   if (a.quick) {
     if (!repeats_given) a.repeats = 1;
     if (!rings_given) a.city_rings = 1;
+    if (!plane_given) a.plane = 100;
+    if (!spacing_given) a.cityjson_spacing = 8;
   }
   return a;
 }
@@ -294,11 +328,90 @@ void pruning_study(const Args& a, const vg::Scene& city, const std::vector<Eigen
   }
 }
 
+// 5. The floors.  One line per workload: how the engine decided its pairs,
+// where its time went, and its CPU time against both floors.
+void print_floors_header() {
+  std::printf("\nfloors: the engine (exact, culling on) against raw Embree casting every pair (no scoring) and a raw "
+              "vectorised scoring loop (every pair in sight, no rays); CPU seconds of the process, best of the repeats; "
+              "the engine's CPU split by phase (cluster classification, packet decisions, scoring, rays) from the "
+              "shares measured in one more run with phase timing\n");
+  std::printf("%-26s %7s %11s %2s %3s %8s %8s %6s %8s %8s %8s %8s %9s %9s %9s %8s %8s %8s\n", "workload", "nodes",
+              "pairs", "K", "thr", "sight[%]", "block[%]", "cast%", "cluster", "packets", "score", "rays", "engine",
+              "Embree", "scoring", "Embree/", "engine/", "ns/pair");
+  std::printf("%-26s %7s %11s %2s %3s %8s %8s %6s %8s %8s %8s %8s %9s %9s %9s %8s %8s %8s\n", "", "", "", "", "", "",
+              "", "", "[s]", "[s]", "[s]", "[s]", "cpu [s]", "cpu [s]", "cpu [s]", "engine", "scoring", "engine");
+}
+
+void print_floors(const std::string& name, std::size_t K, int threads, const val::FloorComparison& f) {
+  const double percent = 100.0 / static_cast<double>(std::max<std::uint64_t>(f.pairs, 1));
+  char rays[32] = "-", over_rays[32] = "-", scoring[32] = "-", over_scoring[32] = "-";
+  if (f.rays_cpu.best_s > 0) {
+    std::snprintf(rays, sizeof rays, "%9.2f", f.rays_cpu.best_s);
+    std::snprintf(over_rays, sizeof over_rays, "%8.2f", f.over_rays());
+  }
+  if (f.scoring_cpu.best_s > 0) {
+    std::snprintf(scoring, sizeof scoring, "%9.2f", f.scoring_cpu.best_s);
+    std::snprintf(over_scoring, sizeof over_scoring, "%8.2f", f.over_scoring());
+  }
+  std::printf("%-26s %7zu %11llu %2zu %3d %8.1f %8.1f %6.1f %8.2f %8.2f %8.2f %8.2f %9.2f %9s %9s %8s %8s %8.2f\n",
+              name.c_str(), f.nodes, static_cast<unsigned long long>(f.pairs), K, threads, f.culled_visible * percent,
+              f.culled_blocked * percent, f.cast * percent, f.cluster_s, f.packet_s, f.score_s, f.rays_s,
+              f.engine_cpu.best_s, rays, scoring, over_rays, over_scoring, 1e9 * f.engine_cpu.best_s * percent / 100);
+  std::fflush(stdout);
+}
+
+void floors_workload(const Args& a, const std::string& name, const vg::Scene& scene,
+                     const std::vector<Eigen::Vector3d>& eyes, const std::vector<double>& sigmas) {
+  val::FloorOptions o;
+  o.sigmas = sigmas;
+  o.threads = max_threads(a);
+  o.repeats = a.repeats;
+  print_floors(name, sigmas.size(), o.threads, val::compare_with_floors(scene, eyes, o));
+}
+
+void floors_study(const Args& a) {
+  print_floors_header();
+  const std::vector<double> four = val::seed_benchmark_sigmas(), one = {four.front()};
+  {
+    vg::Mesh plane;
+    plane.vertices = {{0, 0, 0}, {a.plane, 0, 0}, {a.plane, a.plane, 0}, {0, a.plane, 0}};
+    plane.triangles = {{0, 1, 2}, {0, 2, 3}};
+    plane.triangle_group = {0, 0};
+    plane.groups = {"plane"};
+    const vg::Scene scene(plane);
+    const auto eyes = grid_nodes(scene, 1.0, {});
+    const std::string name = "open plane " + std::to_string(static_cast<int>(a.plane)) + " m, 1 m";
+    floors_workload(a, name, scene, eyes, one);
+    floors_workload(a, name, scene, eyes, four);
+  }
+  if (std::filesystem::exists(a.cityjson)) {
+    vg::Mesh m = vg::load_cityjson(a.cityjson);
+    vg::add_ground_plane(m);
+    const vg::Scene scene(m);
+    const auto eyes = grid_nodes(scene, a.cityjson_spacing, {});
+    char name[64];
+    std::snprintf(name, sizeof name, "Delfshaven, %g m", a.cityjson_spacing);
+    floors_workload(a, name, scene, eyes, four);
+  } else {
+    std::printf("%-26s skipped: %s is absent\n", "Delfshaven", a.cityjson.c_str());
+  }
+  for (int k = 0; k < vg::kClassicLayoutCount; ++k) {
+    const vg::Scene scene(vg::classic_layout(k));
+    floors_workload(a, std::to_string(k) + " " + vg::classic_layout_name(k) + ", 1 m", scene,
+                    grid_nodes(scene, 1.0, vg::classic_layout_walkable_groups()), four);
+  }
+}
+
 int run(const Args& a) {
   const auto start = std::chrono::steady_clock::now();
   print_workload(a);
+  if (a.floors_only) {
+    floors_study(a);
+    return 0;
+  }
   memory_study(a);
   layout_throughput(a);
+  if (a.floors) floors_study(a);
   if (!a.city) {
     std::printf("\n(city skipped: --no-city)\n");
     return 0;

@@ -150,6 +150,7 @@ void pruning_verdict(Section& s, const CityPerformance& city) {
 
 void section_performance(Context& ctx, Section& s, const CityPerformance& city) {
   layout_throughput(ctx, s);
+  floors_table(ctx, s);
   if (city.city_nodes == 0) {
     s.missing("the city section did not run, so there is no city timing or pruning study.");
     return;

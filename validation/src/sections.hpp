@@ -145,6 +145,9 @@ void section_optics(Context& ctx, Section& s);  // section_optics.cpp
 void section_layouts(Context& ctx, Section& s, const SeedConditions& seed);
 void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerformance& perf, CityLines& lines);
 void section_space_syntax(Context& ctx, Section& s, const SeedConditions& seed, CityLines& city);  // section_space_syntax.cpp
+// The performance section's table of the engine against its two floors
+// (performance_floors.cpp).
+void floors_table(Context& ctx, Section& s);
 void section_performance(Context& ctx, Section& s, const CityPerformance& city);
 
 // Shared helpers (reproduce.cpp).

@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include <sys/resource.h>
+
 namespace attenuvis::validation {
 
 namespace vg = attenuvis::visgraph;
@@ -77,6 +79,73 @@ Throughput measure_throughput(const vg::Scene& scene, const std::vector<Eigen::V
     out.single = time_repeats(1, [&] {
       out.visible_single = vg::raw_visible_pairs(scene, eyes, options.threads, vg::RawMethod::single_rays);
     });
+  return out;
+}
+
+double process_cpu_seconds() {
+  rusage use{};
+  getrusage(RUSAGE_SELF, &use);
+  return static_cast<double>(use.ru_utime.tv_sec + use.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(use.ru_utime.tv_usec + use.ru_stime.tv_usec);
+}
+
+namespace {
+// Best and median of a list of seconds.
+Timing best_and_median(std::vector<double> t) {
+  if (t.empty()) return {};
+  std::sort(t.begin(), t.end());
+  return {t.front(), t[t.size() / 2]};
+}
+
+// Runs f once; appends its CPU and wall seconds.
+template <class F>
+void time_cpu(std::vector<double>& cpu, std::vector<double>* wall, F&& f) {
+  const double c0 = process_cpu_seconds();
+  const auto w0 = std::chrono::steady_clock::now();
+  f();
+  cpu.push_back(process_cpu_seconds() - c0);
+  if (wall) wall->push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count());
+}
+}  // namespace
+
+FloorComparison compare_with_floors(const vg::Scene& scene, const std::vector<Eigen::Vector3d>& eyes,
+                                    const FloorOptions& options) {
+  FloorComparison out;
+  out.nodes = eyes.size();
+  vg::VisibilityOptions o;
+  o.sigmas = options.sigmas;
+  o.threads = options.threads;
+  vg::VisibilityResult result;
+  std::vector<double> engine_cpu, engine_wall, rays_cpu, scoring_cpu;
+  volatile double keep = 0;
+  for (int r = 0; r < std::max(1, options.repeats); ++r) {
+    time_cpu(engine_cpu, &engine_wall, [&] { result = vg::all_to_all(scene, eyes, o); });
+    if (options.rays_floor)
+      time_cpu(rays_cpu, nullptr, [&] {
+        keep = keep + static_cast<double>(vg::raw_visible_pairs(scene, eyes, options.threads, vg::RawMethod::packets16));
+      });
+    if (options.scoring_floor)
+      time_cpu(scoring_cpu, nullptr, [&] { keep = keep + raw_scoring_loop(eyes, options.sigmas, options.threads); });
+  }
+  out.engine_cpu = best_and_median(engine_cpu);
+  out.engine_wall = best_and_median(engine_wall);
+  out.rays_cpu = best_and_median(rays_cpu);
+  out.scoring_cpu = best_and_median(scoring_cpu);
+  out.pairs = result.pairs_total;
+  out.culled_visible = result.pairs_culled_visible;
+  out.culled_blocked = result.pairs_culled_blocked;
+  out.cast = result.pairs_cast;
+  o.phase_times = true;
+  const vg::VisibilityResult phases = vg::all_to_all(scene, eyes, o);
+  // Clustering runs on the pass's threads: its wall time counts for each.
+  const int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
+  const double cluster = phases.culling_seconds * threads;
+  const double timed = cluster + phases.packet_culling_seconds + phases.score_seconds + phases.ray_seconds;
+  const double scale = timed > 0 ? out.engine_cpu.best_s / timed : 0.0;
+  out.cluster_s = cluster * scale;
+  out.packet_s = phases.packet_culling_seconds * scale;
+  out.score_s = phases.score_seconds * scale;
+  out.rays_s = phases.ray_seconds * scale;
   return out;
 }
 

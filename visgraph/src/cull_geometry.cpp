@@ -28,6 +28,23 @@ void corners(const Box3& b, double g, double (*out)[3]) {
     for (int c = 0; c < 3; ++c) out[k][c] = (k >> c & 1) ? b.hi[c] + g : b.lo[c] - g;
 }
 
+// The distinct corners of a box (a flat box has 4, a point 1): every
+// segment between two boxes is a convex combination of the segments
+// between their corners, and the tests below need each corner once.
+int distinct_corners(const Box3& b, double (*out)[3]) {
+  int count = 1;
+  for (int c = 0; c < 3; ++c) out[0][c] = b.lo[c];
+  for (int c = 0; c < 3; ++c) {
+    if (!(b.hi[c] > b.lo[c])) continue;
+    for (int k = 0; k < count; ++k) {
+      for (int e = 0; e < 3; ++e) out[count + k][e] = out[k][e];
+      out[count + k][c] = b.hi[c];
+    }
+    count *= 2;
+  }
+  return count;
+}
+
 // Convex hull of two grown boxes, as the separating-axis tests see it.
 struct Shaft {
   double corner[16][3];
@@ -98,6 +115,12 @@ std::pair<V3, double> unit_normal(const double (*v)[3]) {
   if (l > 0) n = {n[0] / l, n[1] / l, n[2] / l};
   return std::make_pair(n, l);
 }
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+#define ATTENUVIS_CULL_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define ATTENUVIS_CULL_CLONES
+#endif
 
 // No quad partner (build_occluders), or no occluder yet.
 constexpr std::uint32_t kNone = 0xFFFFFFFFu;
@@ -242,18 +265,18 @@ bool CullGeometry::solid_blocks(std::uint32_t triangle, const Box3& a, const Box
   const Solid& solid = solids_[static_cast<std::size_t>(solid_of_[triangle])];
   const double m = margin + solid.slack;
   double ca[8][3], cb[8][3];
-  corners(a, 0, ca);
-  corners(b, 0, cb);
+  const int na = distinct_corners(a, ca), nb = distinct_corners(b, cb);
   // Both boxes outside the solid: beyond one face plane each.
-  const auto outside = [&](const double (*corner)[3]) {
+  const auto outside = [&](const double (*corner)[3], int count) {
     for (const auto& f : solid.faces) {
       bool all = true;
-      for (int k = 0; k < 8 && all; ++k) all = f[0] * corner[k][0] + f[1] * corner[k][1] + f[2] * corner[k][2] - f[3] >= m;
+      for (int k = 0; k < count && all; ++k)
+        all = f[0] * corner[k][0] + f[1] * corner[k][1] + f[2] * corner[k][2] - f[3] >= m;
       if (all) return true;
     }
     return false;
   };
-  if (!outside(ca) || !outside(cb)) return false;
+  if (!outside(ca, na) || !outside(cb, nb)) return false;
   double n[3];
   for (int c = 0; c < 3; ++c) n[c] = 0.5 * (b.lo[c] + b.hi[c]) - 0.5 * (a.lo[c] + a.hi[c]);
   const double length = std::sqrt(dot(n, n));
@@ -261,13 +284,12 @@ bool CullGeometry::solid_blocks(std::uint32_t triangle, const Box3& a, const Box
   for (double& v : n) v /= length;
   const double c0 = dot(n, solid.centre);
   double sa[8], sb[8];
-  for (int k = 0; k < 8; ++k) {
-    sa[k] = dot(n, ca[k]) - c0;
-    sb[k] = dot(n, cb[k]) - c0;
-    if (sa[k] > -m || sb[k] < m) return false;
-  }
-  for (int i = 0; i < 8; ++i)
-    for (int j = 0; j < 8; ++j) {
+  for (int k = 0; k < na; ++k)
+    if ((sa[k] = dot(n, ca[k]) - c0) > -m) return false;
+  for (int k = 0; k < nb; ++k)
+    if ((sb[k] = dot(n, cb[k]) - c0) < m) return false;
+  for (int i = 0; i < na; ++i)
+    for (int j = 0; j < nb; ++j) {
       const double t = sa[i] / (sa[i] - sb[j]);
       double p[3];
       for (int c = 0; c < 3; ++c) p[c] = ca[i][c] + t * (cb[j][c] - ca[i][c]);
@@ -414,6 +436,12 @@ CullGeometry::Occluder CullGeometry::occluder(std::size_t t, std::uint32_t u,
     o.o[k] = dot(w.data(), p0.data());
   }
   o.depth = depth;
+  // A triangle's unused fourth edge passes every test (lanes_blocked runs
+  // four edges for all occluders).
+  for (int k = o.edges; k < 4; ++k) {
+    o.u[k][0] = o.u[k][1] = o.u[k][2] = 0;
+    o.o[k] = -INFINITY;
+  }
   return o;
 }
 
@@ -479,13 +507,14 @@ bool CullGeometry::occluder_blocks(std::uint32_t triangle, const Box3& a, const 
   const Occluder& o = occluders_[occluder_of_[triangle]];
   if (o.edges == 0) return false;
   double ca[8][3], cb[8][3], sa[8], sb[8];
-  corners(a, 0, ca);
-  corners(b, 0, cb);
+  const int na = distinct_corners(a, ca), nb = distinct_corners(b, cb);
   double a_lo = INFINITY, a_hi = -INFINITY, b_lo = INFINITY, b_hi = -INFINITY;
-  for (int k = 0; k < 8; ++k) {
+  for (int k = 0; k < na; ++k) {
     sa[k] = dot(o.n, ca[k]) - o.c;
-    sb[k] = dot(o.n, cb[k]) - o.c;
     a_lo = std::min(a_lo, sa[k]), a_hi = std::max(a_hi, sa[k]);
+  }
+  for (int k = 0; k < nb; ++k) {
+    sb[k] = dot(o.n, cb[k]) - o.c;
     b_lo = std::min(b_lo, sb[k]), b_hi = std::max(b_hi, sb[k]);
   }
   // A quad's second triangle may stand off the plane by `depth`: both boxes
@@ -506,8 +535,8 @@ bool CullGeometry::occluder_blocks(std::uint32_t triangle, const Box3& a, const 
     }
     inside += o.depth + o.depth * std::sqrt(longest) / s_min;
   }
-  for (int i = 0; i < 8; ++i)
-    for (int j = 0; j < 8; ++j) {
+  for (int i = 0; i < na; ++i)
+    for (int j = 0; j < nb; ++j) {
       const double t = sa[i] / (sa[i] - sb[j]);
       double p[3];
       for (int c = 0; c < 3; ++c) p[c] = ca[i][c] + t * (cb[j][c] - ca[i][c]);
@@ -515,6 +544,125 @@ bool CullGeometry::occluder_blocks(std::uint32_t triangle, const Box3& a, const 
         if (dot(o.u[k], p) - o.o[k] < inside) return false;
     }
   return true;
+}
+
+// The lanes of lanes_blocked that a planar occluder blocks, given the row's
+// signed distance sa from its plane (|sa| >= side) and the margin inside
+// its edges: a branch-free loop over the lanes (a triangle's unused fourth
+// edge always passes), vectorised per instruction set.
+ATTENUVIS_CULL_CLONES
+std::uint32_t CullGeometry::occluder_lanes(const Occluder& o, double sa, double side, double inside,
+                                           const double* point, const double* x, const double* y, const double* z,
+                                           int n) {
+  const double sign = sa < 0 ? 1.0 : -1.0;  // the partner must be beyond +side (row below) or -side (row above)
+  int ok[16];
+  for (int l = 0; l < 16; ++l) {
+    const int j = l < n ? l : 0;
+    const double qx = x[j], qy = y[j], qz = z[j];
+    const double sb = o.n[0] * qx + o.n[1] * qy + o.n[2] * qz - o.c;
+    const double t = sa / (sa - sb);
+    const double px = point[0] + t * (qx - point[0]), py = point[1] + t * (qy - point[1]),
+                 pz = point[2] + t * (qz - point[2]);
+    bool pass = (sign * sb >= side) & (l < n);
+    for (int k = 0; k < 4; ++k) pass &= o.u[k][0] * px + o.u[k][1] * py + o.u[k][2] * pz - o.o[k] >= inside;
+    ok[l] = pass ? 1 : 0;
+  }
+  std::uint32_t blocked = 0;
+  for (int l = 0; l < 16; ++l) blocked |= static_cast<std::uint32_t>(ok[l]) << l;
+  return blocked;
+}
+
+bool CullGeometry::segment_blocked(std::uint32_t triangle, const double* a, const double* b, double margin) const {
+  // The planar occluder: a and b on either side of its plane (by the margin
+  // and a quad's depth), the crossing inside every edge (occluder_blocks
+  // with one corner per box).
+  const Occluder& o = occluders_[occluder_of_[triangle]];
+  if (o.edges > 0) {
+    const double sa = dot(o.n, a) - o.c, sb = dot(o.n, b) - o.c;
+    const double side = margin + o.depth;
+    if ((sa <= -side && sb >= side) || (sa >= side && sb <= -side)) {
+      double inside = margin;
+      if (o.depth > 0) {
+        const V3 ab = sub(b, a);
+        inside += o.depth + o.depth * norm(ab) / (std::abs(sa) + std::abs(sb));
+      }
+      const double t = sa / (sa - sb);
+      double p[3];
+      for (int c = 0; c < 3; ++c) p[c] = a[c] + t * (b[c] - a[c]);
+      bool within = true;
+      for (int k = 0; k < o.edges && within; ++k) within = dot(o.u[k], p) - o.o[k] >= inside;
+      if (within) return true;
+    }
+  }
+  // The convex solid: a and b each beyond one face plane, and the crossing
+  // of the plane through its centre normal to the segment inside every face.
+  if (solid_of_[triangle] < 0) return false;
+  const Solid& solid = solids_[static_cast<std::size_t>(solid_of_[triangle])];
+  const double m = margin + solid.slack;
+  const auto outside = [&](const double* p) {
+    for (const auto& f : solid.faces)
+      if (f[0] * p[0] + f[1] * p[1] + f[2] * p[2] - f[3] >= m) return true;
+    return false;
+  };
+  if (!outside(a) || !outside(b)) return false;
+  V3 n = sub(b, a);
+  const double length = norm(n);
+  if (!(length > 0)) return false;
+  for (double& v : n) v /= length;
+  const double c0 = dot(n.data(), solid.centre);
+  const double sa = dot(n.data(), a) - c0, sb = dot(n.data(), b) - c0;
+  if (sa > -m || sb < m) return false;
+  const double t = sa / (sa - sb);
+  double p[3];
+  for (int c = 0; c < 3; ++c) p[c] = a[c] + t * (b[c] - a[c]);
+  for (const auto& f : solid.faces)
+    if (f[0] * p[0] + f[1] * p[1] + f[2] * p[2] - f[3] > -m) return false;
+  return true;
+}
+
+void bound_lines(PacketLines& lines) {
+  Box3& b = lines.box;
+  b.lo[0] = b.hi[0] = lines.x[0], b.lo[1] = b.hi[1] = lines.y[0], b.lo[2] = b.hi[2] = lines.z[0];
+  double longest = 0;
+  for (int l = 0; l < lines.n; ++l) {
+    const double q[3] = {lines.x[l], lines.y[l], lines.z[l]};
+    for (int c = 0; c < 3; ++c) b.lo[c] = std::min(b.lo[c], q[c]), b.hi[c] = std::max(b.hi[c], q[c]);
+    const V3 d = sub(q, lines.point);
+    longest = std::max(longest, dot(d.data(), d.data()));
+  }
+  lines.longest = std::sqrt(longest);
+}
+
+std::uint32_t CullGeometry::lanes_blocked(std::uint32_t triangle, const PacketLines& lines, double margin) const {
+  // The planar occluder for all lanes at once, branch-free (segment_blocked's
+  // first test; a triangle's unused fourth edge never fails).  A quad's depth
+  // term uses a bound for all lanes: |q - point| <= the longest line,
+  // |s_a| + |s_b| >= |s_a| + side: a larger margin, never a smaller one.
+  const double* point = lines.point;
+  const int n = lines.n;
+  std::uint32_t blocked = 0;
+  const Occluder& o = occluders_[occluder_of_[triangle]];
+  const double sa = dot(o.n, point) - o.c;
+  const double side = margin + o.depth;
+  // Some of the partners' box beyond the plane on the far side, by `side`.
+  double far_side = sa < 0 ? -o.c : o.c;
+  for (int c = 0; c < 3; ++c) {
+    const double mid = 0.5 * (lines.box.lo[c] + lines.box.hi[c]), half = 0.5 * (lines.box.hi[c] - lines.box.lo[c]);
+    far_side += (sa < 0 ? o.n[c] : -o.n[c]) * mid + std::abs(o.n[c]) * half;
+  }
+  if (o.edges > 0 && std::abs(sa) >= side && far_side >= side) {
+    const double inside =
+        margin + (o.depth > 0 ? o.depth + o.depth * lines.longest / (std::abs(sa) + side) : 0.0);
+    blocked = occluder_lanes(o, sa, side, inside, point, lines.x, lines.y, lines.z, n);
+  }
+  const std::uint32_t all = (1u << n) - 1u;
+  if (blocked == all || solid_of_[triangle] < 0) return blocked;
+  for (int l = 0; l < n; ++l) {
+    if (blocked >> l & 1u) continue;
+    const double q[3] = {lines.x[l], lines.y[l], lines.z[l]};
+    if (segment_blocked(triangle, point, q, margin)) blocked |= 1u << l;
+  }
+  return blocked;
 }
 
 }  // namespace attenuvis::visgraph::detail

@@ -22,6 +22,17 @@ struct Box3 {
   double lo[3], hi[3];
 };
 
+// The sight lines of one packet: from `point` to partners (x[l], y[l],
+// z[l]), l < n <= 16, their bounding box and the length of the longest.
+struct PacketLines {
+  const double *point, *x, *y, *z;
+  int n = 0;
+  Box3 box;
+  double longest = 0;
+};
+// Fills box and longest from point, x, y, z, n.
+void bound_lines(PacketLines& lines);
+
 class CullGeometry {
  public:
   CullGeometry(RTCScene scene, std::size_t triangle_count);
@@ -40,6 +51,15 @@ class CullGeometry {
   // `margin` (every segment then passes through its interior, so enters it
   // through its watertight surface).
   bool solid_blocks(std::uint32_t triangle, const Box3& a, const Box3& b, double margin) const;
+  // The same two tests (planar occluder, convex solid) for one segment from
+  // point a to point b: true when the occluder or the solid of `triangle`
+  // blocks it with `margin`.  The case of boxes that are points, without
+  // their setup: packets test each of their sight lines this way.
+  bool segment_blocked(std::uint32_t triangle, const double* a, const double* b, double margin) const;
+  // segment_blocked for every line of a packet at once: the bit mask of
+  // the lanes blocked (the partners' box gives a quick answer when the
+  // occluder's plane does not pass between the point and any of them).
+  std::uint32_t lanes_blocked(std::uint32_t triangle, const PacketLines& lines, double margin) const;
   // The solid of a triangle, or -1: callers skip a solid already tried.
   std::int32_t solid_of(std::uint32_t triangle) const { return solid_of_[triangle]; }
 
@@ -63,6 +83,8 @@ class CullGeometry {
     double centre[3];
     double slack = 0;  // largest distance of a vertex beyond a face plane (non-planar quads)
   };
+  static std::uint32_t occluder_lanes(const Occluder& o, double sa, double side, double inside, const double* point,
+                                      const double* x, const double* y, const double* z, int n);
   std::uint32_t build(std::uint32_t first, std::uint32_t count, std::vector<double>& centroid);
   void build_occluders(const unsigned* index);
   void pair_quad_triangles(const unsigned* index, std::vector<std::uint32_t>& partner,

@@ -338,6 +338,15 @@ const std::uint32_t* PairCulling::leaf_rows(std::size_t l, std::size_t& count) c
   return rows_.data() + n.begin;
 }
 
+void PairCulling::partner_runs(std::size_t l, std::vector<Run>& out) const {
+  out.clear();
+  for (std::int32_t x = static_cast<std::int32_t>(leaf_nodes_[l]); x >= 0; x = nodes_[static_cast<std::size_t>(x)].parent)
+    for (const Record& r : records_[static_cast<std::size_t>(x)]) {
+      const Node& other = nodes_[r.other];
+      out.push_back({other.leaf_begin, other.leaf_end, r.verdict});
+    }
+}
+
 void PairCulling::partner_blocks(std::size_t l, std::vector<Block>& out) const {
   out.clear();
   for (std::int32_t x = static_cast<std::int32_t>(leaf_nodes_[l]); x >= 0; x = nodes_[static_cast<std::size_t>(x)].parent)

@@ -96,9 +96,28 @@ class PairCulling {
   std::size_t leaf_count() const { return leaf_nodes_.size(); }
   // Rows of leaf l, increasing.
   const std::uint32_t* leaf_rows(std::size_t l, std::size_t& count) const;
+  // Every row once, leaf after leaf (leaf_rows(l) starts at leaf_first(l)):
+  // the order in which the pass lays out its nodes, so that a leaf's nodes
+  // are contiguous.
+  const std::vector<std::uint32_t>& leaf_order() const { return rows_; }
+  std::size_t leaf_first(std::size_t l) const { return nodes_[leaf_nodes_[l]].begin; }
   // Every leaf some of whose pairs with leaf l are not blocked (l itself
   // included when it is), with the verdict.
   void partner_blocks(std::size_t l, std::vector<Block>& out) const;
+  // The same as runs of consecutive leaves (one per record; their nodes are
+  // contiguous in leaf order): leaves [leaf_begin, leaf_end).
+  struct Run {
+    std::uint32_t leaf_begin, leaf_end;
+    Verdict verdict;
+  };
+  void partner_runs(std::size_t l, std::vector<Run>& out) const;
+  // One past the last position of leaf l's nodes in leaf_order().
+  std::size_t leaf_end(std::size_t l) const { return nodes_[leaf_nodes_[l]].end; }
+
+  // The tests a pass uses to decide packets one by one (packet_culling.hpp);
+  // null without classification.
+  const CullGeometry* geometry() const { return geometry_.get(); }
+  RTCScene scene() const { return scene_; }
 
   std::uint64_t pairs_blocked() const { return pairs_blocked_; }  // unordered pairs decided blocked
   std::uint64_t pairs_visible() const { return pairs_visible_; }  // unordered pairs decided visible

@@ -8,14 +8,7 @@
 
 #include "pair_packet.hpp"
 
-#include <cmath>
-
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
-#define ATTENUVIS_X86_DISPATCH 1
-#include <immintrin.h>
-#elif defined(__SSE2__)
-#include <emmintrin.h>
-#endif
+#include "lane_isa.hpp"
 
 namespace attenuvis::visgraph::detail {
 
@@ -28,30 +21,6 @@ double end_gap(double d) { return 1e-4 + 1e-6 * d; }
 #endif
 
 namespace {
-// In place sqrt of 16 lanes.  GCC keeps std::sqrt scalar (errno) unless the
-// whole build says -fno-math-errno, so the vector instructions are named
-// here, one width per instruction set; all are IEEE sqrt, correctly rounded
-// like std::sqrt, so every width gives the same bits.
-enum class Isa { baseline, avx2, avx512 };
-#ifdef ATTENUVIS_X86_DISPATCH
-__attribute__((target("avx512f"))) inline void sqrt16_avx512(double* d) {
-  // The maskz form: GCC 12 warns that the plain form's undefined
-  // pass-through operand is uninitialised.
-  for (int l = 0; l < kLanes; l += 8)
-    _mm512_store_pd(d + l, _mm512_maskz_sqrt_pd(0xFF, _mm512_load_pd(d + l)));
-}
-__attribute__((target("avx2"))) inline void sqrt16_avx2(double* d) {
-  for (int l = 0; l < kLanes; l += 4) _mm256_store_pd(d + l, _mm256_sqrt_pd(_mm256_load_pd(d + l)));
-}
-#endif
-inline void sqrt16_baseline(double* d) {
-#if defined(__SSE2__)
-  for (int l = 0; l < kLanes; l += 2) _mm_store_pd(d + l, _mm_sqrt_pd(_mm_load_pd(d + l)));
-#else
-  for (int l = 0; l < kLanes; ++l) d[l] = std::sqrt(d[l]);
-#endif
-}
-
 // The body of build_packet, compiled once per instruction set: each
 // target-specific wrapper below inlines it whole (flatten), so its loops are
 // vectorised for that wrapper's target.
@@ -78,13 +47,7 @@ inline void build_packet_lanes(double ox, double oy, double oz, const double* px
     dz[l] = lz[l] - oz;
     d[l] = dx[l] * dx[l] + dy[l] * dy[l] + dz[l] * dz[l];
   }
-#ifdef ATTENUVIS_X86_DISPATCH
-  if constexpr (isa == Isa::avx512) sqrt16_avx512(d);
-  else if constexpr (isa == Isa::avx2) sqrt16_avx2(d);
-  else sqrt16_baseline(d);
-#else
-  sqrt16_baseline(d);
-#endif
+  sqrt16<isa>(d);
   alignas(64) double gap[kLanes], ratio[kLanes];
   for (int l = 0; l < kLanes; ++l) {
     gap[l] = end_gap(d[l]);
@@ -155,9 +118,9 @@ __attribute__((flatten)) void build_packet_baseline(double ox, double oy, double
 
 BuildFunction pick_build_function() {
 #ifdef ATTENUVIS_X86_DISPATCH
-  __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx512f")) return build_packet_avx512;
-  if (__builtin_cpu_supports("avx2")) return build_packet_avx2;
+  const Isa isa = pick_isa();
+  if (isa == Isa::avx512) return build_packet_avx512;
+  if (isa == Isa::avx2) return build_packet_avx2;
 #endif
   return build_packet_baseline;
 }

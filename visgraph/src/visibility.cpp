@@ -13,8 +13,9 @@
 // Partners of a row:
 //  - all-to-all without a radius: all j > i (rows = nodes sorted by x: see
 //    plan_pass), one packet per leaf cluster of the culling tree, packets of
-//    cluster pairs culled as blocked skipped, of pairs culled as in sight
-//    scored without rays (pair_culling.hpp); rows are run leaf by leaf;
+//    cluster pairs culled as blocked skipped, pairs culled as in sight
+//    scored without rays as dense blocks (culled_pass.hpp, pair_culling.hpp);
+//    rows are run leaf by leaf, their nodes laid out leaf after leaf;
 //  - to_targets without a radius: every target, as contiguous ranges;
 //  - all-to-all with a finite radius (pruning or --max-distance): the
 //    partners of row r within the radius lie in the slab x_r <= x <= x_r + R
@@ -25,10 +26,11 @@
 #include <attenuvis/visgraph/limits.hpp>
 #include <attenuvis/visgraph/visibility.hpp>
 
+#include "culled_pass.hpp"
 #include "node_points.hpp"
-#include "pair_culling.hpp"
 #include "pair_packet.hpp"
 #include "pass_input.hpp"
+#include "pass_rows.hpp"
 #include "pass_share.hpp"
 #include "progress.hpp"
 #include "scene_access.hpp"
@@ -62,141 +64,15 @@ using detail::Points;
 using detail::pairs_within_x;
 using detail::sorted_by_x;
 using detail::to_local;
+using detail::Pass;
+using detail::PhaseSeconds;
+using detail::RowEdges;
+using detail::ThreadState;
+using detail::process_row;
+using detail::row_in_share;
+using detail::run_row_blocks;
 
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Points>, Points, 3, std::uint32_t>;
-
-// Is row i (any path but the culled one) in this process's share?  Rows are
-// dealt round-robin: row costs change slowly with i, so every share gets a
-// fair mix.
-bool row_in_share(const PassShare& share, std::size_t i) {
-  return share.count == 1 || i % static_cast<std::size_t>(share.count) == static_cast<std::size_t>(share.index);
-}
-
-// Per-thread state.  Accumulators are slot-major: acc[s * N + i] with slots
-// degree, distance sum, one per sigma, and (slab pruning) partners within
-// the radius.  Each thread's arrays are separate heap blocks, so threads
-// never write to a shared cache line.
-struct ThreadState {
-  std::vector<std::int64_t> acc;
-  std::vector<double> max_distance;
-  std::vector<std::uint32_t> candidates, cast_candidates;
-  std::vector<detail::PairCulling::Block> blocks;
-  std::vector<std::pair<std::uint32_t, double>> matches;
-  std::vector<std::int64_t> c_fixed, row;  // row: per-lane totals of the current row
-  std::uint64_t cast = 0, visible = 0, coincident = 0;
-};
-
-struct Pass {
-  RTCScene rtc = nullptr;
-  const Points* sources = nullptr;
-  const Points* partners = nullptr;
-  bool symmetric = false;  // all-to-all: credit partners too
-  std::size_t N = 0;       // accumulator length (sources)
-  int K = 0;
-  std::vector<double> neg_sigma;
-  double max_distance = 0;
-  bool keep_max = false;
-  // All-to-all: caller's index of each (x-sorted) row, for the edge list.
-  const std::uint32_t* caller = nullptr;
-  const PassShare* share = nullptr;  // this process's share of the pass
-};
-
-// An edge in the caller's numbering; all-to-all edges as (smaller, larger).
-Edge edge(const Pass& pass, std::size_t row, std::uint32_t partner, double distance) {
-  if (!pass.caller) return Edge{static_cast<std::uint32_t>(row), partner, distance};
-  const std::uint32_t a = pass.caller[row], b = pass.caller[partner];
-  return Edge{std::min(a, b), std::max(a, b), distance};
-}
-
-// A row is accumulated in three steps: begin_row, add_packet for each packet
-// of at most 16 partners, end_row (which adds the row's lane totals to its
-// node).  add_packet takes partners j0 .. j0 + n - 1 when `cand` is null,
-// else cand[0 .. n).  With cast_rays false the partners are known to be in
-// sight (culling): the packet goes through the same policy (coincident,
-// close, max distance) without Embree.
-void begin_row(ThreadState& ts) { std::fill(ts.row.begin(), ts.row.end(), 0); }
-
-void add_packet(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t j0, int n, ThreadState& ts,
-                std::vector<Edge>* edges, bool cast_rays) {
-  const Points& S = *pass.sources;
-  const Points& P = *pass.partners;
-  const int K = pass.K;
-  const std::size_t N = pass.N;
-  PairPacket packet;
-  alignas(64) double gx[kLanes], gy[kLanes], gz[kLanes];
-  alignas(64) std::int64_t d_fixed[kLanes];
-  std::uint32_t partner[kLanes];
-  std::int64_t* c = ts.c_fixed.data();
-  std::int64_t* credit = pass.symmetric && !cand ? ts.acc.data() : nullptr;
-  const bool scatter = pass.symmetric && cand;
-  const double *px, *py, *pz;
-  if (cand) {
-    for (int l = 0; l < n; ++l) {
-      const std::uint32_t j = cand[l];
-      partner[l] = j;
-      gx[l] = P.x[j];
-      gy[l] = P.y[j];
-      gz[l] = P.z[j];
-    }
-    px = gx, py = gy, pz = gz;
-  } else {
-    for (int l = 0; l < n; ++l) partner[l] = static_cast<std::uint32_t>(j0 + l);
-    px = P.x.data() + j0, py = P.y.data() + j0, pz = P.z.data() + j0;
-  }
-  detail::build_packet(S.x[i], S.y[i], S.z[i], px, py, pz, n, pass.max_distance, packet);
-  ts.coincident += static_cast<std::uint64_t>(packet.coincident);
-  if (packet.cast) {
-    if (cast_rays) {
-      ts.cast += static_cast<std::uint64_t>(packet.cast);
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
-      context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-      rtcOccluded16(packet.valid, pass.rtc, &context, &packet.ray);
-    }
-    detail::resolve_packet(packet);  // not cast: tfar = 1 - t_near >= 0, every lane in sight
-  }
-  // A packet with nothing visible adds nothing: skip its scoring (most
-  // packets of an occluded scene such as the city).
-  if (packet.visible_count == 0) return;
-  detail::contrast_lanes(packet.distance, packet.visible, pass.neg_sigma.data(), K, c, d_fixed);
-  detail::accumulate_packet(packet, c, d_fixed, K, n, ts.row.data(), credit, N, j0);
-  if (!scatter && !pass.keep_max && !edges) return;
-  for (int l = 0; l < n; ++l) {
-    if (packet.visible[l] == 0) continue;
-    const std::uint32_t j = partner[l];
-    const double d = packet.distance[l];
-    if (scatter) {
-      ts.acc[j] += 1;
-      ts.acc[N + j] += d_fixed[l];
-      for (int k = 0; k < K; ++k) ts.acc[static_cast<std::size_t>(2 + k) * N + j] += c[k * kLanes + l];
-    }
-    if (pass.keep_max) {
-      ts.max_distance[i] = std::max(ts.max_distance[i], d);
-      if (pass.symmetric) ts.max_distance[j] = std::max(ts.max_distance[j], d);
-    }
-    if (edges) edges->push_back(edge(pass, i, j, d));
-  }
-}
-
-void end_row(const Pass& pass, std::size_t i, ThreadState& ts) {
-  for (int s = 0; s < 2 + pass.K; ++s) {
-    std::int64_t total = 0;
-    for (int l = 0; l < kLanes; ++l) total += ts.row[static_cast<std::size_t>(s * kLanes + l)];
-    ts.acc[static_cast<std::size_t>(s) * pass.N + i] += total;
-    if (s == 0) ts.visible += static_cast<std::uint64_t>(total);
-  }
-}
-
-// Row i against `count` partners in packets of 16 (see add_packet).
-void process_row(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t j0, std::size_t count,
-                 ThreadState& ts, std::vector<Edge>* edges) {
-  begin_row(ts);
-  for (std::size_t start = 0; start < count; start += kLanes) {
-    const int n = static_cast<int>(std::min<std::size_t>(kLanes, count - start));
-    add_packet(pass, i, cand ? cand + start : nullptr, j0 + start, n, ts, edges, true);
-  }
-  end_row(pass, i, ts);
-}
 
 // How a pass finds each row's partners (see the file comment).
 struct Plan {
@@ -292,42 +168,6 @@ void run_row(const Pass& pass, const Plan& plan, const KdTree* tree, std::size_t
   }
 }
 
-// The pass's worker threads: options.threads, 0 = all cores.
-int worker_threads(const VisibilityOptions& options) {
-  return options.threads > 0 ? options.threads : tbb::task_arena::automatic;
-}
-
-// The edges of each row of a block, while the block runs.
-using RowEdges = std::vector<std::vector<Edge>>;
-
-// Rows [0, N) in blocks, inside the pass's task arena: `run_block(block,
-// block_end, row_edges)` runs the rows of one block; with an edge sink,
-// row_edges holds one edge list per row of the block (row r at r - block),
-// handed to the sink in row order once the block is done, so that the edge
-// list never sits whole in memory (a block is sized to ~4M partner slots).
-// Without a sink row_edges is null and the rows form one block.
-template <class RunBlock>
-void run_row_blocks(const VisibilityOptions& options, std::size_t N, std::size_t partners_per_row,
-                    RunBlock&& run_block) {
-  const std::size_t block_rows =
-      options.edge_sink ? std::max<std::size_t>(1, (std::size_t{1} << 22) / std::max<std::size_t>(partners_per_row, 1))
-                        : N;
-  RowEdges row_edges(options.edge_sink ? block_rows : 0);
-  tbb::task_arena arena(worker_threads(options));
-  arena.execute([&] {
-    for (std::size_t block = 0; block < N; block += block_rows) {
-      const std::size_t block_end = std::min(N, block + block_rows);
-      run_block(block, block_end, options.edge_sink ? &row_edges : nullptr);
-      if (options.edge_sink) {
-        std::vector<Edge> out;
-        for (std::size_t i = block; i < block_end; ++i)
-          out.insert(out.end(), row_edges[i - block].begin(), row_edges[i - block].end());
-        options.edge_sink(out);
-      }
-    }
-  });
-}
-
 // Every row, in parallel (run_row_blocks).
 void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const VisibilityOptions& options,
               tbb::enumerable_thread_specific<ThreadState>& states, std::vector<std::uint32_t>& pruned,
@@ -352,78 +192,6 @@ void run_rows(const Pass& pass, const Plan& plan, const KdTree* tree, const Visi
   progress.finish();
 }
 
-// The rows of one leaf cluster that lie in [row_begin, row_end), each
-// against its partners after it (x order) in the clusters not culled as
-// blocked: partners culled as visible go through the policy without rays,
-// the rest are cast.  Edges of a row are put in partner order, as in the
-// row-by-row pass.
-void run_leaf_rows(const Pass& pass, const detail::PairCulling& culling, std::size_t leaf, std::size_t row_begin,
-                   std::size_t row_end, ThreadState& ts, RowEdges* row_edges,
-                   const std::vector<std::uint32_t>& rank_of, Progress& progress) {
-  std::size_t count = 0;
-  const std::uint32_t* rows = culling.leaf_rows(leaf, count);
-  const std::uint32_t* first = std::lower_bound(rows, rows + count, static_cast<std::uint32_t>(row_begin));
-  const std::uint32_t* last = std::lower_bound(rows, rows + count, static_cast<std::uint32_t>(row_end));
-  if (first == last) return;
-  culling.partner_blocks(leaf, ts.blocks);
-  for (const std::uint32_t* r = first; r != last; ++r) {
-    const std::uint32_t i = *r;
-    std::vector<Edge>* edges = row_edges ? &(*row_edges)[i - row_begin] : nullptr;
-    if (edges) edges->clear();
-    begin_row(ts);
-    std::uint64_t done = 0;
-    for (const detail::PairCulling::Block& block : ts.blocks) {
-      std::size_t n = 0;
-      const std::uint32_t* partners = culling.leaf_rows(block.leaf, n);
-      if (n == 0 || partners[n - 1] <= i) continue;
-      const std::uint32_t* from = partners[0] > i ? partners : std::upper_bound(partners, partners + n, i);
-      const int count = static_cast<int>(partners + n - from);
-      add_packet(pass, i, from, 0, count, ts, edges, block.verdict == detail::Verdict::cast);
-      done += static_cast<std::uint64_t>(count);
-    }
-    end_row(pass, i, ts);
-    if (edges) {
-      const std::uint32_t self = pass.caller[i];
-      std::sort(edges->begin(), edges->end(), [&](const Edge& a, const Edge& b) {
-        return rank_of[a.i == self ? a.j : a.i] < rank_of[b.i == self ? b.j : b.i];
-      });
-    }
-    progress.add(done);  // blocked pairs were counted when their clusters were classified
-  }
-}
-
-// All-to-all without a candidate radius: rows against leaf clusters, with
-// or without culling (the same packets either way: pair_culling.hpp).  Rows
-// are grouped by leaf cluster (each leaf's partner list is expanded once),
-// in the blocks of run_row_blocks.  The culling's counts go to `result`.
-void run_rows_culled(const Scene& scene, const Pass& pass, const VisibilityOptions& options,
-                     tbb::enumerable_thread_specific<ThreadState>& states, VisibilityResult& result) {
-  const std::size_t N = pass.N;
-  Progress progress(options.progress, options.on_progress, result.pairs_total, "vg", options.pairs_done,
-                    options.cancel);
-  tbb::task_arena arena(worker_threads(options));
-  std::unique_ptr<detail::PairCulling> culling;
-  arena.execute([&] {
-    culling = std::make_unique<detail::PairCulling>(pass.rtc, scene.triangle_count(), pass.sources->x,
-                                                    pass.sources->y, pass.sources->z, options.culling, &progress,
-                                                    options.share.index, options.share.count);
-  });
-  result.pairs_culled_visible = culling->pairs_visible();
-  result.pairs_culled_blocked = culling->pairs_blocked();
-  result.culling_seconds = culling->seconds();
-  std::vector<std::uint32_t> rank_of(options.edge_sink ? N : 0);
-  for (std::size_t r = 0; r < rank_of.size(); ++r) rank_of[pass.caller[r]] = static_cast<std::uint32_t>(r);
-  run_row_blocks(options, N, N, [&](std::size_t block, std::size_t block_end, RowEdges* row_edges) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, culling->leaf_count(), 1),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        ThreadState& ts = states.local();
-                        for (std::size_t leaf = range.begin(); leaf != range.end(); ++leaf)
-                          run_leaf_rows(pass, *culling, leaf, block, block_end, ts, row_edges, rank_of, progress);
-                      });
-  });
-  progress.finish();
-}
-
 // Exact reduction of the per-thread integer accumulators into `result`, in
 // the caller's node order (order[i] = caller index of row i; empty: same).
 void collect_results(const tbb::enumerable_thread_specific<ThreadState>& states, const Plan& plan, const Pass& pass,
@@ -439,6 +207,11 @@ void collect_results(const tbb::enumerable_thread_specific<ThreadState>& states,
     result.pairs_cast += ts.cast;
     result.pairs_visible += ts.visible;
     result.coincident_pairs += ts.coincident;
+    result.pairs_culled_visible += ts.packet_visible;
+    result.pairs_culled_blocked += ts.packet_blocked;
+    result.packet_culling_seconds += ts.seconds.classify;
+    result.score_seconds += ts.seconds.score;
+    result.ray_seconds += ts.seconds.rays;
   }
   if (pass.share->count > 1) detail::combine_shares(*pass.share, total, max_distance, pruned, result);
   const auto caller_index = [&](std::size_t i) { return order.empty() ? i : order[i]; };
@@ -521,6 +294,7 @@ Pass make_pass(const Scene& scene, const Points& sources, const Points& partners
   for (double s : options.sigmas) pass.neg_sigma.push_back(-s);
   pass.max_distance = options.max_distance;
   pass.keep_max = options.distance_stats;
+  pass.time_phases = options.phase_times;
   pass.caller = order.empty() ? nullptr : order.data();
   pass.share = &options.share;
   return pass;
@@ -565,11 +339,14 @@ VisibilityResult run_pass(const Scene& scene, const Points& given_sources, const
   if (plan.use_tree) tree = std::make_unique<KdTree>(3, *pass.partners, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   tbb::enumerable_thread_specific<ThreadState> states([&] { return new_thread_state(pass, plan); });
   std::vector<std::uint32_t> pruned(N, 0);
+  // The culled pass keeps its nodes in leaf order (culled_pass.hpp): its
+  // accumulators map to the caller's nodes through `layout_order`.
+  std::vector<std::uint32_t> layout_order;
   if (symmetric && !plan.slab)
-    run_rows_culled(scene, pass, options, states, result);
+    layout_order = detail::run_culled_pass(scene, pass, options, states, result);
   else
     run_rows(pass, plan, tree.get(), options, states, pruned, result.pairs_total);
-  collect_results(states, plan, pass, order, std::move(pruned), result);
+  collect_results(states, plan, pass, symmetric && !plan.slab ? layout_order : order, std::move(pruned), result);
   if (plan.pruning && result.degree.empty()) result.pruning_note = pruned_note(result, plan, options);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count();
   return result;

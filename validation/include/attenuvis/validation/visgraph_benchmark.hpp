@@ -62,6 +62,53 @@ struct Throughput {
 Throughput measure_throughput(const visgraph::Scene& scene, const std::vector<Eigen::Vector3d>& eyes,
                               const ThroughputOptions& options);
 
+// The two floors an all-to-all pass is measured against, on the same eye
+// points in the same run (docs/validation/visgraph-performance.md):
+//  - rays: raw Embree casting every unordered pair (raw_visible_pairs,
+//    16-wide packets), no scoring;
+//  - scoring: raw_scoring_loop, every pair taken as in sight and scored as
+//    a plain loop vectorised by the compiler, no rays.
+// Returns the sum of every score (a checksum that keeps the compiler from
+// dropping the work).
+double raw_scoring_loop(const std::vector<Eigen::Vector3d>& eyes, const std::vector<double>& sigmas, int threads);
+
+// CPU seconds (user + system, every thread) of this process so far.
+double process_cpu_seconds();
+
+struct FloorOptions {
+  std::vector<double> sigmas = seed_benchmark_sigmas();
+  int threads = 1;
+  int repeats = 1;
+  bool rays_floor = true;     // raw Embree on every pair
+  bool scoring_floor = true;  // raw vectorised scoring loop
+};
+
+// The engine (all_to_all, degree + sigmas, exact with culling) and the
+// floors, interleaved repeat by repeat, each timed in CPU seconds of the
+// process (best of the repeats; on a shared machine CPU time moves less
+// than wall time) and wall seconds; then one more engine run with
+// VisibilityOptions::phase_times for where its time goes.
+struct FloorComparison {
+  std::size_t nodes = 0;
+  std::uint64_t pairs = 0;
+  std::uint64_t culled_visible = 0, culled_blocked = 0, cast = 0;  // engine: how each pair was decided
+  Timing engine_cpu, engine_wall, rays_cpu, scoring_cpu;          // zero when not measured
+  // The engine's CPU time split by phase: clustering and classifying
+  // cluster pairs, deciding packets, scoring, rays.  Estimated: each
+  // phase's share of the time the phase-timed run measured in them (steady
+  // clock, so on a loaded machine waiting is counted too, alike for all)
+  // times engine_cpu.best_s.
+  double cluster_s = 0, packet_s = 0, score_s = 0, rays_s = 0;
+  // Engine speed over each floor's: rays_cpu / engine_cpu (> 1: the
+  // engine beats casting every pair), and engine_cpu / scoring_cpu (the
+  // engine's time as a multiple of the scoring floor's).
+  double over_rays() const { return rays_cpu.best_s > 0 ? rays_cpu.best_s / engine_cpu.best_s : 0.0; }
+  double over_scoring() const { return scoring_cpu.best_s > 0 ? engine_cpu.best_s / scoring_cpu.best_s : 0.0; }
+};
+
+FloorComparison compare_with_floors(const visgraph::Scene& scene, const std::vector<Eigen::Vector3d>& eyes,
+                                    const FloorOptions& options);
+
 // Extra memory of one all-to-all pass without edge output (degree + `sigmas`,
 // distance statistics on), measured two ways:
 //  - resident set: the kernel's peak RSS (VmHWM of /proc/self/status) during

@@ -135,6 +135,10 @@ struct VisibilityOptions {
   // stops after the rows in flight and throws Cancelled.
   std::atomic<std::uint64_t>* pairs_done = nullptr;
   const std::atomic<bool>* cancel = nullptr;
+  // Measure where the pass spends its time (VisibilityResult::score_seconds,
+  // ray_seconds, packet_culling_seconds): reads the clock around every
+  // packet, which costs a few percent; for benchmarks.
+  bool phase_times = false;
   // Several processes: this one computes `share` and combines (PassShare).
   // Progress then shows this share's pairs scaled to the whole pass.
   PassShare share;
@@ -162,6 +166,11 @@ struct VisibilityResult {
   std::uint64_t pairs_culled_visible = 0;   // culling: pairs decided in sight without rays
   std::uint64_t pairs_culled_blocked = 0;   // culling: pairs decided blocked without rays
   double culling_seconds = 0;               // culling: clustering and classification
+  // With VisibilityOptions::phase_times: thread-seconds (steady clock,
+  // summed over the pass's threads, this process only) spent deciding
+  // packets of cluster pairs left undecided, scoring pairs, and inside
+  // Embree.
+  double packet_culling_seconds = 0, score_seconds = 0, ray_seconds = 0;
   std::string pruning_note;                 // what pruning dropped and why (empty: not asked)
   double seconds = 0;                       // wall time of the pass
 

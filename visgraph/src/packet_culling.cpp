@@ -1,0 +1,92 @@
+// Packets decided lane by lane (packet_culling.hpp).
+#include "packet_culling.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace attenuvis::visgraph::detail {
+
+namespace {
+// Rays cast along open lanes to find occluders, per packet: each costs a
+// good part of what casting the packet does.
+constexpr int kRays = 2;
+// Surfaces tried along one such ray (as PairCulling::kOccluderTries).
+constexpr int kSurfaces = 4;
+
+// Puts t first among the hints (the others keep their order).
+void remember(PacketCulling::Hints& hints, std::uint32_t t) {
+  std::uint32_t* h = hints.triangle;
+  std::uint32_t* at = std::find(h, h + PacketCulling::kHints, t);
+  if (at == h + PacketCulling::kHints) at = h + PacketCulling::kHints - 1;
+  std::copy_backward(h, at, at + 1);
+  h[0] = t;
+}
+}  // namespace
+
+std::uint32_t PacketCulling::unblocked(std::uint32_t t, const PacketLines& p, std::uint32_t open) const {
+  return open & ~geometry_->lanes_blocked(t, p, margin_);
+}
+
+Verdict PacketCulling::all_in_sight(const PacketLines& p) const {
+  Box3 a;
+  for (int c = 0; c < 3; ++c) a.lo[c] = a.hi[c] = p.point[c];
+  return geometry_->hull_is_empty(a, p.box, margin_) ? Verdict::visible : Verdict::cast;
+}
+
+Verdict PacketCulling::decide(const double* point, const double* x, const double* y, const double* z, int n,
+                              Hints& hints, Hints& near) const {
+  if (!geometry_ || n <= 0) return Verdict::cast;
+  PacketLines p;
+  p.point = point, p.x = x, p.y = y, p.z = z, p.n = n;
+  bound_lines(p);
+  const std::uint32_t all = (1u << n) - 1u;
+  std::uint32_t open = all;
+  for (const Hints* list : {&hints, &near})
+    for (int h = 0; h < kHints && open; ++h) {
+      const std::uint32_t t = list->triangle[h];
+      if (t == kNoHint) break;
+      open = unblocked(t, p, open);
+    }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (int ray = 0; ray < kRays && open; ++ray) {
+    const int l = __builtin_ctz(open);
+    const double d[3] = {x[l] - point[0], y[l] - point[1], z[l] - point[2]};
+    const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(length > 4 * margin_)) return Verdict::cast;
+    RTCRayHit rh{};
+    rh.ray.org_x = static_cast<float>(point[0]);
+    rh.ray.org_y = static_cast<float>(point[1]);
+    rh.ray.org_z = static_cast<float>(point[2]);
+    rh.ray.dir_x = static_cast<float>(d[0]);
+    rh.ray.dir_y = static_cast<float>(d[1]);
+    rh.ray.dir_z = static_cast<float>(d[2]);
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = 1.0f;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &context, &rh);
+    // Nothing along the first lane tried: the packet may be all in sight.
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+      return open == all && ray == 0 ? all_in_sight(p) : Verdict::cast;
+    for (int surface = 0; surface < kSurfaces; ++surface) {
+      const std::uint32_t left = unblocked(rh.hit.primID, p, open);
+      if (left != open) {
+        remember(hints, rh.hit.primID);
+        remember(near, rh.hit.primID);
+      }
+      open = left;
+      if (!(open >> l & 1u)) break;
+      rh.ray.tnear = rh.ray.tfar + static_cast<float>(margin_ / length);
+      rh.ray.tfar = 1.0f;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      if (!(rh.ray.tnear < 1.0f)) break;
+      rtcIntersect1(scene_, &context, &rh);
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+    }
+    if (open >> l & 1u) return Verdict::cast;  // the surfaces along lane l do not certify it
+  }
+  return open ? Verdict::cast : Verdict::blocked;
+}
+
+}  // namespace attenuvis::visgraph::detail

@@ -1,0 +1,64 @@
+// Packets of a pair of leaf clusters that PairCulling left to rays, decided
+// one by one where possible.  Internal to the visgraph library
+// (culled_pass.cpp).
+//
+// A packet is one row (a node) against up to 16 partners in one leaf.  It
+// is blocked when each of its sight lines is blocked by some occluder of
+// CullGeometry (a planar triangle or quad, a closed convex solid), each
+// with the margins of pair_culling.hpp, now for a single segment: both ends
+// at least m from the occluder's plane (or outside the solid), the crossing
+// at least m inside it.  Different lanes may be blocked by different
+// occluders, which is what a wide pair of clusters cannot use: real
+// buildings are many small walls.  The occluders tried are those that
+// blocked the last packets of the same pair of leaves (hints), then the
+// surfaces met by a ray along an unblocked lane.  A packet whose every lane
+// is in sight (the segment hull from the row to the partners' box meets no
+// triangle, with the margin) is scored without rays.  Anything else is cast
+// whole, as the same canonical packet as without culling, so every pair
+// gets the answer its own ray gives.
+#pragma once
+
+#include "cull_geometry.hpp"
+#include "pair_culling.hpp"
+
+#include <embree3/rtcore.h>
+
+#include <cstdint>
+
+namespace attenuvis::visgraph::detail {
+
+class PacketCulling {
+ public:
+  static constexpr int kHints = 4;
+  static constexpr std::uint32_t kNoHint = 0xFFFFFFFFu;
+  // Triangles whose occluders blocked lanes of the last packets of one
+  // pair of leaves, the latest first.
+  struct Hints {
+    std::uint32_t triangle[kHints] = {kNoHint, kNoHint, kNoHint, kNoHint};
+  };
+
+  // Null geometry: every packet is cast.
+  PacketCulling(RTCScene scene, const CullGeometry* geometry, double margin)
+      : scene_(scene), geometry_(geometry), margin_(margin) {}
+  bool active() const { return geometry_ != nullptr; }
+
+  // Row `point` against partners (x[l], y[l], z[l]), l < n <= 16 (local
+  // frame).  `hints`: of this pair of leaves; `near`: of the row's leaf
+  // (the walls around its rows, whatever the partners).  `near` carries
+  // over between pairs of leaves, so with pass shares (each its own pairs
+  // of clusters) the count of packets decided here may differ from one
+  // process's; each decision is exact, so no result does.
+  Verdict decide(const double* point, const double* x, const double* y, const double* z, int n, Hints& hints,
+                 Hints& near) const;
+
+ private:
+  // Clears the bits of the lanes in `open` that triangle t's occluders block.
+  std::uint32_t unblocked(std::uint32_t t, const PacketLines& p, std::uint32_t open) const;
+  Verdict all_in_sight(const PacketLines& p) const;
+
+  RTCScene scene_;
+  const CullGeometry* geometry_;
+  double margin_;
+};
+
+}  // namespace attenuvis::visgraph::detail
