@@ -3,6 +3,7 @@
 
 #include "attenuvis/weather/detail/sigma_table_formats.hpp"
 
+#include "attenuvis/weather/aerosol_optics.hpp"
 #include "attenuvis/weather/cancel.hpp"
 #include "attenuvis/weather/condition_optics.hpp"
 
@@ -172,6 +173,13 @@ SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const s
       std::size_t w = i / conditions.size(), c = i % conditions.size();
       try {
         throw_if_cancelled(settings.cancel);  // once per cell: cells without Mie work never look otherwise
+        if (const auto* aerosol = std::get_if<AerosolCondition>(&conditions[c].condition); aerosol && needs_optics) {
+          // sigma and the rest from one set of integrals (aerosol_optics.hpp).
+          const AerosolOptics o = aerosol_optics(*aerosol, wavelengths[w], settings, request);
+          t.cells[i].sigma = aerosol_sigma(o);
+          t.cells[i].optics = o.bulk;
+          return;
+        }
         t.cells[i].sigma = sigma(conditions[c].condition, wavelengths[w], settings);
         if (const auto* mie = std::get_if<MieCondition>(&conditions[c].condition); mie && needs_optics)
           t.cells[i].optics = needs_backscatter || needs_angular
