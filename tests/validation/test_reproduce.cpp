@@ -151,7 +151,7 @@ TEST_CASE("reproduce --quick: report files and key numbers", "[validation][slow]
     // Then the seed's story in the paper's order (scenes, layouts, city), the sigma
     // values, and what the seed does not have (Mie validation, performance).
     std::size_t last = verdict;
-    for (const char* id : {"scenes", "layouts", "city", "weather", "mie", "performance"}) {
+    for (const char* id : {"scenes", "layouts", "city", "weather", "haze", "mie", "performance"}) {
       INFO("section " << id);
       const auto at = html.find(std::string("<section id=\"") + id + "\"");
       REQUIRE(at != std::string::npos);

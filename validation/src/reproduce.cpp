@@ -214,6 +214,7 @@ class StagingDirectory {
 void run_sections(Context& ctx, Report& report) {
   detail::SeedConditions seed;
   detail::CityPerformance city_perf;
+  detail::CityHaze city_haze;
   struct Step {
     const char* id;
     const char* title;
@@ -227,12 +228,14 @@ void run_sections(Context& ctx, Report& report) {
       {"layouts", "The five layouts: degree, S_S in clear weather and in weather, single-point maps", 1,
        [&](Section& s) { detail::section_layouts(ctx, s, seed); }},
       {"city", "The city: S_S, P1, P2, P3 and the seed's conclusion", 2,
-       [&](Section& s) { detail::section_city(ctx, s, seed, city_perf); }},
+       [&](Section& s) { detail::section_city(ctx, s, seed, city_perf, city_haze); }},
       {"optics", "Bulk optics of the fogs: scattering, absorption, g, backscatter, lidar ratio, phase function", 4,
        [&](Section& s) { detail::section_optics(ctx, s); }},
-      {"mie", "Mie validation: published tables and a 50-digit reference", 5,
+      {"haze", "Haze: OPAC aerosols, their growth with humidity, visibility and a city under urban haze", 5,
+       [&](Section& s) { detail::section_haze(ctx, s, city_haze); }},
+      {"mie", "Mie validation: published tables and a 50-digit reference", 6,
        [&](Section& s) { detail::section_mie(ctx, s); }},
-      {"performance", "Visibility-graph performance", 6,
+      {"performance", "Visibility-graph performance", 7,
        [&](Section& s) { detail::section_performance(ctx, s, city_perf); }},
   };
   std::vector<std::pair<int, Section>> computed;
