@@ -63,7 +63,7 @@ double wavelength_nm(double wavelength_m) { return std::stod(io::significant(wav
 
 std::string missing_value_rule() {
   return "sigma_sca, sigma_abs, ssa, g, backscatter, lidar_ratio, the Legendre moments and the phase function "
-         "exist only for Mie conditions (a size distribution): they are missing "
+         "exist only for Mie conditions and aerosols (particles): they are missing "
          "for power laws, visibility models, clear air and a given sigma, and where the integral used the "
          "large-sphere expansion of Q_ext (rain drops beyond x = 2000), which gives no Q_sca; "
          "the Koschmieder visibility is missing where sigma_ext = 0 (unbounded)";

@@ -7,7 +7,12 @@
 //
 // each population's per-particle optics the certified real-axis quadrature
 // of bulk_optics.hpp over its truncated log-normal (a log-normal cut at Rmin,
-// Rmax is not analytic there, so no contour).  The errors add: the sum's
+// Rmax is not analytic there, so no contour), plus, as each integral's
+// rounding error, the Lorenz-Mie efficiencies' own accuracy (1e-10 relative,
+// floored at 1e-14 Q_ext: mie.hpp's referee bound), which the quadrature's
+// Kronrod-Gauss differences cannot see and which dominates for the smallest
+// components at long wavelengths, where the quadrature converges to ~1e-15
+// relative.  The errors add: the sum's
 // error is the sum of the populations' errors (quadrature, tails,
 // resonances), and a ratio's error is bounded from those of its numerator
 // and denominator, as bulk_optics.hpp bounds a single distribution's.

@@ -30,8 +30,9 @@
 //     component's particles split (RH_i+1 - RH)/(RH_i+1 - RH_i) : (RH - RH_i)/(...):
 //     every extensive quantity (sigma_ext, sigma_sca, beta_pi, sigma_sca g,
 //     sigma_sca chi_l) is then interpolated linearly in RH, the ratios (albedo,
-//     g, lidar ratio) follow from them.  Twice the Mie work of kappa; linear in
-//     RH where growth is not (below kappa's curve between 90 and 99 %).
+//     g, lidar ratio) follow from them.  Twice the Mie work of kappa, and a
+//     chord of sigma(RH), which is convex: up to 10 % above kappa's curve
+//     between 95 and 98 % (urban and maritime haze at 550 nm).
 //   nearest  The nearest tabulated state (ties: the lower), as libRadtran
 //     does; a step function of RH.
 //
