@@ -212,10 +212,10 @@ void rules_table(Context& ctx, Section& s) {
   add_table(ctx, s, t);
   ctx.set("haze.rules.largest_linear_vs_kappa_percent", 100 * widest);
   s.text("Between tabulated humidities kappa-Koehler growth follows the growth curve's shape (g^3 - 1 proportional "
-         "to a_w/(1 - a_w)), which bends upward toward 99 %; linear interpolation of the optics lies below it there "
-         "(up to " + sig(100 * widest, 2) + " % here), and the nearest state jumps at the midpoints. kappa is "
-         "fitted to the table at every tabulated humidity: a single kappa cannot reproduce OPAC's growth (waso would "
-         "need 0.89 at 50 % and 0.15 at 99 %).");
+         "to a_w/(1 - a_w)), and sigma(RH) is convex: linear interpolation of the optics is a chord above it (up to " +
+         sig(100 * widest, 2) + " % here, widest between 95 and 98 %), and the nearest state jumps at the midpoints "
+         "(a tie goes to the lower humidity). kappa is fitted to the table at every tabulated humidity: a single "
+         "kappa cannot reproduce OPAC's growth (waso would need 0.89 at 50 % and 0.15 at 99 %).");
 }
 
 // The city under urban haze at 95 % against clear weather.
