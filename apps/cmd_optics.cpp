@@ -143,15 +143,14 @@ void run_optics(const std::vector<std::string>& conditions, const OpticsOptions&
   if (o.polarised && o.moments < 0) throw std::invalid_argument("--polarised needs --moments L");
   request.polarised = o.polarised;
   if (!o.angles.empty()) request.angles_deg = angle_list("--angles", o.angles, kMaxOpticsAngles);
-  std::vector<std::pair<std::string, w::MieCondition>> parsed;  // all parse before any work
+  std::vector<std::pair<std::string, w::Condition>> parsed;  // all parse before any work
   for (std::size_t i = 0; i < conditions.size(); ++i) {
     const w::Condition c = w::parse_condition(conditions[i]);
-    const auto* mie = std::get_if<w::MieCondition>(&c);
-    if (!mie)
+    if (!w::needs_mie(c))
       throw std::invalid_argument("condition " + std::to_string(i + 1) + " ('" + conditions[i] +
-                                  "') is not a size distribution of drops: optics needs a Mie condition "
-                                  "(fog:advection, fog:radiation, drops:FILE, ...)");
-    parsed.emplace_back(conditions[i], *mie);
+                                  "') has no particles: optics needs a Mie condition "
+                                  "(fog:advection, fog:radiation, drops:..., ...) or an aerosol (haze:..., aerosol:...)");
+    parsed.emplace_back(conditions[i], c);
   }
   nlohmann::json out = nlohmann::json::array();
   for (const auto& [label, c] : parsed) {
@@ -166,13 +165,14 @@ void run_optics(const std::vector<std::string>& conditions, const OpticsOptions&
 
 void register_optics(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "optics", std::string("bulk single-scattering optics of drop size distributions: sigma_ext, sigma_sca, "
-                            "sigma_abs, single-scattering albedo, g, backscatter coefficient, lidar ratio, "
+      "optics", std::string("bulk single-scattering optics of drop size distributions and aerosols: sigma_ext, "
+                            "sigma_sca, sigma_abs, single-scattering albedo, g, backscatter coefficient, lidar ratio, "
                             "Legendre moments and phase function, each with its error\n") +
                     w::condition_grammar());
   auto conditions = std::make_shared<std::vector<std::string>>();
   auto opts = std::make_shared<OpticsOptions>();
-  cmd->add_option("conditions", *conditions, "Mie conditions, e.g. fog:advection fog:radiation")->required();
+  cmd->add_option("conditions", *conditions, "Mie conditions or aerosols, e.g. fog:advection haze:urban:rh=80")
+      ->required();
   add_weather_options(cmd, opts->weather, {});
   cmd->add_option("--moments", opts->moments,
                   "Legendre moments chi_0..chi_L of the phase function (costs O(x^2) per drop); [0, 100000]")

@@ -85,12 +85,14 @@ void run_sigma(const std::vector<std::string>& conditions, const CommonOptions& 
   if (json) std::cout << out.dump(2) << "\n";
 }
 
-// The size-distribution files the conditions read (inputs no output may replace).
+// The files the conditions read, size distributions and indices (inputs no output may replace).
 std::vector<NamedPath> condition_inputs(const std::vector<w::LabelledCondition>& conditions) {
   std::vector<NamedPath> out;
   for (const auto& c : conditions)
-    if (const auto* mie = std::get_if<w::MieCondition>(&c.condition))
+    if (const auto* mie = std::get_if<w::MieCondition>(&c.condition)) {
       if (const auto* file = std::get_if<w::DistributionFile>(&mie->drops)) out.push_back({"fog:file=", file->path});
+      if (const auto* index = std::get_if<w::IndexFile>(&mie->index)) out.push_back({"index=", index->path});
+    }
   return out;
 }
 

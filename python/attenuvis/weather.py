@@ -18,9 +18,12 @@ Conditions mirror the typed C++ conditions (weather/condition.hpp)::
     Fog("advection")             Mie over a P.1817-1 / seed fog preset
     Fog(visibility=500, model="kim")   empirical fog from a visibility (model: a visibility fog model)
     Fog(distribution=LogNormal(...), m=1.33+1e-8j)   Mie over your own drops
+    Haze("urban", rh=80)         an OPAC aerosol type at a relative humidity (type: an aerosol mixture)
+    Aerosol({"waso": 7000, "soot": 8300}, rh=70)     your own mixture of OPAC components, per cm^3
 
 The names a condition takes (rain power laws, snow types, fog presets,
-visibility fog models, water tables) and the quantities of a table are the
+visibility fog models, water tables, aerosol components, mixtures and humidity
+rules) and the quantities of a table are the
 C++ library's: ``registry(kind)`` lists each kind with units, help and
 citation.  ``parse("fog:advection")`` reads the command line's grammar
 (``grammar()``).  Power laws are read per the ``convention`` argument ("itu",
@@ -39,7 +42,7 @@ from . import _attenuvis
 _core = _attenuvis.weather
 
 __all__ = [
-    "Condition", "Clear", "Visibility", "Sigma", "Rain", "Snow", "Fog",
+    "Condition", "Clear", "Visibility", "Sigma", "Rain", "Snow", "Fog", "Haze", "Aerosol",
     "Distribution", "LogNormal", "ModifiedGamma", "Gamma", "MarshallPalmer", "GunnMarshall", "PowerLaw",
     "preset", "tabulated",
     "parse", "expand", "grammar", "sigma", "optics", "table", "refractive_index",
@@ -62,7 +65,7 @@ def registry_kinds() -> List[str]:
     --------
     >>> registry_kinds()  # doctest: +NORMALIZE_WHITESPACE
     ['water_tables', 'fog_presets', 'distribution_presets', 'rain_power_laws', 'snow_types',
-     'visibility_fog_models', 'table_quantities']
+     'visibility_fog_models', 'table_quantities', 'aerosol_components', 'aerosol_mixtures', 'humidity_rules']
     """
     return list(_core.registry_kinds())
 
@@ -78,7 +81,8 @@ def registry(kind: str) -> List[Dict[str, Any]]:
     kind : str
         One of `registry_kinds()`: "water_tables", "fog_presets",
         "distribution_presets", "rain_power_laws", "snow_types",
-        "visibility_fog_models" or "table_quantities".
+        "visibility_fog_models", "table_quantities", "aerosol_components",
+        "aerosol_mixtures" or "humidity_rules".
 
     Returns
     -------
@@ -103,6 +107,9 @@ def registry(kind: str) -> List[Dict[str, Any]]:
     (1.17, 0.65, True)
     >>> registry("water_tables")[0]["aliases"]
     ['water']
+    >>> urban = registry("aerosol_mixtures")[3]
+    >>> urban["name"], urban["waso"], urban["soot"]
+    ('urban', 28000.0, 130000.0)
     """
     return list(_core.registry(kind))
 
@@ -123,6 +130,9 @@ _FOG_PRESETS = _named("fog_presets")
 _FOG_MODELS = _named("visibility_fog_models")
 _RAIN_LAWS = _named("rain_power_laws")
 _SNOW_TYPES = _named("snow_types")
+_AEROSOL_COMPONENTS = _named("aerosol_components")
+_AEROSOL_MIXTURES = _named("aerosol_mixtures")
+_HUMIDITY_RULES = _named("humidity_rules")
 # Table quantities by their Python name (the Optics attribute they read; "sigma" for sigma_ext).
 _TABLE_QUANTITIES = {e["python_name"]: e for e in _core.registry("table_quantities")}
 
@@ -619,8 +629,10 @@ class Sigma(Condition):
         self._cpp = _core.GivenSigma(self.per_m)
 
 
-def _index_source(m, water):
-    _at_most_one(m=m, water=water)
+def _index_source(m, water, index=None):
+    _at_most_one(m=m, water=water, index=index)
+    if index is not None:
+        return _core.IndexFile(str(index))
     if m is not None:
         return _core.ConstantIndex(complex(m))
     if water is not None:
@@ -739,6 +751,9 @@ class Fog(Condition):
     water : {'hale-querry', 'water', 'segelstein', 'ice'}, optional
         The refractive-index table ("water" is "hale-querry"); default: the
         ``water_table`` of `sigma`.
+    index : str, optional
+        A refractive-index file instead: refractiveindex.info YAML (.yml) or
+        three columns um, n, k (the command line's :index=FILE).
     number_density : float, optional
         Rescale the drops to this many particles per cm^3.
     lwc : float, optional
@@ -764,7 +779,8 @@ class Fog(Condition):
 
     def __init__(self, preset: Optional[str] = None, *, visibility: Optional[float] = None, model: str = "kim",
                  distribution: Optional[Distribution] = None, m=None, water=None,
-                 number_density: Optional[float] = None, lwc: Optional[float] = None, file: Optional[str] = None):
+                 number_density: Optional[float] = None, lwc: Optional[float] = None, file: Optional[str] = None,
+                 index: Optional[str] = None):
         given = [preset is not None, visibility is not None, distribution is not None, file is not None]
         if sum(given) != 1:
             raise TypeError("Fog needs exactly one of: a preset name, visibility=, distribution=, file=")
@@ -790,7 +806,7 @@ class Fog(Condition):
             else:
                 names = " or ".join(repr(p) for p in _FOG_PRESETS)
                 raise ValueError(f"fog preset must be {names}, not {preset!r}")
-            self._cpp = _core.MieCondition(drops, _index_source(m, water), _rescaling(number_density, lwc))
+            self._cpp = _core.MieCondition(drops, _index_source(m, water, index), _rescaling(number_density, lwc))
 
     @property
     def text(self) -> str:
@@ -799,6 +815,129 @@ class Fog(Condition):
         if self._cpp is None:
             return f"fog:distribution({self.distribution._cpp.describe()})"
         return _core.to_text(self._cpp)
+
+
+def _aerosol_options(rh, growth, visibility, mass):
+    """The typed humidity rule and scaling of an aerosol, checked against the registries."""
+    if growth not in _HUMIDITY_RULES:
+        raise ValueError(f"growth must be one of {', '.join(_HUMIDITY_RULES)}, not {growth!r}")
+    _at_most_one(visibility=visibility, mass=mass)
+    if visibility is not None:
+        scaling = _core.ScaledToVisibility(float(visibility))
+    elif mass is not None:
+        scaling = _core.ScaledToDryMass(float(mass))
+    else:
+        scaling = _core.AsGiven()
+    return float(rh), _enum_value(_core.HumidityRule, growth), scaling
+
+
+def _checked_aerosol(cpp):
+    """The typed aerosol, its numbers range-checked by the C++ grammar (the one set of rules and messages)."""
+    return _core.parse(_core.to_text(cpp))
+
+
+class Haze(Condition):
+    """An OPAC aerosol type at a relative humidity (Hess, Koepke & Schult 1998).
+
+    The components' number densities are OPAC's (registry("aerosol_mixtures"));
+    hygroscopic components grow with humidity by the ``growth`` rule
+    (registry("humidity_rules")).
+
+    Parameters
+    ----------
+    type : {'continental-clean', 'continental-average', 'continental-polluted', 'urban', 'desert', 'maritime-clean', 'maritime-polluted', 'maritime-tropical', 'arctic', 'antarctic'}
+        The aerosol type.
+    rh : float
+        Relative humidity in percent, 0 to 99.
+    growth : {'kappa', 'linear', 'nearest'}, default 'kappa'
+        How a humidity between OPAC's tabulated ones is reached.
+    visibility : float, optional
+        Scale the number densities so that the Koschmieder visibility at
+        550 nm is this many metres.
+    mass : float, optional
+        Scale the number densities to this dry mass concentration, ug/m^3.
+
+    Raises
+    ------
+    ValueError
+        For an unknown type or rule, or a humidity outside [0, 99].
+    TypeError
+        For both visibility= and mass=.
+
+    Examples
+    --------
+    >>> Haze("urban", rh=95).text
+    'haze:urban:rh=95'
+    >>> f"{sigma(Haze('urban', rh=0)).value:.4g}"
+    '0.0001941'
+    >>> Haze("maritime-clean", rh=80, visibility=10e3).text
+    'haze:maritime-clean:rh=80:visibility=10000m'
+    """
+
+    def __init__(self, type: str, rh: float, *, growth: str = "kappa", visibility: Optional[float] = None,
+                 mass: Optional[float] = None):
+        if type not in _AEROSOL_MIXTURES:
+            raise ValueError(f"aerosol type must be one of {', '.join(_AEROSOL_MIXTURES)}, not {type!r}")
+        self.type, self.rh, self.growth, self.visibility, self.mass = type, float(rh), growth, visibility, mass
+        mixture = _enum_value(_core.AerosolMixture, type)
+        self._cpp = _checked_aerosol(_core.AerosolCondition(mixture, _core.mixture_amounts(mixture),
+                                                            *_aerosol_options(rh, growth, visibility, mass)))
+
+
+class Aerosol(Condition):
+    """Your own external mixture of OPAC components at a relative humidity.
+
+    Parameters
+    ----------
+    components : dict
+        Number density in particles per cm^3 by component name, each of
+        'inso', 'waso', 'soot', 'ssam', 'sscm', 'minm', 'miam', 'micm',
+        'mitr', 'suso' (registry("aerosol_components")).
+    rh : float
+        Relative humidity in percent, 0 to 99.
+    growth : {'kappa', 'linear', 'nearest'}, default 'kappa'
+        How a humidity between OPAC's tabulated ones is reached.
+    visibility : float, optional
+        Scale the number densities to this visibility (m) at 550 nm.
+    mass : float, optional
+        Scale them to this dry mass concentration, ug/m^3.
+
+    Raises
+    ------
+    ValueError
+        For an unknown component or rule, a number density or humidity out of
+        range.
+
+    Examples
+    --------
+    >>> a = Aerosol({"waso": 7000, "soot": 8300, "inso": 0.4}, rh=70)
+    >>> a.text
+    'aerosol:waso=7000,soot=8300,inso=0.4:rh=70'
+    >>> parse(a.text).components
+    {'waso': 7000.0, 'soot': 8300.0, 'inso': 0.4}
+    """
+
+    def __init__(self, components: Dict[str, float], rh: float, *, growth: str = "kappa",
+                 visibility: Optional[float] = None, mass: Optional[float] = None):
+        amounts = []
+        for name, n in components.items():
+            if name not in _AEROSOL_COMPONENTS:
+                raise ValueError(f"aerosol component must be one of {', '.join(_AEROSOL_COMPONENTS)}, not {name!r}")
+            amounts.append(_core.AerosolAmount(_enum_value(_core.AerosolComponent, name), float(n)))
+        self.components = {name: float(n) for name, n in components.items()}
+        self.rh, self.growth, self.visibility, self.mass = float(rh), growth, visibility, mass
+        self._cpp = _checked_aerosol(_core.AerosolCondition(None, amounts, *_aerosol_options(rh, growth, visibility,
+                                                                                              mass)))
+
+
+def _aerosol_from_cpp(cpp, make) -> Condition:
+    """A Haze or an Aerosol with its fields read back from the typed C++ aerosol."""
+    scaling = cpp.scaling
+    fields = dict(rh=cpp.relative_humidity_percent, growth=_enum_name(cpp.humidity_rule),
+                  visibility=getattr(scaling, "visibility_m", None), mass=getattr(scaling, "ug_per_m3", None))
+    if cpp.mixture is not None:
+        return make(Haze, type=_enum_name(cpp.mixture), **fields)
+    return make(Aerosol, components={_enum_name(a.component): a.per_cm3 for a in cpp.amounts}, **fields)
 
 
 def _from_cpp(cpp) -> Condition:
@@ -821,6 +960,8 @@ def _from_cpp(cpp) -> Condition:
         return make(Snow, rate=cpp.rate_mm_h, type=_enum_name(cpp.type))
     if isinstance(cpp, _core.FogFromVisibility):
         return make(Fog, visibility=cpp.visibility_m, model=_enum_name(cpp.model), distribution=None)
+    if isinstance(cpp, _core.AerosolCondition):
+        return _aerosol_from_cpp(cpp, make)
     if isinstance(cpp.drops, _core.MarshallPalmerRain):
         return make(Rain, rate=cpp.drops.rate_mm_h, model="mie")
     return make(Fog, distribution=None)
@@ -1105,8 +1246,8 @@ def sigma(condition, wavelength: float = 550e-9, *, convention: str = "itu", con
 
 
 def optics(condition, wavelength: float = 550e-9, *, rel_tolerance: float = 1e-9, water_table: str = "water",
-           m=None) -> Optics:
-    """Bulk optics of a Mie condition or of a bare distribution.
+           m=None, contrast_threshold: float = 0.02) -> Optics:
+    """Bulk optics of a Mie condition, an aerosol or a bare distribution.
 
     Extinction, scattering and absorption with error bounds, albedo and
     asymmetry parameter, by quadrature on the real axis.
@@ -1115,7 +1256,8 @@ def optics(condition, wavelength: float = 550e-9, *, rel_tolerance: float = 1e-9
     ----------
     condition : Condition, str or Distribution
         A Mie condition (a Fog preset or distribution, Rain(model="mie"),
-        drops:...) or a bare Distribution.
+        drops:...), an aerosol (`Haze`, `Aerosol`; the external mixture of
+        its components) or a bare Distribution.
     wavelength : float, default 550e-9
         In metres.
     rel_tolerance : float, default 1e-9
@@ -1124,6 +1266,8 @@ def optics(condition, wavelength: float = 550e-9, *, rel_tolerance: float = 1e-9
         The refractive-index table where the condition names none.
     m : complex, optional
         With a bare Distribution: its refractive index (default: the water table's).
+    contrast_threshold : float, default 0.02
+        Koschmieder's threshold, for an aerosol scaled to a visibility.
 
     Returns
     -------
@@ -1149,7 +1293,11 @@ def optics(condition, wavelength: float = 550e-9, *, rel_tolerance: float = 1e-9
         d = _core.distribution_optics(c.distribution._cpp, float(wavelength), index, float(rel_tolerance))
         return Optics(d, float(wavelength))
     if not _core.needs_mie(c._cpp):
-        raise ValueError(f"{c.text}: bulk optics need a Mie condition (fog preset or distribution, rain model 'mie')")
+        raise ValueError(f"{c.text}: bulk optics need a Mie condition (fog preset or distribution, rain model "
+                         "'mie') or an aerosol (Haze, Aerosol)")
+    if isinstance(c._cpp, _core.AerosolCondition):
+        d = _core.aerosol_optics(c._cpp, float(wavelength), float(rel_tolerance), float(contrast_threshold))
+        return Optics(d, float(wavelength))
     d = _core.condition_optics(c._cpp, float(wavelength), float(rel_tolerance), str(water_table))
     return Optics(d, float(wavelength))
 

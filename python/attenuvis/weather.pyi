@@ -38,7 +38,14 @@ class Snow(Condition):
 class Fog(Condition):
     def __init__(self, preset: Optional[str] = ..., *, visibility: Optional[float] = ..., model: str = ...,
                  distribution: Optional[Distribution] = ..., m: Optional[complex] = ..., water: Optional[str] = ...,
-                 number_density: Optional[float] = ..., lwc: Optional[float] = ..., file: Optional[str] = ...) -> None: ...
+                 number_density: Optional[float] = ..., lwc: Optional[float] = ..., file: Optional[str] = ...,
+                 index: Optional[str] = ...) -> None: ...
+class Haze(Condition):
+    def __init__(self, type: str, rh: float, *, growth: str = ..., visibility: Optional[float] = ...,
+                 mass: Optional[float] = ...) -> None: ...
+class Aerosol(Condition):
+    def __init__(self, components: Dict[str, float], rh: float, *, growth: str = ...,
+                 visibility: Optional[float] = ..., mass: Optional[float] = ...) -> None: ...
 
 ConditionLike = Union[Condition, str]
 
@@ -101,7 +108,7 @@ class Table:
 def sigma(condition: ConditionLike, wavelength: float = ..., *, convention: str = ..., contrast_threshold: float = ...,
           rel_tolerance: float = ..., water_table: str = ...) -> SigmaResult: ...
 def optics(condition: Union[ConditionLike, Distribution], wavelength: float = ..., *, rel_tolerance: float = ...,
-           water_table: str = ..., m: Optional[complex] = ...) -> Optics: ...
+           water_table: str = ..., m: Optional[complex] = ..., contrast_threshold: float = ...) -> Optics: ...
 def table(conditions: Union[ConditionLike, Sequence[ConditionLike]], wavelengths: ArrayLike,
           quantities: Sequence[str] = ..., *, convention: str = ...,
           contrast_threshold: float = ..., rel_tolerance: float = ..., water_table: str = ...,

@@ -19,9 +19,11 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "attenuvis/weather/aerosol_optics.hpp"
 #include "attenuvis/weather/bulk_optics.hpp"
 #include "attenuvis/weather/condition.hpp"
 #include "attenuvis/weather/condition_grammar.hpp"
@@ -123,6 +125,9 @@ void bind_named_enums(py::module_& m) {
                                          &w::VisibilityFogModelInfo::id);
   bind_named_enum<w::FogPreset>(m, "FogPreset", w::fog_presets(), &w::FogPresetInfo::id);
   bind_named_enum<w::WaterTable>(m, "WaterTable", w::water_tables(), &w::WaterTableInfo::id);
+  bind_named_enum<w::AerosolComponent>(m, "AerosolComponent", w::aerosol_components(), &w::AerosolComponentInfo::id);
+  bind_named_enum<w::AerosolMixture>(m, "AerosolMixture", w::aerosol_mixtures(), &w::AerosolMixtureInfo::id);
+  bind_named_enum<w::HumidityRule>(m, "HumidityRule", w::humidity_rules(), &w::HumidityRuleInfo::id);
 }
 
 // The conditions set by a number and a model (no drops).
@@ -168,6 +173,9 @@ void bind_mie_condition(py::module_& m) {
   py::class_<w::ConstantIndex>(m, "ConstantIndex")
       .def(py::init([](std::complex<double> c) { return w::ConstantIndex{c}; }), py::arg("m"))
       .def_readwrite("m", &w::ConstantIndex::m);
+  py::class_<w::IndexFile>(m, "IndexFile")
+      .def(py::init([](std::string p) { return w::IndexFile{std::move(p)}; }), py::arg("path"))
+      .def_readwrite("path", &w::IndexFile::path);
   py::class_<w::AsGiven>(m, "AsGiven").def(py::init<>());
   py::class_<w::NumberDensity>(m, "NumberDensity")
       .def(py::init([](double n) { return w::NumberDensity{n}; }), py::arg("per_cm3"))
@@ -181,6 +189,35 @@ void bind_mie_condition(py::module_& m) {
       .def_readwrite("drops", &w::MieCondition::drops)
       .def_readwrite("index", &w::MieCondition::index)
       .def_readwrite("rescaling", &w::MieCondition::rescaling);
+}
+
+// An aerosol: an OPAC type or a user's mixture of components at a humidity, with its scaling.
+void bind_aerosol_condition(py::module_& m) {
+  py::class_<w::AerosolAmount>(m, "AerosolAmount")
+      .def(py::init([](w::AerosolComponent c, double n) { return w::AerosolAmount{c, n}; }), py::arg("component"),
+           py::arg("per_cm3"))
+      .def_readwrite("component", &w::AerosolAmount::component)
+      .def_readwrite("per_cm3", &w::AerosolAmount::per_cm3);
+  py::class_<w::ScaledToVisibility>(m, "ScaledToVisibility")
+      .def(py::init([](double v) { return w::ScaledToVisibility{v}; }), py::arg("visibility_m"))
+      .def_readwrite("visibility_m", &w::ScaledToVisibility::visibility_m);
+  py::class_<w::ScaledToDryMass>(m, "ScaledToDryMass")
+      .def(py::init([](double v) { return w::ScaledToDryMass{v}; }), py::arg("ug_per_m3"))
+      .def_readwrite("ug_per_m3", &w::ScaledToDryMass::ug_per_m3);
+  py::class_<w::AerosolCondition>(m, "AerosolCondition")
+      .def(py::init([](std::optional<w::AerosolMixture> mixture, std::vector<w::AerosolAmount> amounts, double rh,
+                       w::HumidityRule rule, w::AerosolScaling scaling) {
+             return w::AerosolCondition{mixture, std::move(amounts), rh, rule, scaling};
+           }),
+           py::arg("mixture"), py::arg("amounts"), py::arg("relative_humidity_percent"), py::arg("humidity_rule"),
+           py::arg("scaling"))
+      .def_readwrite("mixture", &w::AerosolCondition::mixture)
+      .def_readwrite("amounts", &w::AerosolCondition::amounts)
+      .def_readwrite("relative_humidity_percent", &w::AerosolCondition::relative_humidity_percent)
+      .def_readwrite("humidity_rule", &w::AerosolCondition::humidity_rule)
+      .def_readwrite("scaling", &w::AerosolCondition::scaling);
+  m.def(
+      "mixture_amounts", [](w::AerosolMixture mixture) { return w::info(mixture).amounts; }, py::arg("mixture"));
 }
 
 void bind_grammar(py::module_& m) {
@@ -202,6 +239,7 @@ void bind_conditions(py::module_& m) {
   bind_named_enums(m);
   bind_closed_form_conditions(m);
   bind_mie_condition(m);
+  bind_aerosol_condition(m);
   bind_grammar(m);
 }
 
@@ -352,6 +390,23 @@ void bind_optics(py::module_& m) {
         return d;
       },
       py::arg("condition"), py::arg("wavelength_m"), py::arg("rel_tolerance"), py::arg("water_table"));
+  m.def(
+      "aerosol_optics",
+      [](const w::AerosolCondition& c, double wavelength_m, double rel_tolerance, double contrast_threshold) {
+        w::Settings s;
+        s.rel_tolerance = rel_tolerance;
+        s.contrast_threshold = contrast_threshold;
+        std::atomic<bool> cancel{false};
+        s.cancel = &cancel;
+        const w::AerosolOptics o = watched_call(
+            [&] { return w::aerosol_optics(c, wavelength_m, s, w::OpticsRequest{false, -1, {}, false}); }, cancel);
+        py::dict d = optics_fields(o.bulk);
+        d["index_source"] = o.index_source;
+        d["model"] = o.model;
+        d["number_scale"] = o.number_scale;
+        return d;
+      },
+      py::arg("condition"), py::arg("wavelength_m"), py::arg("rel_tolerance"), py::arg("contrast_threshold"));
   m.def(
       "distribution_optics",
       [](const w::SizeDistribution& d, double wavelength_m, std::complex<double> index, double rel_tolerance) {

@@ -11,7 +11,7 @@ import pytest
 from attenuvis import weather as w
 
 KINDS = ["water_tables", "fog_presets", "distribution_presets", "rain_power_laws", "snow_types",
-         "visibility_fog_models", "table_quantities"]
+         "visibility_fog_models", "table_quantities", "aerosol_components", "aerosol_mixtures", "humidity_rules"]
 
 
 def names(kind, aliases=False):
@@ -51,11 +51,17 @@ def test_python_lookups_are_the_registries():
     assert set(w._RAIN_LAWS) == names("rain_power_laws")
     assert set(w._SNOW_TYPES) == names("snow_types")
     assert set(w._TABLE_QUANTITIES) == {e["python_name"] for e in w.registry("table_quantities")}
+    assert set(w._AEROSOL_COMPONENTS) == names("aerosol_components")
+    assert set(w._AEROSOL_MIXTURES) == names("aerosol_mixtures")
+    assert set(w._HUMIDITY_RULES) == names("humidity_rules")
 
 
 @pytest.mark.parametrize("enum,kind", [(w._core.RainLaw, "rain_power_laws"), (w._core.SnowType, "snow_types"),
                                        (w._core.VisibilityFogModel, "visibility_fog_models"),
-                                       (w._core.FogPreset, "fog_presets"), (w._core.WaterTable, "water_tables")])
+                                       (w._core.FogPreset, "fog_presets"), (w._core.WaterTable, "water_tables"),
+                                       (w._core.AerosolComponent, "aerosol_components"),
+                                       (w._core.AerosolMixture, "aerosol_mixtures"),
+                                       (w._core.HumidityRule, "humidity_rules")])
 def test_bound_enums_are_the_registries(enum, kind):
     assert set(enum.__members__) == {n.replace("-", "_") for n in names(kind)}
 
@@ -71,6 +77,9 @@ def test_bound_enums_are_the_registries(enum, kind):
     (w.sigma, "water_table", "water_tables", set()),
     (w.optics, "water_table", "water_tables", set()),
     (w.refractive_index, "table", "water_tables", set()),
+    (w.Haze, "type", "aerosol_mixtures", set()),
+    (w.Haze, "growth", "humidity_rules", set()),
+    (w.Aerosol, "growth", "humidity_rules", set()),
 ])
 def test_documented_choices_are_the_registries(obj, parameter, kind, extra):
     assert documented_choices(obj, parameter) == names(kind, aliases=True) | extra
@@ -93,6 +102,12 @@ def test_every_registry_name_is_accepted_and_reads_back():
         assert w.parse(text).text == text
     for fog in names("fog_presets"):
         assert w.Fog(fog).text == "fog:" + fog
+    for mixture in names("aerosol_mixtures"):
+        assert w.parse(w.Haze(mixture, rh=50).text).type == mixture
+    for rule in names("humidity_rules"):
+        assert w.parse(w.Haze("urban", rh=85, growth=rule).text).growth == rule
+    for component in names("aerosol_components"):
+        assert w.parse(w.Aerosol({component: 3}, rh=0).text).components == {component: 3.0}
     for name in names("distribution_presets"):
         assert w.preset(name.replace(":R", ":2")).moment(0) > 0
     t = w.table(["clear"], [550e-9], [e["python_name"] for e in w.registry("table_quantities")])

@@ -152,7 +152,7 @@ TEST_CASE("reproduce --quick: report files and key numbers", "[validation][slow]
     // next step (space syntax in weather), the sigma values, and what the seed
     // does not have (Mie validation, performance).
     std::size_t last = verdict;
-    for (const char* id : {"scenes", "layouts", "city", "space_syntax", "weather", "mie", "performance"}) {
+    for (const char* id : {"scenes", "layouts", "city", "space_syntax", "weather", "haze", "mie", "performance"}) {
       INFO("section " << id);
       const auto at = html.find(std::string("<section id=\"") + id + "\"");
       REQUIRE(at != std::string::npos);

@@ -33,7 +33,8 @@ std::vector<std::string> registry_names(const std::string& kind) {
 TEST_CASE("the uniform view lists each typed registry", "[weather][registry]") {
   CHECK(registry_kinds() == std::vector<std::string>{"water_tables", "fog_presets", "distribution_presets",
                                                      "rain_power_laws", "snow_types", "visibility_fog_models",
-                                                     "table_quantities"});
+                                                     "table_quantities", "aerosol_components", "aerosol_mixtures",
+                                                     "humidity_rules"});
   CHECK(registry_names("water_tables") == names_of(water_tables()));
   CHECK(registry_names("fog_presets") == names_of(fog_presets()));
   CHECK(registry_names("distribution_presets") == names_of(distribution_presets()));

@@ -215,6 +215,7 @@ void run_sections(Context& ctx, Report& report) {
   detail::SeedConditions seed;
   detail::CityPerformance city_perf;
   detail::CityLines city_lines;
+  detail::CityHaze city_haze;
   struct Step {
     const char* id;
     const char* title;
@@ -228,14 +229,16 @@ void run_sections(Context& ctx, Report& report) {
       {"layouts", "The five layouts: degree, S_S in clear weather and in weather, single-point maps", 1,
        [&](Section& s) { detail::section_layouts(ctx, s, seed); }},
       {"city", "The city: S_S, P1, P2, P3 and the seed's conclusion", 2,
-       [&](Section& s) { detail::section_city(ctx, s, seed, city_perf, city_lines); }},
+       [&](Section& s) { detail::section_city(ctx, s, seed, city_perf, city_lines, city_haze); }},
       {"space_syntax", "Space syntax in weather", 3,
        [&](Section& s) { detail::section_space_syntax(ctx, s, seed, city_lines); }},
       {"optics", "Bulk optics of the fogs: scattering, absorption, g, backscatter, lidar ratio, phase function", 5,
        [&](Section& s) { detail::section_optics(ctx, s); }},
-      {"mie", "Mie validation: published tables and a 50-digit reference", 6,
+      {"haze", "Haze: OPAC aerosols, their growth with humidity, visibility and a city under urban haze", 6,
+       [&](Section& s) { detail::section_haze(ctx, s, city_haze); }},
+      {"mie", "Mie validation: published tables and a 50-digit reference", 7,
        [&](Section& s) { detail::section_mie(ctx, s); }},
-      {"performance", "Visibility-graph performance", 7,
+      {"performance", "Visibility-graph performance", 8,
        [&](Section& s) { detail::section_performance(ctx, s, city_perf); }},
   };
   std::vector<std::pair<int, Section>> computed;

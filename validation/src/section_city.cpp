@@ -15,6 +15,8 @@
 #include "attenuvis/visgraph/scene.hpp"
 #include "attenuvis/visgraph/space_syntax.hpp"
 #include "attenuvis/visgraph/visibility.hpp"
+#include "attenuvis/weather/condition_grammar.hpp"
+#include "attenuvis/weather/sigma.hpp"
 #include "heartbeat.hpp"
 #include "section_scenes.hpp"
 #include "sections.hpp"
@@ -101,13 +103,16 @@ void describe_city(Section& s, const CityScene& c, bool quick) {
 }
 
 // ---- Exact all-to-all -------------------------------------------------------------
+// `extra`: further sigma values summed in the same pass (the haze map), after conds'.
 vg::VisibilityResult exact_all_to_all(Context& ctx, Section& s, const CityScene& c,
-                                      const std::vector<VgCondition>& conds, CityPerformance& perf, CityLines& lines) {
+                                      const std::vector<VgCondition>& conds, const std::vector<double>& extra,
+                                      CityPerformance& perf, CityLines& lines) {
   const std::size_t n = c.eyes.size();
   ctx.step("city", "all-to-all over " + std::to_string(n) + " nodes (" +
                        format_number(0.5 * double(n) * double(n - 1), 3) + " pairs, exact)");
   vg::VisibilityOptions vopt;
   vopt.sigmas = sigmas_of(conds);
+  vopt.sigmas.insert(vopt.sigmas.end(), extra.begin(), extra.end());
   vopt.threads = ctx.threads;
   vopt.progress = ctx.options.progress != nullptr;  // pairs done, rate and time left, once a second
   // The lines of sight are kept for the space-syntax section (bit rows: one
@@ -127,7 +132,7 @@ vg::VisibilityResult exact_all_to_all(Context& ctx, Section& s, const CityScene&
   perf.city_culled_blocked = all.pairs_culled_blocked;
   perf.city_cast = all.pairs_cast;
   s.text("Exact all-to-all: " + std::to_string(all.pairs_total) + " pairs decided in " + sig(all.seconds, 3) + " s (" +
-         sig(all.pairs_total / all.seconds / 1e6, 3) + " M pairs/s, degree + " + std::to_string(conds.size()) +
+         sig(all.pairs_total / all.seconds / 1e6, 3) + " M pairs/s, degree + " + std::to_string(vopt.sigmas.size()) +
          " conditions, " + std::to_string(ctx.threads) +
          " thread(s); " + sig(100.0 * double(all.pairs_cast) / double(all.pairs_total), 3) +
          "% of them by a ray, the rest by exact culling). No pruning: in clear weather (sigma = " +
@@ -333,7 +338,7 @@ void seed_conclusion(Context& ctx, Section& s, const CityScores& r) {
 }
 
 // ---- Data and figures -------------------------------------------------------------
-void write_city_nodes(Context& ctx, Section& s, const CityScene& c, const CityScores& r) {
+void write_city_nodes(Context& ctx, Section& s, const CityScene& c, const CityScores& r, const CityHaze& haze) {
   const std::size_t n = c.eyes.size();
   std::vector<double> x(n), y(n), z(n), deg(n);
   for (std::size_t i = 0; i < n; ++i)
@@ -342,11 +347,13 @@ void write_city_nodes(Context& ctx, Section& s, const CityScene& c, const CitySc
   std::vector<const std::vector<double>*> cols = {&x, &y, &z, &deg};
   for (std::size_t k = 0; k < r.conds.size(); ++k)
     header.push_back("sum:" + r.conds[k].column_label()), cols.push_back(&r.all.sum[k]);
+  header.push_back(haze.column), cols.push_back(&r.all.sum[r.conds.size()]);
   for (int p = 0; p < 3; ++p)
     for (std::size_t k = 0; k < r.conds.size(); ++k)
       header.push_back("c:" + r.points[p].name + ":" + r.conds[k].column_label()), cols.push_back(&r.point_c[p][k]);
   write_data_csv(ctx, "city_nodes.csv", header, cols);
-  s.data("city_nodes.csv", "per-node x, y, z, degree, S_S per condition and C to P1, P2, P3 per condition");
+  s.data("city_nodes.csv", "per-node x, y, z, degree, S_S per condition (" + haze.condition +
+                              " too, for the Haze section) and C to P1, P2, P3 per condition");
 }
 
 void city_figures(Section& s, const CityScene& c, const CityScores& r, int junction, bool quick) {
@@ -456,7 +463,8 @@ void pruning_study(Context& ctx, const CityScene& c, const CityScores& r, CityPe
 
 }  // namespace
 
-void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerformance& perf, CityLines& lines) {
+void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerformance& perf, CityLines& lines,
+                  CityHaze& haze) {
   const bool quick = ctx.options.quick;
   ctx.step("city", "generating the city");
   const CityScene c(quick);
@@ -465,7 +473,17 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
   CityScores r;
   r.conds = city_conditions(seed);
   describe_city(s, c, quick);
-  r.all = exact_all_to_all(ctx, s, c, r.conds, perf, lines);
+  // The Haze section's map: S_S under urban haze, summed in the same pass.
+  ctx.step("city", "sigma of " + haze.condition + " at 550 nm");
+  haze.sigma = weather::sigma(weather::parse_condition(haze.condition), 550e-9, weather::Settings{}).per_m;
+  r.all = exact_all_to_all(ctx, s, c, r.conds, {haze.sigma}, perf, lines);
+  haze.column = "sum:" + haze.condition;
+  haze.clear_column = "sum:" + r.conds[0].column_label();
+  haze.nodes = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    haze.mean_ss_clear += r.all.sum[0][i] / n;
+    haze.mean_ss_haze += r.all.sum[r.conds.size()][i] / n;
+  }
   const int junction = central_junction(c);
   r.points = choose_points(s, c, junction, r.all.sum[0]);
   for (const Point& p : r.points) lines.points.push_back(p.node), lines.point_names.push_back(p.name);
@@ -480,7 +498,7 @@ void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerf
                        sig(r.ss(0, 2), 5) + " (seed " + seed_list(&SeedPoint::ss_clear, "/") +
                        "); seed S_A = S_S/all nodes");
 
-  write_city_nodes(ctx, s, c, r);
+  write_city_nodes(ctx, s, c, r, haze);
   city_figures(s, c, r, junction, quick);
   pruning_study(ctx, c, r, perf);
 }

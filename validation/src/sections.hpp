@@ -1,6 +1,7 @@
 // Private to the reproduction job: the context every section receives and the
 // section entry points (one file each: section_mie.cpp, section_weather.cpp,
-// section_optics.cpp, section_layouts.cpp, section_city.cpp, section_performance.cpp).
+// section_optics.cpp, section_haze.cpp, section_layouts.cpp, section_city.cpp,
+// section_performance.cpp).
 #pragma once
 
 #include <chrono>
@@ -136,6 +137,17 @@ struct CityLines {
   std::vector<std::string> point_names;
 };
 
+// The city's S_S under urban haze: the city section sums it in its own pass
+// (the same scene and nodes) and writes it to city_nodes.csv; the Haze
+// section draws it.
+struct CityHaze {
+  std::string condition = "haze:urban:rh=95";
+  double sigma = 0;            // 1/m at 550 nm
+  std::string column, clear_column;  // city_nodes.csv columns of S_S under haze and in clear weather
+  double mean_ss_clear = 0, mean_ss_haze = 0;
+  std::size_t nodes = 0;
+};
+
 void section_mie(Context& ctx, Section& s);
 // The Mie section's speed tables against an earlier core (ctx.mie_baseline),
 // or the sentence saying how to get them (section_mie_speed.cpp).
@@ -143,8 +155,10 @@ void section_mie_speed(Context& ctx, Section& s);
 void section_weather(Context& ctx, Section& s, SeedConditions& seed);
 void section_optics(Context& ctx, Section& s);  // section_optics.cpp
 void section_layouts(Context& ctx, Section& s, const SeedConditions& seed);
-void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerformance& perf, CityLines& lines);
+void section_city(Context& ctx, Section& s, const SeedConditions& seed, CityPerformance& perf, CityLines& lines,
+                  CityHaze& haze);
 void section_space_syntax(Context& ctx, Section& s, const SeedConditions& seed, CityLines& city);  // section_space_syntax.cpp
+void section_haze(Context& ctx, Section& s, const CityHaze& city);  // section_haze.cpp
 // The performance section's table of the engine against its two floors
 // (performance_floors.cpp).
 void floors_table(Context& ctx, Section& s);

@@ -3,7 +3,9 @@
 
 namespace attenuvis::weather {
 
-bool needs_mie(const Condition& c) { return std::holds_alternative<MieCondition>(c); }
+bool needs_mie(const Condition& c) {
+  return std::holds_alternative<MieCondition>(c) || std::holds_alternative<AerosolCondition>(c);
+}
 
 bool depends_on_convention(const Condition& c) {
   return std::holds_alternative<RainPowerLaw>(c) || std::holds_alternative<Snow>(c);

@@ -75,16 +75,18 @@ class Fields {
       fail(e.what());
     }
   }
-  // A visibility in metres (units.hpp: parse_distance) within domain::visibility.
-  double distance(std::size_t i) const {
+  // A visibility in metres (units.hpp: parse_distance) within domain::visibility;
+  // `from` skips a key ("visibility=") before it.
+  double distance(std::size_t i, std::size_t from = 0) const {
     try {
       if (const auto v = swept(i)) {
         if (!(*v > 0)) throw std::invalid_argument("distance must be positive");
         return require_in_si(domain::visibility, *v * distance_unit_m(swept_->unit));
       }
-      const double m = parse_distance(fields_[i]);
+      const std::string text = fields_[i].substr(from);
+      const double m = parse_distance(text);
       if (!std::isfinite(m))  // 1e308km
-        throw std::invalid_argument("visibility " + quote_text(fields_[i]) + " is outside its valid range " +
+        throw std::invalid_argument("visibility " + quote_text(text) + " is outside its valid range " +
                                     range_text(domain::visibility));
       return require_in_si(domain::visibility, m);
     } catch (const std::invalid_argument& e) {
@@ -112,6 +114,15 @@ class Fields {
     const double x = number(v, "sigma");
     if (x < 0) fail("sigma must be >= 0");
     return checked(domain::sigma, convert_to_per_m(x, unit));
+  }
+  // The number after a key ("rh=") in field i, or its swept value, within `range`.
+  double keyed(std::size_t i, std::size_t key_size, const Domain& range) const {
+    if (const auto v = swept(i)) {
+      if (!swept_->unit.empty())
+        fail("a swept " + fields_[i].substr(0, key_size) + " takes no unit ('" + swept_->unit + "')");
+      return checked(range, *v);
+    }
+    return in(range, fields_[i].substr(key_size));
   }
   // A number read and checked against `range`.
   double in(const Domain& range, const std::string& text) const {
@@ -160,5 +171,15 @@ Condition parse_mgamma_drops(const Fields& f);
 Condition parse_exponential_drops(const Fields& f);
 Condition parse_powerlaw_drops(const Fields& f);
 std::string drops_text(const ParametricDrops& d);
+
+// haze:TYPE:... and aerosol:COMP=N,...:... (aerosol_grammar.cpp).
+Condition parse_haze(const Fields& f);
+Condition parse_aerosol(const Fields& f);
+std::string aerosol_text(const AerosolCondition& c);
+// The fields of an aerosol's amounts list may be joined by commas (aerosol:waso=7000,soot=8300):
+// true where `text` from `at` starts with a component's "NAME=".
+bool starts_with_component(const std::string& text, std::size_t at);
+// The help of the aerosol options (growth=, visibility=, mass=), one "grammar  help" pair per option.
+std::vector<std::pair<std::string, std::string>> aerosol_option_help();
 
 }  // namespace attenuvis::weather::detail

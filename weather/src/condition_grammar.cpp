@@ -77,6 +77,12 @@ const std::vector<MieOption>& mie_options() {
          if (!table) f.fail("water table '" + v + "' is not " + water_table_names());
          c.index = table->id;
        }},
+      {"index=", ":index=FILE",
+       "refractive index from a file: refractiveindex.info YAML (.yml) or three columns um n k (index_file.hpp)",
+       [](MieCondition& c, const std::string& v, const Fields& f) {
+         if (v.empty()) f.fail("index= needs a path");
+         c.index = IndexFile{v};
+       }},
       {"N=", ":N=PER_CM3", "rescale the drops to this many particles per cm^3",
        [](MieCondition& c, const std::string& v, const Fields& f) {
          set_rescaling(c, NumberDensity{f.in(domain::number_density, v)}, f);
@@ -102,7 +108,11 @@ MieCondition detail::with_options(Drops drops, const Fields& f, std::size_t from
   for (std::size_t i = from; i < f.size(); ++i) {
     const MieOption* o = find_option(f[i]);
     if (!o) f.fail("unexpected field '" + f[i] + "'");
-    o->apply(c, f[i].substr(o->key.size()), f);
+    std::string value = f[i].substr(o->key.size());
+    // A path may itself contain ':'; it runs up to the next option field.
+    if (o->key == "index=")
+      while (i + 1 < f.size() && !find_option(f[i + 1])) value += ":" + f[++i];
+    o->apply(c, value, f);
   }
   return c;
 }
@@ -235,6 +245,13 @@ const std::vector<Kind>& kinds() {
       {"fog", "fog:" + alternatives(visibility_fog_models()) + ":DIST", "empirical fog from visibility DIST",
        [](const Fields& f) { return f.size() >= 2 && find_visibility_fog_model(f[1]) != nullptr; },
        parse_empirical_fog},
+      {"haze", "haze:TYPE:rh=RH  [:AEROSOL OPTIONS]",
+       "OPAC aerosol type (Hess et al. 1998, Table 4) at relative humidity RH %; TYPE " +
+           alternatives(aerosol_mixtures()),
+       always, detail::parse_haze},
+      {"aerosol", "aerosol:COMP=N[,COMP=N...]:rh=RH  [:AEROSOL OPTIONS]",
+       "external mixture of OPAC components, N per cm^3; COMP " + alternatives(aerosol_components()), always,
+       detail::parse_aerosol},
   };
   return table;
 }
@@ -243,6 +260,7 @@ std::string generate_grammar() {
   std::size_t width = 0;
   for (const auto& k : kinds()) width = std::max(width, k.grammar.size());
   for (const auto& o : mie_options()) width = std::max(width, o.grammar.size() + 2);
+  for (const auto& o : detail::aerosol_option_help()) width = std::max(width, o.first.size() + 2);
   std::ostringstream out;
   const auto line = [&](const std::string& left, const std::string& right) {
     out << "  " << left << std::string(width + 2 - left.size(), ' ') << right << "\n";
@@ -251,14 +269,19 @@ std::string generate_grammar() {
   for (const auto& k : kinds()) line(k.grammar, k.help);
   out << "  OPTIONS after a Mie condition (fog:..., rain:RATE:mie, drops:...), any order:\n";
   for (const auto& o : mie_options()) line("  " + o.grammar, o.help);
+  out << "  AEROSOL OPTIONS after haze:... or aerosol:..., any order:\n";
+  for (const auto& [grammar, help] : detail::aerosol_option_help()) line("  " + grammar, help);
   out << "  RATE in mm/h; DIST a number with unit " << distance_units() << " (bare number: m), e.g. 500m, 2km\n"
-      << "  in tables a RATE, DIST or VALUE may sweep: A..B or A..B/STEP (rain:1..100, fog:kim:200..1000/200m);\n"
+      << "  in tables a RATE, DIST, VALUE or rh= may sweep: A..B or A..B/STEP (rain:1..100, fog:kim:200..1000/200m,\n"
+      << "  haze:urban:rh=0..99/9);\n"
       << "  a sweep ends at B (rain:1..100/10: 1, 11, ..., 91, 100)\n"
       << "  valid ranges: rain RATE " << range_text(domain::rain_rate) << ", snow RATE "
       << range_text(domain::snow_rate) << ", DIST " << range_text(domain::visibility) << ",\n"
       << "    sigma VALUE " << range_text(domain::sigma) << " (in any unit), N= " << range_text(domain::number_density)
       << ", lwc= " << range_text(domain::water_content) << ",\n"
-      << "    m= n " << range_text(domain::index_real) << " and k " << range_text(domain::index_imag);
+      << "    m= n " << range_text(domain::index_real) << " and k " << range_text(domain::index_imag) << ",\n"
+      << "    rh= " << range_text(domain::relative_humidity) << ", mass= " << range_text(domain::aerosol_mass)
+      << ", an aerosol's N " << range_text(domain::number_density);
   return out.str();
 }
 
@@ -270,7 +293,7 @@ Condition parse_fields(const Fields& f) {
     keyword_known = true;
     if (!k.matches(f)) continue;
     Condition c = k.parse(f);
-    if (!f.swept_field_read()) f.fail("a sweep A..B applies only to a RATE, DIST or VALUE");
+    if (!f.swept_field_read()) f.fail("a sweep A..B applies only to a RATE, DIST, VALUE, rh= or visibility=");
     return c;
   }
   if (keyword_known) {
@@ -283,7 +306,9 @@ Condition parse_fields(const Fields& f) {
 // The one field of `fields` that holds a sweep A..B[/STEP][unit].
 std::optional<std::size_t> find_sweep(const std::vector<std::string>& fields) {
   for (std::size_t i = 0; i < fields.size(); ++i)
-    if (fields[i].find("..") != std::string::npos && fields[i].rfind("file=", 0) != 0) return i;
+    if (fields[i].find("..") != std::string::npos && fields[i].rfind("file=", 0) != 0 &&
+        fields[i].rfind("index=", 0) != 0)
+      return i;
   return std::nullopt;
 }
 
@@ -299,7 +324,9 @@ std::vector<std::string> split_condition_list(const std::string& text) {
   std::string current;
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char next = i + 1 < text.size() ? text[i + 1] : '\0';
-    const bool continues = std::isdigit(static_cast<unsigned char>(next)) || next == '.' || next == '+' || next == '-';
+    // ... and a comma before a component's "NAME=" continues an aerosol's list (aerosol:waso=7000,soot=8300).
+    const bool continues = std::isdigit(static_cast<unsigned char>(next)) || next == '.' || next == '+' ||
+                           next == '-' || detail::starts_with_component(text, i + 1);
     if (text[i] == ',' && !continues) {
       if (!current.empty()) out.push_back(current);
       current.clear();
@@ -321,7 +348,10 @@ std::vector<LabelledCondition> expand_conditions(const std::string& text) {
   const auto fields = split(text, ':');
   const auto at = find_sweep(fields);
   if (!at) return {{text, parse_condition(text)}};
-  const std::string& field = fields[*at];
+  // A keyed field (rh=0..99/10) keeps its key in the labels.
+  const std::size_t eq = fields[*at].find('=');
+  const std::string key = eq != std::string::npos && eq < fields[*at].find("..") ? fields[*at].substr(0, eq + 1) : "";
+  const std::string field = fields[*at].substr(key.size());
   const auto dots = field.find("..");
   std::string lo_text = field.substr(0, dots), rest = field.substr(dots + 2), step_text = "1", unit;
   // Optional unit suffix (m, km) after the upper bound or the step.
@@ -353,7 +383,7 @@ std::vector<LabelledCondition> expand_conditions(const std::string& text) {
     // The label: the text as written with the sweep replaced by its value.
     std::ostringstream v;
     v.precision(12);
-    v << value << unit;
+    v << key << value << unit;
     auto labelled = fields;
     labelled[*at] = v.str();
     std::string label = labelled[0];
@@ -390,10 +420,12 @@ std::string to_text(const Condition& condition) {
       if (const auto* t = std::get_if<WaterTable>(&c.index)) out += ":water=" + to_string(*t);
       if (const auto* m = std::get_if<ConstantIndex>(&c.index))
         out += ":m=" + shortest(m->m.real()) + "+" + shortest(m->m.imag()) + "i";
+      if (const auto* file = std::get_if<IndexFile>(&c.index)) out += ":index=" + file->path;
       if (const auto* n = std::get_if<NumberDensity>(&c.rescaling)) out += ":N=" + shortest(n->per_cm3);
       if (const auto* w = std::get_if<LiquidWaterContent>(&c.rescaling)) out += ":lwc=" + shortest(w->g_per_m3);
       return out;
     }
+    std::string operator()(const AerosolCondition& c) const { return detail::aerosol_text(c); }
   };
   return std::visit(Visitor{}, condition);
 }

@@ -5,6 +5,8 @@
 #include <stdexcept>
 
 #include "attenuvis/io/number_text.hpp"
+#include "attenuvis/weather/aerosol_optics.hpp"
+#include "attenuvis/weather/condition_grammar.hpp"
 #include "attenuvis/weather/sigma.hpp"
 #include "real_axis_settings.hpp"
 
@@ -35,6 +37,21 @@ ConditionOptics condition_optics(const MieCondition& c, double wavelength_m, con
   q.angles_deg = request.angles_deg;
   q.polarised = request.polarised;
   out.bulk = mie_bulk_optics(d, wavelength_m, m, q);
+  return out;
+}
+
+ConditionOptics condition_optics(const Condition& c, double wavelength_m, const Settings& s,
+                                 const OpticsRequest& request) {
+  if (const auto* mie = std::get_if<MieCondition>(&c)) return condition_optics(*mie, wavelength_m, s, request);
+  const auto* aerosol = std::get_if<AerosolCondition>(&c);
+  if (!aerosol)
+    throw std::invalid_argument("'" + to_text(c) + "' has no particles: bulk optics need a Mie condition or an aerosol");
+  const AerosolOptics a = aerosol_optics(*aerosol, wavelength_m, s, request);
+  ConditionOptics out;
+  out.bulk = a.bulk;
+  out.wavelength_m = wavelength_m;
+  out.index_source = a.index_source;
+  out.distribution = a.model;
   return out;
 }
 

@@ -32,7 +32,9 @@ using Complex = std::complex<double>;
 // and a log-normal gains at most exp(arg^2 / (2 ln^2 sigma_g)) <= exp(0.05).
 std::optional<double> path_angle(const SizeDistribution& d) {
   if (const auto* g = std::get_if<ModifiedGamma>(&d.form())) return std::min(0.25, 0.25 / g->gamma);
-  if (const auto* l = std::get_if<LogNormal>(&d.form())) return std::min(0.25, 0.316 * std::log(l->sigma_g));
+  // A log-normal cut off at r_min, r_max is not analytic there: the real axis takes it.
+  if (const auto* l = std::get_if<LogNormal>(&d.form()); l && !l->truncated())
+    return std::min(0.25, 0.316 * std::log(l->sigma_g));
   return std::nullopt;
 }
 

@@ -32,6 +32,7 @@ const std::vector<const Domain*>& all_domains() {
       &domain::rain_rate,      &domain::snow_rate,     &domain::number_density,
       &domain::water_content,  &domain::index_real,    &domain::index_imag,
       &domain::tolerance,      &domain::contrast_threshold, &domain::bulk_density,
+      &domain::relative_humidity, &domain::aerosol_mass,
       &domain::drop_radius,    &domain::density_per_radius, &domain::number_per_volume};
   return list;
 }

@@ -15,6 +15,7 @@
 
 #include "attenuvis/io/number_text.hpp"
 #include "registry_rows.hpp"
+#include "wavelength_interpolation.hpp"
 
 #include <dlfcn.h>  // dladdr: where the running program or module was loaded from
 
@@ -104,20 +105,15 @@ RefractiveIndexTable RefractiveIndexTable::read(const std::string& path, const s
 }
 
 std::complex<double> RefractiveIndexTable::at(double w) const {
+  w = detail::onto_range(w, wavelength_m_.front(), wavelength_m_.back());
   if (!(w >= wavelength_m_.front() && w <= wavelength_m_.back())) {
     std::ostringstream msg;
     msg << "wavelength " << w * 1e9 << " nm is outside the " << name_ << " table (" << wavelength_m_.front() * 1e9
         << " - " << wavelength_m_.back() * 1e9 << " nm)";
     throw std::invalid_argument(msg.str());
   }
-  std::size_t hi = 1;
-  while (hi + 1 < wavelength_m_.size() && wavelength_m_[hi] < w) ++hi;
-  std::size_t lo = hi - 1;
-  double t = std::log(w / wavelength_m_[lo]) / std::log(wavelength_m_[hi] / wavelength_m_[lo]);
-  double n = n_[lo] + t * (n_[hi] - n_[lo]);
-  double k = (k_[lo] > 0 && k_[hi] > 0) ? std::exp(std::log(k_[lo]) + t * std::log(k_[hi] / k_[lo]))
-                                        : k_[lo] + t * (k_[hi] - k_[lo]);
-  return {n, k};
+  return {detail::linear_in_log_wavelength(wavelength_m_, n_, w),
+          detail::power_law_in_log_wavelength(wavelength_m_, k_, w)};
 }
 
 

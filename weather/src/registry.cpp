@@ -3,7 +3,10 @@
 
 #include <stdexcept>
 
+#include "attenuvis/io/number_text.hpp"
+#include "attenuvis/weather/aerosol.hpp"
 #include "attenuvis/weather/empirical_models.hpp"
+#include "attenuvis/weather/opac_data.hpp"
 #include "attenuvis/weather/refractive_index.hpp"
 #include "attenuvis/weather/size_distribution.hpp"
 #include "attenuvis/weather/table_quantity.hpp"
@@ -72,6 +75,43 @@ Entries table_quantity_entries() {
   return out;
 }
 
+Entries aerosol_component_entries() {
+  Entries out;
+  for (const auto& c : aerosol_components()) {
+    RegistryEntry e{c.name, "", c.help, opac_citation(),
+                    {{"opac_number", static_cast<double>(c.opac_number)}, {"hygroscopic", c.hygroscopic}}};
+    // The dry state's numbers, from the data files the computations read (opac_data.hpp).
+    const OpacState& dry = opac_component(c.id).states.front();
+    e.details["mode_radius_um"] = dry.r_mod_m * 1e6;
+    e.details["sigma_g"] = dry.sigma_g;
+    e.details["r_min_um"] = dry.r_min_m * 1e6;
+    e.details["r_max_um"] = dry.r_max_m * 1e6;
+    e.details["density_g_cm3"] = dry.density_kg_m3 * 1e-3;
+    std::vector<std::string> humidities;
+    for (const auto& state : opac_component(c.id).states) humidities.push_back(io::shortest(state.rh_percent));
+    e.details["humidities_percent"] = humidities;
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+Entries aerosol_mixture_entries() {
+  Entries out;
+  for (const auto& m : aerosol_mixtures()) {
+    RegistryEntry e{m.name, "cm^-3 per component", m.help, opac_citation() + ", Table 4", {}};
+    for (const auto& a : m.amounts) e.details[to_string(a.component)] = a.per_cm3;
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+Entries humidity_rule_entries() {
+  Entries out;
+  for (const auto& r : humidity_rules())
+    out.push_back({r.name, "", r.help, r.source, {{"default", r.id == humidity_rules().front().id}}});
+  return out;
+}
+
 struct Kind {
   const char* name;
   Entries (*entries)();
@@ -84,6 +124,9 @@ const Kind kKinds[] = {
     {"snow_types", snow_type_entries},
     {"visibility_fog_models", visibility_fog_model_entries},
     {"table_quantities", table_quantity_entries},
+    {"aerosol_components", aerosol_component_entries},
+    {"aerosol_mixtures", aerosol_mixture_entries},
+    {"humidity_rules", humidity_rule_entries},
 };
 
 }  // namespace

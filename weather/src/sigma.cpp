@@ -10,9 +10,11 @@
 #include <tuple>
 
 #include "attenuvis/io/number_text.hpp"
+#include "attenuvis/weather/aerosol_optics.hpp"
 #include "attenuvis/weather/condition_grammar.hpp"
 #include "attenuvis/weather/contour_extinction.hpp"
 #include "attenuvis/weather/distribution_file.hpp"
+#include "attenuvis/weather/index_file.hpp"
 #include "attenuvis/weather/refractive_index.hpp"
 #include "attenuvis/weather/segmented_contour.hpp"
 #include "attenuvis/weather/visibility.hpp"
@@ -40,7 +42,8 @@ using MieKey = std::tuple<std::size_t, double, std::size_t, std::size_t, double,
 std::optional<MieKey> cache_key(const MieCondition& c, double wavelength_m, const Settings& s) {
   // Files may change between calls; parametric drops are keyed by no preset
   // (their sigma comes from the contour rule in milliseconds).
-  if (std::holds_alternative<DistributionFile>(c.drops) || std::holds_alternative<ParametricDrops>(c.drops))
+  if (std::holds_alternative<DistributionFile>(c.drops) || std::holds_alternative<ParametricDrops>(c.drops) ||
+      std::holds_alternative<IndexFile>(c.index))
     return std::nullopt;
   const double rate = is_rain(c) ? std::get<MarshallPalmerRain>(c.drops).rate_mm_h : 0.0;
   const std::size_t preset = is_rain(c) ? 0 : static_cast<std::size_t>(std::get<FogPreset>(c.drops));
@@ -215,6 +218,14 @@ std::complex<double> condition_refractive_index(const MieCondition& c, double wa
     if (source) *source = "constant m = " + g4(constant->m.real()) + "+" + g4(constant->m.imag()) + "i";
     return constant->m;
   }
+  if (const auto* file = std::get_if<IndexFile>(&c.index)) {
+    const MaterialIndex index = read_index_file(file->path);
+    const auto m = index.at(wavelength_m);
+    if (source)
+      *source = "m = " + io::index_text(m) + " from '" + file->path + "' (" + index.description() +
+                (index.citation().empty() ? "" : "; " + index.citation()) + ")";
+    return m;
+  }
   const auto* named = std::get_if<WaterTable>(&c.index);
   const auto& table = refractive_index_table(named ? to_string(*named) : s.water_table);
   const auto m = table.at(wavelength_m);
@@ -293,6 +304,7 @@ Sigma sigma(const Condition& condition, double wavelength_m, const Settings& s) 
       return out;
     }
     Sigma operator()(const MieCondition& c) const { return cached_mie_sigma(c, wavelength_m, s); }
+    Sigma operator()(const AerosolCondition& c) const { return aerosol_sigma(c, wavelength_m, s); }
   };
   const Sigma out = std::visit(Visitor{wavelength_m, s}, condition);
   // The domains (domains.hpp) keep every model finite; this guards the promise

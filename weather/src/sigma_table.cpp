@@ -3,6 +3,7 @@
 
 #include "attenuvis/weather/detail/sigma_table_formats.hpp"
 
+#include "attenuvis/weather/aerosol_optics.hpp"
 #include "attenuvis/weather/cancel.hpp"
 #include "attenuvis/weather/condition_optics.hpp"
 
@@ -62,7 +63,7 @@ double wavelength_nm(double wavelength_m) { return std::stod(io::significant(wav
 
 std::string missing_value_rule() {
   return "sigma_sca, sigma_abs, ssa, g, backscatter, lidar_ratio, the Legendre moments and the phase function "
-         "exist only for Mie conditions (a size distribution): they are missing "
+         "exist only for Mie conditions and aerosols (particles): they are missing "
          "for power laws, visibility models, clear air and a given sigma, and where the integral used the "
          "large-sphere expansion of Q_ext (rain drops beyond x = 2000), which gives no Q_sca; "
          "the Koschmieder visibility is missing where sigma_ext = 0 (unbounded)";
@@ -172,6 +173,13 @@ SigmaTable sigma_table(const std::vector<LabelledCondition>& conditions, const s
       std::size_t w = i / conditions.size(), c = i % conditions.size();
       try {
         throw_if_cancelled(settings.cancel);  // once per cell: cells without Mie work never look otherwise
+        if (const auto* aerosol = std::get_if<AerosolCondition>(&conditions[c].condition); aerosol && needs_optics) {
+          // sigma and the rest from one set of integrals (aerosol_optics.hpp).
+          const AerosolOptics o = aerosol_optics(*aerosol, wavelengths[w], settings, request);
+          t.cells[i].sigma = aerosol_sigma(o);
+          t.cells[i].optics = o.bulk;
+          return;
+        }
         t.cells[i].sigma = sigma(conditions[c].condition, wavelengths[w], settings);
         if (const auto* mie = std::get_if<MieCondition>(&conditions[c].condition); mie && needs_optics)
           t.cells[i].optics = needs_backscatter || needs_angular

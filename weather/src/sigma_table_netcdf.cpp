@@ -4,7 +4,7 @@
 //   dimensions  wavelength, condition
 //   wavelength(wavelength)       coordinate variable, nm, radiation_wavelength
 //   condition_label(condition)   string auxiliary coordinate (the grammar text)
-//   rate, visibility, given_sigma(condition)
+//   rate, visibility, given_sigma, relative_humidity(condition)
 //                                auxiliary coordinates: the parameter each
 //                                condition is set by (the swept one); only
 //                                the kinds present; _FillValue where a
@@ -80,7 +80,7 @@ void set_global_attributes(io::NetcdfFile& f, const SigmaTable& t, const TablePr
 std::string define_condition_coordinates(io::NetcdfFile& f, const SigmaTable& t, int condition_dim, SigmaUnit unit,
                                          std::vector<std::pair<int, std::vector<double>>>& parameter_values) {
   std::string coordinates = "condition_label";
-  for (ParameterKind kind : {ParameterKind::rate, ParameterKind::visibility, ParameterKind::given_sigma}) {
+  for (ParameterKind kind : parameter_kinds()) {
     std::vector<double> values(t.conditions.size(), kMissing);
     bool present = false;
     for (std::size_t c = 0; c < t.conditions.size(); ++c)

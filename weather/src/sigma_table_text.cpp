@@ -32,7 +32,7 @@ std::vector<Column> numeric_columns(const SigmaTable& t, SigmaUnit unit, bool ph
   out.push_back({"wavelength_nm", "nm", "wavelength in vacuum", "radiation_wavelength", "",
                  [&t](std::size_t w, std::size_t) { return wavelength_nm(t.wavelengths_m[w]); }});
   // The parameters the conditions are set by (the swept ones among them), one column per kind present.
-  for (ParameterKind kind : {ParameterKind::rate, ParameterKind::visibility, ParameterKind::given_sigma}) {
+  for (ParameterKind kind : parameter_kinds()) {
     const bool present = std::any_of(t.conditions.begin(), t.conditions.end(), [&](const LabelledCondition& c) {
       const auto p = condition_parameter(c.condition);
       return p && p->kind == kind;
@@ -41,7 +41,7 @@ std::vector<Column> numeric_columns(const SigmaTable& t, SigmaUnit unit, bool ph
     const ParameterInfo& p = info(kind);
     const bool coefficient = kind == ParameterKind::given_sigma;
     const std::string u = coefficient ? to_string(unit) : p.unit;
-    const std::string name = p.name + "_" + (coefficient ? unit_suffix(unit) : kind == ParameterKind::rate ? "mm_h" : "m");
+    const std::string name = p.name + "_" + (coefficient ? unit_suffix(unit) : p.column_suffix);
     out.push_back({name, u, p.long_name, p.standard_name, "", [&t, kind, coefficient, unit](std::size_t, std::size_t c) {
                      const auto q = condition_parameter(t.conditions[c].condition);
                      if (!q || q->kind != kind) return kMissing;

@@ -44,8 +44,24 @@ double log_moment(const ModifiedGamma& g, double p) {
 }
 
 // Standard normal lower-tail probability and its inverse.
-double normal_cdf(double z) { return 0.5 * boost::math::erfc(-z / std::sqrt(2.0)); }
+double normal_cdf(double z) {
+  if (std::isinf(z)) return z > 0 ? 1.0 : 0.0;  // the open ends of an uncut log-normal
+  return 0.5 * boost::math::erfc(-z / std::sqrt(2.0));
+}
 double normal_quantile(double q) { return -std::sqrt(2.0) * boost::math::erfc_inv(2 * q); }
+
+// The fraction of the p-th moment of a log-normal (cut-offs aside) that lies
+// in [a, b]: ln r is normal with mean ln r_g + p ln^2 sg under the weight
+// r^p n(r).  Upper-tail differences are taken on the complementary function
+// so that a window far out in a tail keeps its relative precision.
+double log_normal_window(const LogNormal& l, double p, double a, double b) {
+  if (!(b > a)) return 0.0;
+  const double s = std::log(l.sigma_g), mu = std::log(l.median_radius_m) + p * s * s;
+  const double za = a > 0 ? (std::log(a) - mu) / s : -INFINITY;
+  const double zb = std::isfinite(b) ? (std::log(b) - mu) / s : INFINITY;
+  if (za > 0) return normal_cdf(-za) - normal_cdf(-zb);
+  return normal_cdf(zb) - normal_cdf(za);
+}
 
 // Exact integral of r^p (n0 + slope (r - r0)) over one straight segment.  The
 // integrand is a polynomial for integer p, so 8-point Gauss-Legendre is exact
@@ -92,6 +108,17 @@ SizeDistribution SizeDistribution::log_normal(double number_per_m3, double media
   return SizeDistribution(LogNormal{number_per_m3, median_radius_m, sigma_g}, name.str());
 }
 
+SizeDistribution SizeDistribution::truncated_log_normal(double number_per_m3, double median_radius_m, double sigma_g,
+                                                        double r_min_m, double r_max_m) {
+  require(number_per_m3 > 0 && median_radius_m > 0 && sigma_g > 1,
+          "log-normal distribution needs N > 0, median radius > 0 and sigma_g > 1");
+  require(r_min_m >= 0 && r_max_m > r_min_m, "log-normal cut-offs need 0 <= r_min < r_max");
+  std::ostringstream name;
+  name << "log-normal N=" << number_per_m3 << " m^-3 r_g=" << median_radius_m << " m sigma_g=" << sigma_g
+       << " cut to [" << r_min_m << ", " << r_max_m << "] m";
+  return SizeDistribution(LogNormal{number_per_m3, median_radius_m, sigma_g, r_min_m, r_max_m}, name.str());
+}
+
 SizeDistribution SizeDistribution::exponential_diameter(double n0, double lambda) {
   require(n0 > 0 && lambda > 0, "exponential distribution needs N0 > 0 and Lambda > 0");
   // N(D) dD with D = 2r: n(r) = 2 N0 exp(-2 Lambda r); N0 m^-3 mm^-1 = 1e3 m^-4; Lambda mm^-1 = 1e3 m^-1.
@@ -133,7 +160,9 @@ double SizeDistribution::density(double r) const {
   return std::visit(
       Overloaded{
           [&](const ModifiedGamma& g) { return detail::modified_gamma_density(g, r); },
-          [&](const LogNormal& l) { return detail::log_normal_density(l, r); },
+          [&](const LogNormal& l) {
+            return (r < l.r_min_m || r > l.r_max_m) ? 0.0 : detail::log_normal_density(l, r);
+          },
           [&](const PowerLaw& p) { return (r < p.r_min_m || r > p.r_max_m) ? 0.0 : p.c * std::pow(r, -p.nu); },
           [&](const Tabulated& t) {
             for (const auto& s : t.segments)
@@ -149,7 +178,8 @@ double SizeDistribution::moment(double p) const {
       Overloaded{[&](const ModifiedGamma& g) { return std::exp(log_moment(g, p)); },
                  [&](const LogNormal& l) {
                    double s = std::log(l.sigma_g);
-                   return l.number_per_m3 * std::pow(l.median_radius_m, p) * std::exp(0.5 * p * p * s * s);
+                   return l.number_per_m3 * std::pow(l.median_radius_m, p) * std::exp(0.5 * p * p * s * s) *
+                          log_normal_window(l, p, l.r_min_m, l.r_max_m);
                  },
                  [&](const PowerLaw& pl) {
                    double q = p - pl.nu + 1;
@@ -182,10 +212,15 @@ Support SizeDistribution::support(double p, double tail_fraction) const {
                                                      boost::math::gamma_q(s, g.b * std::pow(t_hi_r, g.gamma)));
           },
           [&](const LogNormal& l) {
+            // Under the weight r^p n(r), ln r is normal with mean mu and deviation s;
+            // the cut-offs narrow the interval, and what they cut away is no moment at all.
             double s = std::log(l.sigma_g), mu = std::log(l.median_radius_m) + p * s * s;
             double z = -normal_quantile(0.5 * tail_fraction);
-            out.breakpoints_m = {std::exp(mu - z * s), std::exp(mu + z * s)};
-            out.omitted_moment = out.total_moment * 2 * normal_cdf(-z);
+            double lo = std::max(std::exp(mu - z * s), l.r_min_m), hi = std::min(std::exp(mu + z * s), l.r_max_m);
+            if (!(hi > lo)) lo = l.r_min_m, hi = l.r_max_m;  // the cut-offs lie in one tail: keep all of it
+            out.breakpoints_m = {lo, hi};
+            const double whole = out.total_moment / log_normal_window(l, p, l.r_min_m, l.r_max_m);
+            out.omitted_moment = whole * (log_normal_window(l, p, l.r_min_m, lo) + log_normal_window(l, p, hi, l.r_max_m));
           },
           [&](const PowerLaw& pl) { out.breakpoints_m = {pl.r_min_m, pl.r_max_m}; },
           [&](const Tabulated& t) {
@@ -320,7 +355,7 @@ Moments moments(const SizeDistribution& d, double rho) {
                  },
                  [&](const LogNormal& l) {
                    double s = std::log(l.sigma_g);
-                   return l.median_radius_m * std::exp(-s * s);
+                   return std::clamp(l.median_radius_m * std::exp(-s * s), l.r_min_m, l.r_max_m);
                  },
                  [&](const PowerLaw& p) { return p.nu > 0 ? p.r_min_m : p.r_max_m; },
                  [&](const Tabulated& t) {

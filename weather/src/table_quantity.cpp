@@ -197,8 +197,17 @@ std::optional<ConditionParameter> condition_parameter(const Condition& condition
         return ConditionParameter{ParameterKind::rate, rain->rate_mm_h};
       return std::nullopt;
     }
+    std::optional<ConditionParameter> operator()(const AerosolCondition& c) const {
+      return ConditionParameter{ParameterKind::relative_humidity, c.relative_humidity_percent};
+    }
   };
   return std::visit(Visitor{}, condition);
+}
+
+const std::vector<ParameterKind>& parameter_kinds() {
+  static const std::vector<ParameterKind> kinds = {ParameterKind::rate, ParameterKind::visibility,
+                                                   ParameterKind::given_sigma, ParameterKind::relative_humidity};
+  return kinds;
 }
 
 const ParameterInfo& info(ParameterKind k) {
@@ -207,9 +216,12 @@ const ParameterInfo& info(ParameterKind k) {
   static const std::vector<ParameterInfo> table = [] {
     std::vector<ParameterInfo> t = {
         {ParameterKind::rate, "rate", "precipitation rate (liquid water equivalent)", "lwe_precipitation_rate",
-         "mm/h", "mm h-1"},
-        {ParameterKind::visibility, "visibility", "visibility the condition is set by", "visibility_in_air", "m", "m"},
-        {ParameterKind::given_sigma, "given_sigma", "extinction coefficient given by the condition", "", "", ""},
+         "mm/h", "mm h-1", "mm_h"},
+        {ParameterKind::visibility, "visibility", "visibility the condition is set by", "visibility_in_air", "m", "m",
+         "m"},
+        {ParameterKind::given_sigma, "given_sigma", "extinction coefficient given by the condition", "", "", "", ""},
+        {ParameterKind::relative_humidity, "relative_humidity", "relative humidity the aerosol has grown at",
+         "relative_humidity", "%", "percent", "percent"},
     };
     detail::check_enum_order(t, &ParameterInfo::kind);
     return t;

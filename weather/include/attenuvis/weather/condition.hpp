@@ -5,6 +5,7 @@
 //
 //   Condition rain = RainPowerLaw{8.0, RainLaw::seed};
 //   Condition fog  = MieCondition{FogPreset::advection, ConstantIndex{{1.33, 0.0}}, {}};
+//   Condition haze = AerosolCondition{AerosolMixture::urban, info(AerosolMixture::urban).amounts, 80.0};
 //
 // sigma.hpp computes the extinction coefficient of any of them.
 #pragma once
@@ -13,7 +14,9 @@
 #include <optional>
 #include <string>
 #include <variant>
+#include <vector>
 
+#include "attenuvis/weather/aerosol.hpp"
 #include "attenuvis/weather/empirical_models.hpp"
 #include "attenuvis/weather/refractive_index.hpp"
 #include "attenuvis/weather/size_distribution.hpp"
@@ -86,12 +89,16 @@ bool needs_amount(const ParametricDrops& d);
 using Drops = std::variant<MarshallPalmerRain, FogPreset, DistributionFile, ParametricDrops>;
 
 // The refractive index: Settings::water_table, a named table (WaterTable,
-// refractive_index.hpp: water or ice), or a constant.
+// refractive_index.hpp: water or ice), a constant, or a file
+// (index_file.hpp: refractiveindex.info YAML or three columns).
 struct SettingsWaterTable {};
 struct ConstantIndex {
   std::complex<double> m;  // n + i k, k >= 0
 };
-using IndexSource = std::variant<SettingsWaterTable, WaterTable, ConstantIndex>;
+struct IndexFile {
+  std::string path;
+};
+using IndexSource = std::variant<SettingsWaterTable, WaterTable, ConstantIndex, IndexFile>;
 
 // Rescaling of the drops before integrating: as given, to a number density,
 // or to a liquid water content.
@@ -110,7 +117,29 @@ struct MieCondition {
   Rescaling rescaling;
 };
 
-using Condition = std::variant<ClearAir, Visibility, GivenSigma, RainPowerLaw, Snow, FogFromVisibility, MieCondition>;
+// ---- Aerosols (aerosol.hpp) ---------------------------------------------------
+// An external mixture of OPAC components at a relative humidity: an OPAC type
+// (haze:urban) or the user's own (aerosol:waso=7000,soot=8300).  The number
+// densities may be scaled before integrating so that the Koschmieder
+// visibility at 550 nm is a given one, or to a dry mass concentration.
+struct ScaledToVisibility {
+  double visibility_m = 0;  // -ln(Settings::contrast_threshold) / sigma_ext(550 nm)
+};
+struct ScaledToDryMass {
+  double ug_per_m3 = 0;  // sum of N_i rho_i 4/3 pi <r^3>_i of the dry components, within their cut-offs
+};
+using AerosolScaling = std::variant<AsGiven, ScaledToVisibility, ScaledToDryMass>;
+
+struct AerosolCondition {
+  std::optional<AerosolMixture> mixture;  // the OPAC type the amounts are; none: the user's own
+  std::vector<AerosolAmount> amounts;     // each component once
+  double relative_humidity_percent = 0;   // [0, 99]
+  HumidityRule humidity_rule = HumidityRule::kappa;
+  AerosolScaling scaling = AsGiven{};
+};
+
+using Condition = std::variant<ClearAir, Visibility, GivenSigma, RainPowerLaw, Snow, FogFromVisibility, MieCondition,
+                               AerosolCondition>;
 
 // A condition with the text it was written as (CSV columns and labels echo it).
 struct LabelledCondition {
@@ -118,6 +147,8 @@ struct LabelledCondition {
   Condition condition;
 };
 
+// True for Mie conditions and aerosols: the conditions with particles, whose
+// sigma is a Mie integral and which have every bulk quantity.
 bool needs_mie(const Condition& c);
 // True for the power laws, whose sigma depends on Settings::convention.
 bool depends_on_convention(const Condition& c);

@@ -9,10 +9,12 @@
 //   rain:RATE[:seed|carbonneau|p1814] | rain:RATE:mie | snow:wet|dry:RATE
 //   fog:advection | fog:radiation | fog:file=PATH        (Mie, with options)
 //   fog:kruse|kim|naboulsi-advection|naboulsi-radiation:DIST
+//   haze:TYPE:rh=RH | aerosol:COMP=N[,COMP=N...]:rh=RH    (OPAC aerosols, aerosol.hpp)
 //
 // RATE in mm/h, DIST a distance (units.hpp).  In tables (expand_conditions) a
-// RATE, DIST or VALUE may sweep: A..B (step 1) or A..B/STEP, with one unit at
-// the end (rain:1..100, snow:dry:0.5..4/0.5, fog:kim:200..1000/200m).
+// RATE, DIST, VALUE, rh= or visibility= may sweep: A..B (step 1) or A..B/STEP,
+// with one unit at the end (rain:1..100, snow:dry:0.5..4/0.5,
+// fog:kim:200..1000/200m, haze:urban:rh=0..99/9).
 #pragma once
 
 #include <string>
@@ -32,7 +34,8 @@ Condition parse_condition(const std::string& text);
 // A comma-separated list of conditions ("clear,rain:8,fog:advection") cut
 // into its conditions, empty ones dropped.  A comma followed by a digit, '.',
 // '+' or '-' (where no condition can start) stays inside the condition, so
-// that ":m=1.33,0.001" survives in a list.
+// that ":m=1.33,0.001" survives in a list, and so does a comma before an
+// aerosol component's "NAME=" (aerosol:waso=7000,soot=8300).
 std::vector<std::string> split_condition_list(const std::string& text);
 
 // Like parse_condition, but a sweep gives one condition per value, each

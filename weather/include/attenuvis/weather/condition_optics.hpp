@@ -37,4 +37,9 @@ void check_scattering_angles(const std::vector<double>& angles_deg);
 ConditionOptics condition_optics(const MieCondition& c, double wavelength_m, const Settings& s,
                                  const OpticsRequest& request);
 
+// The same for any condition with particles (needs_mie: a Mie condition or an
+// aerosol, aerosol_optics.hpp); throws std::invalid_argument for the others.
+ConditionOptics condition_optics(const Condition& c, double wavelength_m, const Settings& s,
+                                 const OpticsRequest& request);
+
 }  // namespace attenuvis::weather

@@ -37,6 +37,10 @@ inline constexpr Domain index_imag{"refractive index imaginary part k", "", 1, 0
 inline constexpr Domain tolerance{"Mie tolerance", "", 1, 1e-13, 1e-2};
 inline constexpr Domain contrast_threshold{"contrast threshold", "", 1, 1e-6, 0.5};
 inline constexpr Domain bulk_density{"bulk density", "kg/m^3", 1, 1, 2e4};
+// Aerosols (aerosol.hpp): OPAC tabulates up to 99 %, where sea salt has grown
+// fivefold; beyond it kappa-Koehler growth diverges (a_w -> 1).
+inline constexpr Domain relative_humidity{"relative humidity RH", "%", 1, 0, 99};
+inline constexpr Domain aerosol_mass{"aerosol dry mass concentration", "ug/m^3", 1e-9, 1e-6, 1e5};
 // Size-distribution files (distribution_file.hpp), after conversion to SI.
 inline constexpr Domain drop_radius{"radius", "m", 1, 1e-9, 0.1};
 inline constexpr Domain density_per_radius{"dN/dr", "m^-4", 1, 1e-20, 1e30, true};

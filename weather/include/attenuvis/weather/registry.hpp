@@ -10,6 +10,9 @@
 //   snow_types              snow_types()              empirical_models.hpp  (snow:TYPE:RATE)
 //   visibility_fog_models   visibility_fog_models()   empirical_models.hpp  (fog:MODEL:DIST)
 //   table_quantities        table_quantities()        table_quantity.hpp    (table --quantities)
+//   aerosol_components      aerosol_components()      aerosol.hpp           (aerosol:COMP=N; numbers from data/opac)
+//   aerosol_mixtures        aerosol_mixtures()        aerosol.hpp           (haze:TYPE)
+//   humidity_rules          humidity_rules()          aerosol.hpp           (:growth=RULE)
 #pragma once
 
 #include <map>
@@ -26,7 +29,8 @@ struct RegistryEntry {
   std::string citation;  // the published source; "" where there is none
   // What else the kind knows, by key: a table's "aliases" and "file", a
   // power law's "k", "alpha" and whether it is the "default", a quantity's
-  // "python_name" and "long_name".
+  // "python_name" and "long_name", a component's dry "mode_radius_um", a
+  // mixture's number density per component name.
   using Detail = std::variant<bool, double, std::string, std::vector<std::string>>;
   std::map<std::string, Detail> details;
 };

@@ -9,8 +9,9 @@
 // Legendre moments and the phase function on an angle grid come from
 // condition_optics() (the moments and the phase function from its second
 // pass: per drop, O(x^2) for the moments, O(x) per angle), only when asked
-// for, and then the others come from its first pass.  Only Mie conditions
-// have a size distribution:
+// for, and then the others come from its first pass; an aerosol's come from
+// one set of integrals (aerosol_optics.hpp), sigma_ext too.  Only Mie
+// conditions and aerosols have particles:
 // for every other condition (power laws, visibility models, clear air, a
 // given sigma) those quantities are missing — an empty CSV cell, JSON null,
 // the netCDF _FillValue — and so are they where the integral used the

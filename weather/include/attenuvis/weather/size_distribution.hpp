@@ -7,13 +7,16 @@
 // Families (each has exact moments and exact tail moments, which is what lets
 // the extinction integral bound its truncated tails):
 //   modified gamma   n = a r^alpha exp(-b r^gamma)    (Deirmendjian 1969; P.1817-1 uses gamma = 1)
-//   log-normal       n = N / (sqrt(2 pi) ln(sg) r) exp(-(ln r - ln rg)^2 / (2 ln^2 sg))
+//   log-normal       n = N / (sqrt(2 pi) ln(sg) r) exp(-(ln r - ln rg)^2 / (2 ln^2 sg)), optionally
+//                    cut to [r_min, r_max] (OPAC's components, Hess et al. 1998, Sec. 3c: N stays the
+//                    number of the whole log-normal, the integrals run between the cut-offs)
 //   exponential      N(D) = N0 exp(-Lambda D) in diameter: Marshall & Palmer (1948) rain,
 //                    Gunn & Marshall (1958) snow; a modified gamma with alpha = 0, gamma = 1
 //   power law        n = C r^-nu on [r_min, r_max]  (Junge)
 //   tabulated        piecewise linear n(r) from a CSV file (points or bins), zero outside
 #pragma once
 
+#include <limits>
 #include <string>
 #include <utility>
 #include <variant>
@@ -23,7 +26,14 @@ namespace attenuvis::weather {
 
 // n = a t^alpha exp(-b t^gamma) m^-4 with t = r / r0 (r0 keeps b finite for large gamma).
 struct ModifiedGamma { double a, alpha, b, gamma, r0 = 1.0; };
-struct LogNormal { double number_per_m3, median_radius_m, sigma_g; };
+// r_min_m = 0 and r_max_m = inf: no cut-off.  With cut-offs the density is
+// zero outside [r_min_m, r_max_m] and number_per_m3 is still the number of
+// the uncut log-normal.
+struct LogNormal {
+  double number_per_m3, median_radius_m, sigma_g;
+  double r_min_m = 0, r_max_m = std::numeric_limits<double>::infinity();
+  bool truncated() const { return r_min_m > 0 || r_max_m < std::numeric_limits<double>::infinity(); }
+};
 struct PowerLaw { double c, nu, r_min_m, r_max_m; };      // SI: n = c r^-nu
 // One straight piece of a tabulated n(r): n goes linearly from n0 at r0 to n1 at r1.
 struct TabulatedSegment { double r0, r1, n0, n1; };
@@ -47,6 +57,9 @@ class SizeDistribution {
   // A gamma distribution with `number_per_m3` particles, shape alpha and mode radius.
   static SizeDistribution gamma(double number_per_m3, double alpha, double mode_radius_m);
   static SizeDistribution log_normal(double number_per_m3, double median_radius_m, double sigma_g);
+  // The same cut to [r_min_m, r_max_m]; number_per_m3 is that of the uncut log-normal.
+  static SizeDistribution truncated_log_normal(double number_per_m3, double median_radius_m, double sigma_g,
+                                               double r_min_m, double r_max_m);
   // N(D) = N0 exp(-Lambda D), N0 in m^-3 mm^-1, Lambda in mm^-1, D the diameter.
   static SizeDistribution exponential_diameter(double n0_per_m3_per_mm, double lambda_per_mm);
   // Marshall & Palmer (1948), J. Meteor. 5, 165: N0 = 8000 m^-3 mm^-1, Lambda = 4.1 R^-0.21 mm^-1.

@@ -79,9 +79,12 @@ std::string column_suffix(QuantityKind kind, SigmaUnit unit);
 double in_table_unit(QuantityKind kind, double value, SigmaUnit unit);
 
 // The number a condition is set by (and that a sweep varies): the rain or
-// snow rate, a visibility or a given sigma.  Conditions set by nothing
-// (clear, the fog presets, a distribution file) have none.
-enum class ParameterKind { rate, visibility, given_sigma };
+// snow rate, a visibility, a given sigma or an aerosol's relative humidity.
+// Conditions set by nothing (clear, the fog presets, a distribution file)
+// have none.
+enum class ParameterKind { rate, visibility, given_sigma, relative_humidity };
+// Every kind, in the order of the enum (the tables' columns follow it).
+const std::vector<ParameterKind>& parameter_kinds();
 struct ConditionParameter {
   ParameterKind kind;
   double value;  // mm/h, m, or 1/m
@@ -95,6 +98,7 @@ struct ParameterInfo {
   std::string standard_name;  // CF standard name or ""
   std::string unit;           // "mm/h", "m"; empty for given_sigma (it follows the table's unit)
   std::string udunits;        // "mm h-1", "m"; empty for given_sigma
+  std::string column_suffix;  // of the CSV column: "mm_h", "m", "percent"; empty for given_sigma
 };
 const ParameterInfo& info(ParameterKind k);
 
