@@ -1,0 +1,78 @@
+// Argument checks and the automatic choice of working precision of the
+// layered-sphere entry points, shared by layered_sphere()/layered_scatter()
+// (layered_double.cpp) and the batch layered_spheres() (layered_spheres.cpp).
+// Private to the mie library.
+#pragma once
+
+#include <complex>
+#include <cstddef>
+#include <sstream>
+#include <string>
+
+#include "attenuvis/mie.hpp"
+#include "sphere_checks.hpp"
+
+namespace attenuvis::mie::detail {
+
+// The domain of attenuvis/mie/layered.hpp.
+constexpr std::size_t kMaxLayers = 1000;
+constexpr double kMaxLayeredX = 2e5;
+// |m x| bound of every layer: the Lentz start of yₙ(m x) runs ~|m x| steps,
+// and k/z stays exact for k < 2^26 (ScaledInverse, log_derivative.hpp).
+constexpr double kMaxLayeredMx = 1e7;
+
+// "" for a valid layered sphere, else the message (naming the layer).
+// x: `layers` size parameters; m: the indices of layers first_index ..
+// layers − 1 (first_index = 1 on a perfectly conducting core, whose index is
+// not given), m[l − first_index] for layer l.
+inline std::string layered_error(const double* x, const std::complex<double>* m, std::size_t layers,
+                                 std::size_t first_index) {
+  std::ostringstream os;
+  os.precision(17);
+  if (layers < 1 || layers > kMaxLayers) {
+    os << "mie: a layered sphere needs 1 to " << kMaxLayers << " layers, got " << layers;
+    return os.str();
+  }
+  for (std::size_t l = 0; l < layers; ++l) {
+    const std::string e = size_parameter_error(x[l]);
+    if (!e.empty()) return "mie: layer " + std::to_string(l) + ": " + e.substr(5);
+    if (l > 0 && !(x[l] >= x[l - 1])) {
+      os << "mie: layer " << l << ": size parameters must not decrease from the core out, got x = " << x[l]
+         << " after " << x[l - 1];
+      return os.str();
+    }
+    if (l >= first_index) {
+      const std::complex<double> ml = m[l - first_index];
+      const std::string em = refractive_index_error(ml);
+      if (!em.empty()) return "mie: layer " + std::to_string(l) + ": " + em.substr(5);
+      if (std::abs(ml) * x[l] > kMaxLayeredMx) {
+        os << "mie: layer " << l << ": |m| x = " << std::abs(ml) * x[l] << " exceeds " << kMaxLayeredMx
+           << " (the recurrences would need that many steps)";
+        return os.str();
+      }
+    }
+  }
+  if (x[layers - 1] > kMaxLayeredX) {
+    os << "mie: layered sphere: outer size parameter x = " << x[layers - 1] << " exceeds " << kMaxLayeredX;
+    return os.str();
+  }
+  return {};
+}
+
+// Where the recurrences need extended precision (Options::precision unset):
+// measured against the 50-digit referee (tests/mie/test_layered_referee.cpp).
+//  * above kDoubleUpTo (as for the homogeneous sphere): rounding of the
+//    recurrences accumulates over ~x orders and Qback's alternating sum
+//    amplifies it (trap back-cancellation).
+constexpr double kLayeredDoubleUpTo = 1e4;
+
+inline bool layered_use_extended(const double* x, const std::complex<double>* m, std::size_t layers,
+                                 std::size_t first_index, const Options& options) {
+  (void)m, (void)first_index;
+  if (options.precision) return *options.precision == Precision::extended;
+  const double outer = x[layers - 1];
+  if (outer <= options.extended_above) return false;
+  return outer > kLayeredDoubleUpTo;
+}
+
+}  // namespace attenuvis::mie::detail

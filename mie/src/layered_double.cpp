@@ -1,0 +1,80 @@
+// The double-precision entry points of the layered sphere (see
+// attenuvis/mie/layered.hpp).  The series is the template of
+// layered_series.hpp, instantiated here for double and, where the precision
+// rule of layered_checks.hpp asks for it, for long double.
+#include "attenuvis/mie/layered.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "layered_checks.hpp"
+#include "layered_series.hpp"
+
+namespace attenuvis::mie {
+namespace {
+
+template <class Real>
+detail::LayeredProblem<Real> problem(const std::vector<double>& x, const std::vector<std::complex<double>>& m,
+                                     bool conducting_core) {
+  detail::LayeredProblem<Real> p;
+  p.conducting_core = conducting_core;
+  for (double v : x) p.x.push_back(Real(v));
+  if (conducting_core) p.m.emplace_back(Real(1));  // the core's index is not used
+  for (const auto& v : m) p.m.emplace_back(Real(v.real()), Real(v.imag()));
+  return p;
+}
+
+Scattering<double> to_double(const Scattering<long double>& s) {
+  Scattering<double> out;
+  const Efficiencies<long double>& q = s.q;
+  out.q = {double(q.qext), double(q.qsca), double(q.qabs), double(q.qback), double(q.qpr), double(q.g), q.terms};
+  for (const auto& v : s.a) out.a.emplace_back(double(v.real()), double(v.imag()));
+  for (const auto& v : s.b) out.b.emplace_back(double(v.real()), double(v.imag()));
+  out.angles_deg = s.angles_deg;
+  for (const auto& v : s.s1) out.s1.emplace_back(double(v.real()), double(v.imag()));
+  for (const auto& v : s.s2) out.s2.emplace_back(double(v.real()), double(v.imag()));
+  return out;
+}
+
+Scattering<double> evaluate(const std::vector<double>& x, const std::vector<std::complex<double>>& m,
+                            bool conducting_core, const Extras& extras, const Options& options) {
+  const std::size_t first = conducting_core ? 1 : 0;
+  if (m.size() + first != x.size())
+    throw std::invalid_argument("mie: a layered sphere needs one index per " +
+                                std::string(conducting_core ? "shell (x.size() - 1)" : "size parameter") + ", got " +
+                                std::to_string(x.size()) + " size parameters and " + std::to_string(m.size()) +
+                                " indices");
+  const std::string e = detail::layered_error(x.data(), m.data(), x.size(), first);
+  if (!e.empty()) throw std::invalid_argument(e);
+  // One layer: the homogeneous sphere itself (the same bits).
+  if (x.size() == 1)
+    return conducting_core ? scatter(x[0], PerfectConductor{}, extras, options) : scatter(x[0], m[0], extras, options);
+  if (detail::layered_use_extended(x.data(), m.data(), x.size(), first, options))
+    return to_double(detail::layered_series<long double>(problem<long double>(x, m, conducting_core), extras, options));
+  return detail::layered_series<double>(problem<double>(x, m, conducting_core), extras, options);
+}
+
+}  // namespace
+
+Efficiencies<double> layered_sphere(const std::vector<double>& x, const std::vector<std::complex<double>>& m,
+                                    const Options& options) {
+  return evaluate(x, m, false, Extras{}, options).q;
+}
+
+Scattering<double> layered_scatter(const std::vector<double>& x, const std::vector<std::complex<double>>& m,
+                                   const Extras& extras, const Options& options) {
+  return evaluate(x, m, false, extras, options);
+}
+
+Efficiencies<double> layered_sphere(PerfectConductor, const std::vector<double>& x,
+                                    const std::vector<std::complex<double>>& m, const Options& options) {
+  return evaluate(x, m, true, Extras{}, options).q;
+}
+
+Scattering<double> layered_scatter(PerfectConductor, const std::vector<double>& x,
+                                   const std::vector<std::complex<double>>& m, const Extras& extras,
+                                   const Options& options) {
+  return evaluate(x, m, true, extras, options);
+}
+
+}  // namespace attenuvis::mie
