@@ -21,12 +21,30 @@ constexpr double kMaxLayeredX = 2e5;
 // and k/z stays exact for k < 2^26 (ScaledInverse, log_derivative.hpp).
 constexpr double kMaxLayeredMx = 1e7;
 
+// Whether a layered sphere is in the domain, by comparisons only (the common
+// case: no message built, no hypot).  Conservative near |m| = 0.5 like
+// index_in_domain(); layered_error() decides exactly.  NaN fails every test.
+inline bool layered_in_domain(const double* x, const std::complex<double>* m, std::size_t layers,
+                              std::size_t first_index) {
+  if (layers < 1 || layers > kMaxLayers || !(x[layers - 1] <= kMaxLayeredX)) return false;
+  for (std::size_t l = 0; l < layers; ++l) {
+    if (!(x[l] >= kMinX && x[l] <= kMaxX) || (l > 0 && !(x[l] >= x[l - 1]))) return false;
+    if (l < first_index) continue;
+    const std::complex<double> ml = m[l - first_index];
+    if (!index_in_domain(ml)) return false;
+    const double mx2 = (ml.real() * ml.real() + ml.imag() * ml.imag()) * x[l] * x[l];
+    if (!(mx2 <= 0.999999 * kMaxLayeredMx * kMaxLayeredMx)) return false;
+  }
+  return true;
+}
+
 // "" for a valid layered sphere, else the message (naming the layer).
 // x: `layers` size parameters; m: the indices of layers first_index ..
 // layers − 1 (first_index = 1 on a perfectly conducting core, whose index is
 // not given), m[l − first_index] for layer l.
 inline std::string layered_error(const double* x, const std::complex<double>* m, std::size_t layers,
                                  std::size_t first_index) {
+  if (layered_in_domain(x, m, layers, first_index)) return {};
   std::ostringstream os;
   os.precision(17);
   if (layers < 1 || layers > kMaxLayers) {

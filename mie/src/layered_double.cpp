@@ -13,17 +13,6 @@
 namespace attenuvis::mie {
 namespace {
 
-template <class Real>
-detail::LayeredProblem<Real> problem(const std::vector<double>& x, const std::vector<std::complex<double>>& m,
-                                     bool conducting_core) {
-  detail::LayeredProblem<Real> p;
-  p.conducting_core = conducting_core;
-  for (double v : x) p.x.push_back(Real(v));
-  if (conducting_core) p.m.emplace_back(Real(1));  // the core's index is not used
-  for (const auto& v : m) p.m.emplace_back(Real(v.real()), Real(v.imag()));
-  return p;
-}
-
 Scattering<double> to_double(const Scattering<long double>& s) {
   Scattering<double> out;
   const Efficiencies<long double>& q = s.q;
@@ -49,9 +38,14 @@ Scattering<double> evaluate(const std::vector<double>& x, const std::vector<std:
   // One layer: the homogeneous sphere itself (the same bits).
   if (x.size() == 1)
     return conducting_core ? scatter(x[0], PerfectConductor{}, extras, options) : scatter(x[0], m[0], extras, options);
-  if (detail::layered_use_extended(x.data(), m.data(), x.size(), first, options))
-    return to_double(detail::layered_series<long double>(problem<long double>(x, m, conducting_core), extras, options));
-  return detail::layered_series<double>(problem<double>(x, m, conducting_core), extras, options);
+  if (detail::layered_use_extended(x.data(), m.data(), x.size(), first, options)) {
+    const std::vector<long double> xl(x.begin(), x.end());
+    std::vector<std::complex<long double>> ml;
+    for (const auto& v : m) ml.emplace_back(v.real(), v.imag());
+    return to_double(detail::layered_series<long double>({xl.data(), ml.data(), x.size(), conducting_core}, extras,
+                                                         options));
+  }
+  return detail::layered_series<double>({x.data(), m.data(), x.size(), conducting_core}, extras, options);
 }
 
 }  // namespace

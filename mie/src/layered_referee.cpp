@@ -11,26 +11,29 @@
 namespace attenuvis::mie {
 namespace {
 
-detail::LayeredProblem<Referee> problem(const std::vector<double>& x, const std::vector<std::complex<double>>& m,
-                                        bool conducting_core) {
-  const std::size_t first = conducting_core ? 1 : 0;
-  if (m.size() + first != x.size() || (conducting_core && x.size() < 2))
-    throw std::invalid_argument("mie layered referee: one index per layer (per shell on a conductor) needed");
-  const std::string e = detail::layered_error(x.data(), m.data(), x.size(), first);
-  if (!e.empty()) throw std::invalid_argument(e);
-  detail::LayeredProblem<Referee> p;
-  p.conducting_core = conducting_core;
-  for (double v : x) p.x.emplace_back(v);
-  if (conducting_core) p.m.emplace_back(Referee(1));
-  for (const auto& v : m) p.m.emplace_back(Referee(v.real()), Referee(v.imag()));
-  return p;
-}
+// The problem converted exactly to 50 digits (the storage of the view).
+struct RefereeLayers {
+  std::vector<Referee> x;
+  std::vector<Complex<Referee>> m;
+  bool conducting_core;
+  RefereeLayers(const std::vector<double>& xd, const std::vector<std::complex<double>>& md, bool conductor)
+      : conducting_core(conductor) {
+    const std::size_t first = conductor ? 1 : 0;
+    if (md.size() + first != xd.size() || (conductor && xd.size() < 2))
+      throw std::invalid_argument("mie layered referee: one index per layer (per shell on a conductor) needed");
+    const std::string e = detail::layered_error(xd.data(), md.data(), xd.size(), first);
+    if (!e.empty()) throw std::invalid_argument(e);
+    for (double v : xd) x.emplace_back(v);
+    for (const auto& v : md) m.emplace_back(Referee(v.real()), Referee(v.imag()));
+  }
+  detail::LayeredProblem<Referee> view() const { return {x.data(), m.data(), x.size(), conducting_core}; }
+};
 
 }  // namespace
 
 Scattering<Referee> layered_scatter_referee(const std::vector<double>& x, const std::vector<std::complex<double>>& m,
                                             const Extras& extras, const Options& options) {
-  return detail::layered_series<Referee>(problem(x, m, false), extras, options);
+  return detail::layered_series<Referee>(RefereeLayers(x, m, false).view(), extras, options);
 }
 
 Efficiencies<Referee> layered_sphere_referee(const std::vector<double>& x, const std::vector<std::complex<double>>& m,
@@ -40,7 +43,7 @@ Efficiencies<Referee> layered_sphere_referee(const std::vector<double>& x, const
 
 Efficiencies<Referee> layered_sphere_referee(PerfectConductor, const std::vector<double>& x,
                                              const std::vector<std::complex<double>>& m, const Options& options) {
-  return detail::layered_series<Referee>(problem(x, m, true), Extras{}, options).q;
+  return detail::layered_series<Referee>(RefereeLayers(x, m, true).view(), Extras{}, options).q;
 }
 
 }  // namespace attenuvis::mie

@@ -119,11 +119,17 @@ struct WideOf<double> {
   using type = long double;
 };
 
+// Where |Re(m) t| is at most this, the phase a = Re(m) t and its sines are
+// formed in double even for Real = double: the rounding of a, <= |a| ε/2 =
+// 1.1e-13, is below what the recurrences leave, and the long double
+// transcendentals were a fifth of a two-layer call at x = 1.
+constexpr double kNarrowPhase = 1024;
+
 // e^{2iw} − 1 for w = m t (Im w >= 0), accurate for small w (trap
-// small-z-exp): Re = expm1(−2b) cos 2a − 2 sin² a, Im = e^{−2b} sin 2a.
-template <class Real>
-Complex<Real> twice_exp_minus_1(const typename WideOf<Real>::type& t, const Complex<Real>& m) {
-  using W = typename WideOf<Real>::type;
+// small-z-exp): Re = expm1(−2b) cos 2a − 2 sin² a, Im = e^{−2b} sin 2a,
+// formed in W.
+template <class Real, class W>
+Complex<Real> twice_exp_minus_1_in(const W& t, const Complex<Real>& m) {
   using std::cos;
   using std::exp;
   using std::expm1;
@@ -134,6 +140,15 @@ Complex<Real> twice_exp_minus_1(const typename WideOf<Real>::type& t, const Comp
   const W re = expm1(W(-2) * b) * c2 - W(2) * sa * sa;
   const W im = exp(W(-2) * b) * s2;
   return Complex<Real>(static_cast<Real>(re), static_cast<Real>(im));
+}
+
+template <class Real>
+Complex<Real> twice_exp_minus_1(const typename WideOf<Real>::type& t, const Complex<Real>& m) {
+  if constexpr (std::is_same_v<Real, double>) {
+    const double td = static_cast<double>(t);
+    if (std::abs(m.real() * td) <= kNarrowPhase) return twice_exp_minus_1_in<Real, double>(td, m);
+  }
+  return twice_exp_minus_1_in<Real, typename WideOf<Real>::type>(t, m);
 }
 
 // The start of a shell's upward recurrences at z = m x in the basis (ψ, B)
@@ -164,18 +179,18 @@ BasisStart<Real> hankel_start(const Real& x, const Complex<Real>& m, const Compl
 
 // B = χ (nearly real shells, trap spurious-absorption): ρ₀ = χ₋₁/χ₀ = −tan z,
 // and ψ₁/χ₀ = tan z · y₀ where |sin z| >= |cos z|, else y₀/(1/z − y₀) (as
-// riccati_psi1, trap sin-zero).  tan z is formed in WideOf precision from
-// Re z, Im z (phase accuracy); Im z <= kChiBasisMaxImZ keeps cosh, sinh small.
-template <class Real>
-BasisStart<Real> neumann_start(const Real& x, const Complex<Real>& m, const Complex<Real>& y0,
-                               const Complex<Real>& inv_z) {
+// riccati_psi1, trap sin-zero).  tan z is formed from Re z, Im z in WideOf
+// precision beyond kNarrowPhase (phase accuracy); Im z <= kChiBasisMaxImZ
+// keeps cosh, sinh small.
+template <class Real, class W>
+BasisStart<Real> neumann_start_in(const W& x, const Complex<Real>& m, const Complex<Real>& y0,
+                                  const Complex<Real>& inv_z) {
   using C = Complex<Real>;
-  using W = typename WideOf<Real>::type;
   using std::cos;
   using std::cosh;
   using std::sin;
   using std::sinh;
-  const W a = W(m.real()) * W(x), b = W(m.imag()) * W(x);
+  const W a = W(m.real()) * x, b = W(m.imag()) * x;
   const W sa = sin(a), ca = cos(a), chb = cosh(b), shb = sinh(b);
   const W sr = sa * chb, si = ca * shb;   // sin z
   const W cr = ca * chb, ci = -sa * shb;  // cos z
@@ -185,41 +200,61 @@ BasisStart<Real> neumann_start(const Real& x, const Complex<Real>& m, const Comp
   return {-tan_z, cmul(y0, recip(C(inv_z - y0)))};
 }
 
+template <class Real>
+BasisStart<Real> neumann_start(const Real& x, const Complex<Real>& m, const Complex<Real>& y0,
+                               const Complex<Real>& inv_z) {
+  if constexpr (std::is_same_v<Real, double>) {
+    if (std::abs(m.real() * x) <= kNarrowPhase) return neumann_start_in<Real, double>(x, m, y0, inv_z);
+  }
+  return neumann_start_in<Real, typename WideOf<Real>::type>(typename WideOf<Real>::type(x), m, y0, inv_z);
+}
+
 // Shells whose Im(m_l) x_l is at most this use the basis (ψ, χ), the others
 // (ψ, ξ).  In (ψ, χ) every quantity of a non-absorbing shell is real, so no
 // rounding error becomes an imaginary part (absorption); it loses digits
 // like e^{2 Im z} where the field must decay outward (≤ e² here).
 constexpr double kChiBasisMaxImZ = 1.0;
 
-// yₙ(z), n = 0 .. N, for several complex arguments in one downward loop
-// (independent chains: their division latencies overlap).  miller[j] > 0:
-// the recurrence from 0 at N + miller[j] (miller_depth), else from Lentz's
-// continued fraction at N + 1.
-template <class Real>
-void downward_complex(const std::vector<ScaledInverseComplex<Real, Complex<Real>>>& over, const std::size_t* miller,
-                      std::size_t N, StoredComplex<Real>* const* tables) {
+// yₙ(z), n = 0 .. N, for K complex arguments at once, their state in
+// registers: the K chains are independent, so their division latencies
+// overlap.  miller[j] > 0: the recurrence from 0 at N + miller[j]
+// (miller_depth), else from Lentz's continued fraction at N + 1.  Each chain
+// performs the same operations whatever K and its neighbours are.
+template <class Real, int K>
+void downward_group(const ScaledInverseComplex<Real, Complex<Real>>* over, const std::size_t* miller, std::size_t N,
+                    StoredComplex<Real>* const* tables) {
   using C = Complex<Real>;
-  const std::size_t count = over.size();
-  thread_local std::vector<C> y;
-  y.assign(count, C(Real(0)));
-  const auto step = [&](std::size_t j, std::size_t n) {  // yₙ₋₁ from yₙ
+  C y[K];
+  const auto step = [&](int j, std::size_t n) {  // yₙ₋₁ from yₙ
     C den = over[j](index_real<Real>(2 * n + 1)) - y[j];
     avoid_zero<C, Real>(den);
     y[j] = recip(den);
   };
-  for (std::size_t j = 0; j < count; ++j) {
-    if (miller[j] > 0) {
-      for (std::size_t n = N + miller[j]; n > N; --n) step(j, n);
-    } else {
-      y[j] = recip(riccati_psi_ratio<C, Real>(N + 1, over[j]));
-    }
-  }
+  std::size_t top = N;
+  for (int j = 0; j < K; ++j) y[j] = C(Real(0)), top = std::max(top, N + miller[j]);
+  for (std::size_t n = top; n > N; --n)
+    for (int j = 0; j < K; ++j)
+      if (n <= N + miller[j]) step(j, n);
+  for (int j = 0; j < K; ++j)
+    if (miller[j] == 0) y[j] = recip(riccati_psi_ratio<C, Real>(N + 1, over[j]));
   for (std::size_t n = N;; --n) {
-    for (std::size_t j = 0; j < count; ++j) {
-      store(tables[j][n], y[j]);
-      if (n > 0) step(j, n);
-    }
+    for (int j = 0; j < K; ++j) store(tables[j][n], y[j]);
     if (n == 0) break;
+    for (int j = 0; j < K; ++j) step(j, n);
+  }
+}
+
+// All arguments, in groups of up to four.
+template <class Real>
+void downward_complex(const std::vector<ScaledInverseComplex<Real, Complex<Real>>>& over, const std::size_t* miller,
+                      std::size_t N, StoredComplex<Real>* const* tables) {
+  for (std::size_t j = 0; j < over.size(); j += 4) {
+    switch (std::min<std::size_t>(4, over.size() - j)) {
+      case 1: downward_group<Real, 1>(&over[j], miller + j, N, tables + j); break;
+      case 2: downward_group<Real, 2>(&over[j], miller + j, N, tables + j); break;
+      case 3: downward_group<Real, 3>(&over[j], miller + j, N, tables + j); break;
+      default: downward_group<Real, 4>(&over[j], miller + j, N, tables + j); break;
+    }
   }
 }
 
@@ -236,75 +271,99 @@ struct ShellRecurrence {
   C rho_in, rho_out;  // ρₙ₋₁ = B_{n−2}/B_{n−1} at z1, z2
   C q;                // Qₙ₋₁ (before order 1: see shell_recurrence)
 
-  // Order n >= 1 into entry i of the block.
-  void next(std::size_t n, std::size_t i, ShellInputs<Real>& s) {
-    const C den_in = over_in(index_real<Real>(2 * n - 1)) - rho_in;
-    const C den_out = over_out(index_real<Real>(2 * n - 1)) - rho_out;  // 1/ρₙ(z2)
-    rho_in = recip(den_in);
-    rho_out = recip(den_out);
-    C f = cmul(rho_in, den_out);
-    if (n > 1) {
-      const C yi(y_in[n - 1].real(), y_in[n - 1].imag()), yo(y_out[n - 1].real(), y_out[n - 1].imag());
-      f = cmul(f, cmul(yi, recip(yo)));
+  // Orders first .. first + count − 1 into the block's entries 0 .. count − 1.
+  // The state in locals: through `this`, every double stored into `s`
+  // (which might alias it) forced a reload within the chain.
+  void block(std::size_t first, std::size_t count, ShellInputs<Real>& s) {
+    const ScaledInverseComplex<Real, C> oi = over_in, oo = over_out;
+    const StoredComplex<Real>* const yin = y_in;
+    const StoredComplex<Real>* const yout = y_out;
+    C ri = rho_in, ro = rho_out, qn = q;
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t n = first + i;
+      const C den_in = oi(index_real<Real>(2 * n - 1)) - ri;
+      const C den_out = oo(index_real<Real>(2 * n - 1)) - ro;  // 1/ρₙ(z2)
+      ri = recip(den_in);
+      ro = recip(den_out);
+      C f = cmul(ri, den_out);
+      if (n > 1) {
+        const C yi(yin[n - 1].real(), yin[n - 1].imag()), yo(yout[n - 1].real(), yout[n - 1].imag());
+        f = cmul(f, cmul(yi, recip(yo)));
+      }
+      qn = cmul(qn, f);
+      const C y3i = oi(index_real<Real>(2 * n + 1)) - ri;
+      const C y3o = oo(index_real<Real>(2 * n + 1)) - ro;
+      s.y1i_re[i] = yin[n].real(), s.y1i_im[i] = yin[n].imag();
+      s.y3i_re[i] = y3i.real(), s.y3i_im[i] = y3i.imag();
+      s.y1o_re[i] = yout[n].real(), s.y1o_im[i] = yout[n].imag();
+      s.y3o_re[i] = y3o.real(), s.y3o_im[i] = y3o.imag();
+      s.q_re[i] = qn.real(), s.q_im[i] = qn.imag();
     }
-    q = cmul(q, f);
-    const C y3i = over_in(index_real<Real>(2 * n + 1)) - rho_in;
-    const C y3o = over_out(index_real<Real>(2 * n + 1)) - rho_out;
-    s.y1i_re[i] = y_in[n].real(), s.y1i_im[i] = y_in[n].imag();
-    s.y3i_re[i] = y3i.real(), s.y3i_im[i] = y3i.imag();
-    s.y1o_re[i] = y_out[n].real(), s.y1o_im[i] = y_out[n].imag();
-    s.y3o_re[i] = y3o.real(), s.y3o_im[i] = y3o.imag();
-    s.q_re[i] = q.real(), s.q_im[i] = q.imag();
+    rho_in = ri, rho_out = ro, q = qn;
   }
 };
 
-// A layered sphere in the working type: x[l], m[l] for l < layers (m[0]
-// unused with a conducting core, which needs layers >= 2).
+// A layered sphere in the working type, as a view of the caller's arrays:
+// x[l] for l < layers, and the index of layer l at m[l − 1] on a perfectly
+// conducting core (which needs layers >= 2 here), at m[l] otherwise.
 template <class Real>
 struct LayeredProblem {
-  std::vector<Real> x;
-  std::vector<Complex<Real>> m;
-  bool conducting_core = false;
-  std::size_t layers() const { return x.size(); }
+  const Real* x;
+  const Complex<Real>* m;
+  std::size_t layers;
+  bool conducting_core;
+  const Complex<Real>& index(std::size_t l) const { return m[conducting_core ? l - 1 : l]; }
+  const Real& outer_x() const { return x[layers - 1]; }
 };
 
-// The per-thread tables of one call: yₙ for every complex argument, yₙ(x)
-// and ρₙ(x) at the surface.
+// The per-thread scratch of one call, reused from call to call (a size
+// distribution makes thousands of calls; allocating these each time was a
+// tenth of a call at x = 1): the downward tables (yₙ for every complex
+// argument, yₙ(x) and ρₙ(x) at the surface) and the per-shell state.
 template <class Real>
-struct LayeredTables {
-  // [0]: the core (absent on a conductor); then z1, z2 per shell.  Held by
-  // pointer: the buffers do not move.
+struct LayeredWorkspace {
+  // yₙ of every argument: [0] the real x (as m = 1), [1] the core (absent on
+  // a conductor), then z1, z2 per shell.  Held by pointer: the buffers do
+  // not move.
   std::vector<std::unique_ptr<Scratch<StoredComplex<Real>>>> y;
-  DownwardTables<Real> surface;
+  std::vector<StoredComplex<Real>*> y_data;
+  std::vector<std::size_t> miller;
+  std::vector<ScaledInverseComplex<Real, Complex<Real>>> over;  // k/z of every complex argument
+  std::vector<ShellConstants<Real>> constants;
+  std::vector<ShellRecurrence<Real>> recurrences;
+  std::vector<ShellInputs<Real>> shell_in;
+  TermInputs<Real> in;
+  TermOutputs<Real> terms;
+  Modes<Real> modes;
   void release_large() {
     constexpr std::size_t kKeep = std::size_t(8) << 20;
     for (auto& t : y)
       if (t->capacity_bytes() > kKeep) t->release();
-    surface.release_large();
   }
 };
 
-// The complex arguments' k/z, the core's first (absent on a conductor), then
-// z1, z2 of every shell.
+// The arguments' k/z: the real x (as z = 1·x), the core (absent on a
+// conductor), then z1, z2 of every shell.
 template <class Real>
-std::vector<ScaledInverseComplex<Real, Complex<Real>>> layered_arguments(const LayeredProblem<Real>& p) {
-  std::vector<ScaledInverseComplex<Real, Complex<Real>>> over;
-  if (!p.conducting_core) over.emplace_back(p.x[0], p.m[0]);
-  for (std::size_t l = 1; l < p.layers(); ++l) {
-    over.emplace_back(p.x[l - 1], p.m[l]);
-    over.emplace_back(p.x[l], p.m[l]);
+void layered_arguments(const LayeredProblem<Real>& p, std::vector<ScaledInverseComplex<Real, Complex<Real>>>& over) {
+  over.clear();
+  over.emplace_back(p.outer_x(), Complex<Real>(Real(1)));
+  if (!p.conducting_core) over.emplace_back(p.x[0], p.index(0));
+  for (std::size_t l = 1; l < p.layers; ++l) {
+    over.emplace_back(p.x[l - 1], p.index(l));
+    over.emplace_back(p.x[l], p.index(l));
   }
-  return over;
 }
 
 // Shell l's constants (κ, r, 1/r; layered_terms.hpp).
 template <class Real>
 ShellConstants<Real> shell_constants(const LayeredProblem<Real>& p, std::size_t l) {
   using C = Complex<Real>;
-  const C mi = p.m[l - 1], mo = p.m[l];
+  const C mo = p.index(l);
   const bool conductor = l == 1 && p.conducting_core;
   C kappa(Real(0)), r(Real(1)), inv_r(Real(1));
   if (!conductor) {
+    const C mi = p.index(l - 1);
     // (m_{l−1}² − m_l²)/(m_l m_{l−1}² x_{l−1}), the difference factored (trap contrast-near-1).
     kappa = cmul(cmul(C(mi - mo), C(mi + mo)), recip(C(cmul(cmul(mo, mi), mi) * p.x[l - 1])));
     r = cmul(mo, recip(mi));
@@ -324,7 +383,7 @@ ShellRecurrence<Real> shell_recurrence(const LayeredProblem<Real>& p, std::size_
                                        const StoredComplex<Real>* y_in, const StoredComplex<Real>* y_out) {
   using C = Complex<Real>;
   using W = typename WideOf<Real>::type;
-  const C m = p.m[l];
+  const C m = p.index(l);
   const C y0_in(y_in[0].real(), y_in[0].imag()), y0_out(y_out[0].real(), y_out[0].imag());
   const bool chi = static_cast<double>(m.imag() * p.x[l]) <= kChiBasisMaxImZ;
   const auto start = chi ? neumann_start<Real> : hankel_start<Real>;
@@ -336,53 +395,60 @@ ShellRecurrence<Real> shell_recurrence(const LayeredProblem<Real>& p, std::size_
   return {over_in, over_out, y_in, y_out, in.rho0, out.rho0, q};
 }
 
-// Pass 1 at the surface (as block_inputs_for in series.hpp): Rₙ, sₙ, ρₙ, yₙ(x).
+// Pass 1 at the surface (as block_inputs_for in series.hpp): ρₙ(x) upward,
+// Rₙ, sₙ, and yₙ(x) from its table (the real part of the m = 1 argument).
 template <class Real>
-void surface_inputs(std::size_t first, std::size_t count, const DownwardTables<Real>& t, Complex<Real>& R,
-                    Real& s, TermInputs<Real>& in) {
+void surface_inputs(std::size_t first, std::size_t count, const StoredComplex<Real>* y,
+                    const ScaledInverse<Real>& over_x_in, HankelRatio<Real, Complex<Real>>& hankel_io,
+                    Complex<Real>& R_io, Real& s_io, TermInputs<Real>& in) {
   using C = Complex<Real>;
+  // The running state in locals (see ShellRecurrence::block).
+  const ScaledInverse<Real> over_x = over_x_in;
+  HankelRatio<Real, C> hankel = hankel_io;
+  C R = R_io;
+  Real s = s_io;
   Real sign = first % 2 == 0 ? Real(1) : Real(-1);
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t n = first + i;
-    const C rho(t.rho[n].real(), t.rho[n].imag());
-    R = n == 1 ? cmul(R, rho) : cmul(R, rho) * t.y[n - 1];
+    const C rho = hankel.next(n, over_x);
+    R = n == 1 ? cmul(R, rho) : cmul(R, rho) * y[n - 1].real();
     s *= norm2(rho);
     in.rn[i] = index_real<Real>(n);
-    in.yx[i] = t.y[n];
+    in.yx[i] = y[n].real();
     in.R_re[i] = R.real(), in.R_im[i] = R.imag();
     in.s[i] = s;
     in.rho_re[i] = rho.real(), in.rho_im[i] = rho.imag();
     in.sign[i] = sign;
     sign = -sign;
   }
+  hankel_io = hankel, R_io = R, s_io = s;
 }
 
 // Pass 2 of a block: the modes from the core out through every shell, then
 // the surface coefficients and the terms of the sums.
 template <class Real>
-void layered_block_terms(const LayeredProblem<Real>& p, const LayeredTables<Real>& tables,
-                         const std::vector<ShellConstants<Real>>& shells, const std::vector<ShellInputs<Real>>& in,
-                         const SurfaceConstants<Real>& surface, const TermInputs<Real>& surface_in,
-                         std::size_t first, std::size_t count, const Complex<Real>& a_prev,
-                         const Complex<Real>& b_prev, Modes<Real>& y, TermOutputs<Real>& out) {
+void layered_block_terms(const LayeredProblem<Real>& p, LayeredWorkspace<Real>& w,
+                         const SurfaceConstants<Real>& surface, std::size_t first, std::size_t count,
+                         const Complex<Real>& a_prev, const Complex<Real>& b_prev) {
+  Modes<Real>& y = w.modes;
   for (std::size_t i = 0; i < count; ++i) {
     if (p.conducting_core) {
       y.a_re[i] = y.a_im[i] = y.b_re[i] = y.b_im[i] = Real(0);
     } else {
-      const StoredComplex<Real>& c = (*tables.y[0])[first + i];
+      const StoredComplex<Real>& c = w.y_data[1][first + i];
       y.a_re[i] = y.b_re[i] = c.real(), y.a_im[i] = y.b_im[i] = c.imag();
     }
   }
-  for (std::size_t l = 0; l < shells.size(); ++l) {
-    if constexpr (std::is_same_v<Real, double>) shell_transfer_double(shells[l], in[l], first, count, y);
-    else shell_transfer(shells[l], in[l], first, count, y);
+  for (std::size_t l = 0; l < w.constants.size(); ++l) {
+    if constexpr (std::is_same_v<Real, double>) shell_transfer_double(w.constants[l], w.shell_in[l], first, count, y);
+    else shell_transfer(w.constants[l], w.shell_in[l], first, count, y);
   }
   if constexpr (std::is_same_v<Real, double>) {
-    surface_terms_double(surface, surface_in, y, count, out);
-    sum_terms_double(surface_in, count, a_prev, b_prev, out);
+    surface_terms_double(surface, w.in, y, count, w.terms);
+    sum_terms_double(w.in, count, a_prev, b_prev, w.terms);
   } else {
-    surface_terms(surface, surface_in, y, count, out);
-    sum_terms(surface_in, count, a_prev, b_prev, out);
+    surface_terms(surface, w.in, y, count, w.terms);
+    sum_terms(w.in, count, a_prev, b_prev, w.terms);
   }
 }
 
@@ -390,8 +456,8 @@ void layered_block_terms(const LayeredProblem<Real>& p, const LayeredTables<Real
 template <class Real>
 SurfaceConstants<Real> surface_constants(const LayeredProblem<Real>& p) {
   using C = Complex<Real>;
-  const Real& x = p.x.back();
-  const C m = p.m.back();
+  const Real& x = p.outer_x();
+  const C m = p.index(p.layers - 1);
   const C m2 = cmul(m, m);
   const C c = cmul(C(m - C(Real(1))) * C(m + C(Real(1))), recip(m));  // (m² − 1)/m, trap m-near-1
   return {m.real(), m.imag(), c.real(), c.imag(), m2.real(), m2.imag(), ScaledInverse<Real>(x),
@@ -400,28 +466,38 @@ SurfaceConstants<Real> surface_constants(const LayeredProblem<Real>& p) {
 
 // Fills the downward tables of every argument for orders 0 .. N.
 template <class Real>
-void layered_tables(const LayeredProblem<Real>& p, const std::vector<ScaledInverseComplex<Real, Complex<Real>>>& over,
-                    std::size_t N, LayeredTables<Real>& tables) {
+void layered_tables(const LayeredProblem<Real>& p, std::size_t N, LayeredWorkspace<Real>& w) {
   using C = Complex<Real>;
-  const std::size_t count = over.size();
-  while (tables.y.size() < count) tables.y.push_back(std::make_unique<Scratch<StoredComplex<Real>>>());
-  std::vector<StoredComplex<Real>*> ptr(count);
-  std::vector<std::size_t> miller(count, 0);
+  const std::size_t count = w.over.size();
+  while (w.y.size() < count) w.y.push_back(std::make_unique<Scratch<StoredComplex<Real>>>());
+  w.y_data.resize(count);
+  w.miller.assign(count, 0);
   std::size_t j = 0;
   const auto argument = [&](const Real& x, const C& m) {
-    tables.y[j]->resize(N + 1);
-    ptr[j] = &(*tables.y[j])[0];
-    if constexpr (std::is_same_v<Real, double>) miller[j] = miller_depth(std::sqrt(norm2(m)) * x, 1.0, N);
+    w.y[j]->resize(N + 1);
+    w.y_data[j] = &(*w.y[j])[0];
+    if constexpr (std::is_same_v<Real, double>) w.miller[j] = miller_depth(std::sqrt(norm2(m)) * x, 1.0, N);
     ++j;
   };
-  if (!p.conducting_core) argument(p.x[0], p.m[0]);
-  for (std::size_t l = 1; l < p.layers(); ++l) argument(p.x[l - 1], p.m[l]), argument(p.x[l], p.m[l]);
-  downward_complex<Real>(over, miller.data(), N, ptr.data());
-  const Real& x = p.x.back();
-  const ScaledInverse<Real> over_x(x);
-  const ScaledInverseComplex<Real, C> unused(x, C(Real(1)));
-  downward_ratios<Real, C>(over_x, unused, C(Real(1)), N, Slot::none, tables.surface.y, tables.surface.rho,
-                           tables.surface.w, tables.surface.is_value);
+  argument(p.outer_x(), C(Real(1)));
+  if (!p.conducting_core) argument(p.x[0], p.index(0));
+  for (std::size_t l = 1; l < p.layers; ++l) argument(p.x[l - 1], p.index(l)), argument(p.x[l], p.index(l));
+  downward_complex<Real>(w.over, w.miller.data(), N, w.y_data.data());
+}
+
+// The shells' constants and recurrences before order 1.
+template <class Real>
+void layered_shells(const LayeredProblem<Real>& p, LayeredWorkspace<Real>& w) {
+  const std::size_t shells = p.layers - 1;
+  const std::size_t core = p.conducting_core ? 1 : 2;  // arguments before the shells' (x, core)
+  w.constants.clear();
+  w.recurrences.clear();
+  for (std::size_t l = 1; l <= shells; ++l) {
+    const std::size_t j = core + 2 * (l - 1);
+    w.constants.push_back(shell_constants(p, l));
+    w.recurrences.push_back(shell_recurrence(p, l, w.over[j], w.over[j + 1], w.y_data[j], w.y_data[j + 1]));
+  }
+  if (w.shell_in.size() < shells) w.shell_in.resize(shells);
 }
 
 // One summation of the series from tables of N + 1 entries into `out`;
@@ -432,28 +508,17 @@ bool layered_sum(const LayeredProblem<Real>& p, const Extras& extras, bool conve
   using C = Complex<Real>;
   using std::cos;
   using std::sin;
-  thread_local LayeredTables<Real> tables;
+  thread_local LayeredWorkspace<Real> w;
   struct Release {
-    LayeredTables<Real>& t;
-    ~Release() { t.release_large(); }
-  } release_large_tables{tables};
-  const std::vector<ScaledInverseComplex<Real, C>> over = layered_arguments(p);
-  layered_tables(p, over, N, tables);
-
-  const std::size_t shells = p.layers() - 1;
-  const std::size_t core = p.conducting_core ? 0 : 1;  // complex arguments before the shells'
-  std::vector<ShellConstants<Real>> constants;
-  std::vector<ShellRecurrence<Real>> recurrences;
-  for (std::size_t l = 1; l <= shells; ++l) {
-    const std::size_t j = core + 2 * (l - 1);
-    constants.push_back(shell_constants(p, l));
-    recurrences.push_back(shell_recurrence(p, l, over[j], over[j + 1], &(*tables.y[j])[0], &(*tables.y[j + 1])[0]));
-  }
-  thread_local std::vector<ShellInputs<Real>> shell_in;
-  if (shell_in.size() < shells) shell_in.resize(shells);
+    LayeredWorkspace<Real>& w;
+    ~Release() { w.release_large(); }
+  } release_large_tables{w};
+  layered_arguments(p, w.over);
+  layered_tables(p, N, w);
+  layered_shells(p, w);
   const SurfaceConstants<Real> surface = surface_constants(p);
 
-  const Real& x = p.x.back();
+  const Real& x = p.outer_x();
   const double xd = static_cast<double>(x);
   out = Scattering<Real>{};
   const bool any_angle = !extras.angles_deg.empty();
@@ -464,33 +529,31 @@ bool layered_sum(const LayeredProblem<Real>& p, const Extras& extras, bool conve
   SeriesSums<Real> sums;
   VectorSums vector_sums;
   const Real sx = sin(x), cx = cos(x);
-  const Real psi1 = riccati_psi1(sx, cx, tables.surface.y[0], surface.over_x(Real(1)));
+  const StoredComplex<Real>* yx = w.y_data[0];
+  const Real psi1 = riccati_psi1(sx, cx, yx[0].real(), surface.over_x(Real(1)));
+  HankelRatio<Real, C> hankel;
   C R(sx * psi1, cx * psi1);  // ψ₁/ξ₀; R₁ = ρ₁ ψ₁/ξ₀ (trap sin-zero)
   Real s(1);                  // 1/|ξ₀|²
   C a_prev(Real(0)), b_prev(Real(0));
-  thread_local TermInputs<Real> in;
-  thread_local TermOutputs<Real> terms;
-  thread_local Modes<Real> modes;
   bool converged = !converged_rule, stopped = false;
   std::size_t n_last = N;
   std::size_t block = kFirstTermBlock;
   for (std::size_t first = 1, count = 0; first <= N && !stopped; first += count, block = kTermBlock) {
     count = std::min(block, N + 1 - first);
     // Pass 1 (serial): the upward recurrences.
-    surface_inputs(first, count, tables.surface, R, s, in);
-    for (std::size_t l = 0; l < shells; ++l)
-      for (std::size_t i = 0; i < count; ++i) recurrences[l].next(first + i, i, shell_in[l]);
+    surface_inputs(first, count, yx, surface.over_x, hankel, R, s, w.in);
+    for (std::size_t l = 0; l < w.recurrences.size(); ++l) w.recurrences[l].block(first, count, w.shell_in[l]);
     // Pass 2 (every order independently).
-    layered_block_terms(p, tables, constants, shell_in, surface, in, first, count, a_prev, b_prev, modes, terms);
+    layered_block_terms(p, w, surface, first, count, a_prev, b_prev);
     // Pass 3 (serial).
-    const BlockSum summed = sum_block<Real>(terms, first, count, xd, tol, converged_rule, sums, vector_sums);
+    const BlockSum summed = sum_block<Real>(w.terms, first, count, xd, tol, converged_rule, sums, vector_sums);
     if (summed.stopped) {
       converged = stopped = true;
       n_last = first + summed.used - 1;
     }
-    add_extras(extras, first, summed.used, terms, angular, out);
-    a_prev = C(terms.a_re[count - 1], terms.a_im[count - 1]);
-    b_prev = C(terms.b_re[count - 1], terms.b_im[count - 1]);
+    add_extras(extras, first, summed.used, w.terms, angular, out);
+    a_prev = C(w.terms.a_re[count - 1], w.terms.a_im[count - 1]);
+    b_prev = C(w.terms.b_re[count - 1], w.terms.b_im[count - 1]);
   }
   if constexpr (std::is_same_v<Real, double>) vector_sums.to(sums);
   if (any_angle) angular->finish();
@@ -503,7 +566,7 @@ bool layered_sum(const LayeredProblem<Real>& p, const Extras& extras, bool conve
 // the outer x, then max_terms, as mie_series does).
 template <class Real>
 Scattering<Real> layered_series(const LayeredProblem<Real>& p, const Extras& extras, const Options& options) {
-  const double x = static_cast<double>(p.x.back());
+  const double x = static_cast<double>(p.outer_x());
   const bool converged_rule = options.terms == TermRule::converged;
   const double cbrt_x = bound_cbrt(x);
   const std::size_t n_max =

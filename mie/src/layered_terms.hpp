@@ -80,13 +80,16 @@ struct Modes {
 };
 
 // Yout = (y1o v − Q u y3o)/(v − Q u), u = y1i − Yin, v = y3i − Yin, written
-// out in real parts; `one`: u = v = 1 (f vanishes at z1: the b mode on a
-// conductor).
-template <class Real>
-ATTENUVIS_MIE_INLINE void transfer_mode(const ShellInputs<Real>& s, std::size_t i, Real yr, Real yi, bool one,
-                                        Real& out_r, Real& out_i) {
-  const Real ur = one ? Real(1) : s.y1i_re[i] - yr, ui = one ? Real(0) : s.y1i_im[i] - yi;
-  const Real vr = one ? Real(1) : s.y3i_re[i] - yr, vi = one ? Real(0) : s.y3i_im[i] - yi;
+// out in real parts; `vanishes`: u = v = 1 (f vanishes at z1: the b mode on
+// a conductor).
+template <class Real, bool vanishes>
+ATTENUVIS_MIE_INLINE void transfer_mode(const ShellInputs<Real>& s, std::size_t i, Real yr, Real yi, Real& out_r,
+                                        Real& out_i) {
+  Real ur = Real(1), ui = Real(0), vr = Real(1), vi = Real(0);
+  if constexpr (!vanishes) {
+    ur = s.y1i_re[i] - yr, ui = s.y1i_im[i] - yi;
+    vr = s.y3i_re[i] - yr, vi = s.y3i_im[i] - yi;
+  }
   const Real qr = s.q_re[i], qi = s.q_im[i];
   const Real qur = qr * ur - qi * ui, qui = qr * ui + qi * ur;  // Q u
   const Real y1r = s.y1o_re[i], y1i = s.y1o_im[i], y3r = s.y3o_re[i], y3i = s.y3o_im[i];
@@ -99,25 +102,36 @@ ATTENUVIS_MIE_INLINE void transfer_mode(const ShellInputs<Real>& s, std::size_t 
 }
 
 // The modes through one shell, orders first .. first + count − 1 (entry i is
-// order first + i).
-template <class Real>
-ATTENUVIS_MIE_INLINE void shell_transfer(const ShellConstants<Real>& k, const ShellInputs<Real>& s,
-                                         std::size_t first, std::size_t count, Modes<Real>& y) {
+// order first + i); on_conductor: the shell lies on a perfectly conducting
+// core (T_a = 0: Yin_a = (n+1)/z1; T_b = ∞).
+template <class Real, bool on_conductor>
+ATTENUVIS_MIE_INLINE void shell_transfer_for(const ShellConstants<Real>& k, const ShellInputs<Real>& s,
+                                             std::size_t first, std::size_t count, Modes<Real>& y) {
   const Real kr = k.kappa_re, ki = k.kappa_im, rr = k.r_re, ri = k.r_im, jr = k.inv_r_re, ji = k.inv_r_im;
-  const bool conductor = k.conductor;
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC ivdep
 #endif
   for (std::size_t i = 0; i < count; ++i) {
     const Real n1 = index_real<Real>(first + i + 1);
     const Real yar = y.a_re[i], yai = y.a_im[i], ybr = y.b_re[i], ybi = y.b_im[i];
-    const Complex<Real> t = k.over_z1(n1);  // on a conductor T_a = 0: Yin_a = (n+1)/z1
-    const Real ina_r = conductor ? t.real() : (n1 * kr) + (rr * yar - ri * yai);
-    const Real ina_i = conductor ? t.imag() : (n1 * ki) + (rr * yai + ri * yar);
+    Real ina_r, ina_i;
+    if constexpr (on_conductor) {
+      const Complex<Real> t = k.over_z1(n1);
+      ina_r = t.real(), ina_i = t.imag();
+    } else {
+      ina_r = (n1 * kr) + (rr * yar - ri * yai), ina_i = (n1 * ki) + (rr * yai + ri * yar);
+    }
     const Real inb_r = jr * ybr - ji * ybi, inb_i = jr * ybi + ji * ybr;
-    transfer_mode(s, i, ina_r, ina_i, false, y.a_re[i], y.a_im[i]);
-    transfer_mode(s, i, inb_r, inb_i, conductor, y.b_re[i], y.b_im[i]);
+    transfer_mode<Real, false>(s, i, ina_r, ina_i, y.a_re[i], y.a_im[i]);
+    transfer_mode<Real, on_conductor>(s, i, inb_r, inb_i, y.b_re[i], y.b_im[i]);
   }
+}
+
+template <class Real>
+ATTENUVIS_MIE_INLINE void shell_transfer(const ShellConstants<Real>& k, const ShellInputs<Real>& s,
+                                         std::size_t first, std::size_t count, Modes<Real>& y) {
+  if (k.conductor) shell_transfer_for<Real, true>(k, s, first, count, y);
+  else shell_transfer_for<Real, false>(k, s, first, count, y);
 }
 
 // The surface: inputs per order as for the homogeneous sphere (TermInputs:
