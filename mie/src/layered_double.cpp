@@ -35,6 +35,17 @@ Scattering<double> evaluate(const std::vector<double>& x, const std::vector<std:
                                 " indices");
   const std::string e = detail::layered_error(x.data(), m.data(), x.size(), first);
   if (!e.empty()) throw std::invalid_argument(e);
+  // A layer of zero thickness is not there: the transfer across it is the
+  // identity, which computed would only add rounding (an absorbing one even a
+  // spurious absorption, large beside a weakly scattering particle).
+  for (std::size_t l = 1; l < x.size(); ++l)
+    if (x[l] == x[l - 1]) {
+      std::vector<double> xs = x;
+      std::vector<std::complex<double>> ms = m;
+      xs.erase(xs.begin() + static_cast<std::ptrdiff_t>(l));
+      ms.erase(ms.begin() + static_cast<std::ptrdiff_t>(l - first));
+      return evaluate(xs, ms, conducting_core, extras, options);
+    }
   // One layer: the homogeneous sphere itself (the same bits).
   if (x.size() == 1)
     return conducting_core ? scatter(x[0], PerfectConductor{}, extras, options) : scatter(x[0], m[0], extras, options);

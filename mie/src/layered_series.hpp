@@ -103,6 +103,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "attenuvis/io/check.hpp"
 #include "layered_terms.hpp"
 #include "series.hpp"
 
@@ -219,41 +220,59 @@ constexpr double kChiBasisMaxImZ = 1.0;
 // registers: the K chains are independent, so their division latencies
 // overlap.  miller[j] > 0: the recurrence from 0 at N + miller[j]
 // (miller_depth), else from Lentz's continued fraction at N + 1.  Each chain
-// performs the same operations whatever K and its neighbours are.
+// performs the same operations whatever K and its neighbours are.  With
+// `real` (the first group), yₙ(x) of the real x advances beside them, in real
+// arithmetic: at a zero of ψₙ(x) the pole of yₙ(x) must stay a finite 1/den
+// (a complex reciprocal squares den and would overflow).
 template <class Real, int K>
 void downward_group(const ScaledInverseComplex<Real, Complex<Real>>* over, const std::size_t* miller, std::size_t N,
-                    StoredComplex<Real>* const* tables) {
+                    StoredComplex<Real>* const* tables, const ScaledInverse<Real>* real = nullptr,
+                    std::size_t real_miller = 0, Real* real_table = nullptr) {
   using C = Complex<Real>;
   C y[K];
+  Real yx(0);
   const auto step = [&](int j, std::size_t n) {  // yₙ₋₁ from yₙ
     C den = over[j](index_real<Real>(2 * n + 1)) - y[j];
     avoid_zero<C, Real>(den);
     y[j] = recip(den);
   };
-  std::size_t top = N;
+  const auto step_real = [&](std::size_t n) {
+    Real den = (*real)(index_real<Real>(2 * n + 1)) - yx;
+    avoid_zero<Real, Real>(den);
+    yx = Real(1) / den;
+  };
+  std::size_t top = real ? N + real_miller : N;
   for (int j = 0; j < K; ++j) y[j] = C(Real(0)), top = std::max(top, N + miller[j]);
-  for (std::size_t n = top; n > N; --n)
+  for (std::size_t n = top; n > N; --n) {
     for (int j = 0; j < K; ++j)
       if (n <= N + miller[j]) step(j, n);
+    if (real && n <= N + real_miller) step_real(n);
+  }
   for (int j = 0; j < K; ++j)
     if (miller[j] == 0) y[j] = recip(riccati_psi_ratio<C, Real>(N + 1, over[j]));
+  if (real && real_miller == 0) yx = Real(1) / riccati_psi_ratio<Real, Real>(N + 1, *real);
   for (std::size_t n = N;; --n) {
     for (int j = 0; j < K; ++j) store(tables[j][n], y[j]);
+    if (real) real_table[n] = yx;
     if (n == 0) break;
     for (int j = 0; j < K; ++j) step(j, n);
+    if (real) step_real(n);
   }
 }
 
-// All arguments, in groups of up to four.
+// yₙ(x) and every complex argument's yₙ, in groups of up to four.
 template <class Real>
-void downward_complex(const std::vector<ScaledInverseComplex<Real, Complex<Real>>>& over, const std::size_t* miller,
+void downward_complex(const ScaledInverse<Real>& over_x, std::size_t x_miller, Real* x_table,
+                      const std::vector<ScaledInverseComplex<Real, Complex<Real>>>& over, const std::size_t* miller,
                       std::size_t N, StoredComplex<Real>* const* tables) {
+  ATTENUVIS_CHECK(!over.empty());  // every layered sphere has a core or a shell: x rides in the first group
   for (std::size_t j = 0; j < over.size(); j += 4) {
+    const ScaledInverse<Real>* real = j == 0 ? &over_x : nullptr;
     switch (std::min<std::size_t>(4, over.size() - j)) {
-      case 1: downward_group<Real, 1>(&over[j], miller + j, N, tables + j); break;
-      case 2: downward_group<Real, 2>(&over[j], miller + j, N, tables + j); break;
-      case 3: downward_group<Real, 3>(&over[j], miller + j, N, tables + j); break;
-      default: downward_group<Real, 4>(&over[j], miller + j, N, tables + j); break;
+      case 1: downward_group<Real, 1>(&over[j], miller + j, N, tables + j, real, x_miller, x_table); break;
+      case 2: downward_group<Real, 2>(&over[j], miller + j, N, tables + j, real, x_miller, x_table); break;
+      case 3: downward_group<Real, 3>(&over[j], miller + j, N, tables + j, real, x_miller, x_table); break;
+      default: downward_group<Real, 4>(&over[j], miller + j, N, tables + j, real, x_miller, x_table); break;
     }
   }
 }
@@ -322,10 +341,10 @@ struct LayeredProblem {
 // argument, yₙ(x) and ρₙ(x) at the surface) and the per-shell state.
 template <class Real>
 struct LayeredWorkspace {
-  // yₙ of every argument: [0] the real x (as m = 1), [1] the core (absent on
-  // a conductor), then z1, z2 per shell.  Held by pointer: the buffers do
-  // not move.
+  // yₙ of every complex argument: [0] the core (absent on a conductor), then
+  // z1, z2 per shell.  Held by pointer: the buffers do not move.
   std::vector<std::unique_ptr<Scratch<StoredComplex<Real>>>> y;
+  Scratch<Real> y_x;  // yₙ(x) of the real x
   std::vector<StoredComplex<Real>*> y_data;
   std::vector<std::size_t> miller;
   std::vector<ScaledInverseComplex<Real, Complex<Real>>> over;  // k/z of every complex argument
@@ -339,15 +358,15 @@ struct LayeredWorkspace {
     constexpr std::size_t kKeep = std::size_t(8) << 20;
     for (auto& t : y)
       if (t->capacity_bytes() > kKeep) t->release();
+    if (y_x.capacity_bytes() > kKeep) y_x.release();
   }
 };
 
-// The arguments' k/z: the real x (as z = 1·x), the core (absent on a
-// conductor), then z1, z2 of every shell.
+// The complex arguments' k/z: the core (absent on a conductor), then z1, z2
+// of every shell.
 template <class Real>
 void layered_arguments(const LayeredProblem<Real>& p, std::vector<ScaledInverseComplex<Real, Complex<Real>>>& over) {
   over.clear();
-  over.emplace_back(p.outer_x(), Complex<Real>(Real(1)));
   if (!p.conducting_core) over.emplace_back(p.x[0], p.index(0));
   for (std::size_t l = 1; l < p.layers; ++l) {
     over.emplace_back(p.x[l - 1], p.index(l));
@@ -396,9 +415,9 @@ ShellRecurrence<Real> shell_recurrence(const LayeredProblem<Real>& p, std::size_
 }
 
 // Pass 1 at the surface (as block_inputs_for in series.hpp): ρₙ(x) upward,
-// Rₙ, sₙ, and yₙ(x) from its table (the real part of the m = 1 argument).
+// Rₙ, sₙ, and yₙ(x) from its table.
 template <class Real>
-void surface_inputs(std::size_t first, std::size_t count, const StoredComplex<Real>* y,
+void surface_inputs(std::size_t first, std::size_t count, const Real* y,
                     const ScaledInverse<Real>& over_x_in, HankelRatio<Real, Complex<Real>>& hankel_io,
                     Complex<Real>& R_io, Real& s_io, TermInputs<Real>& in) {
   using C = Complex<Real>;
@@ -411,10 +430,10 @@ void surface_inputs(std::size_t first, std::size_t count, const StoredComplex<Re
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t n = first + i;
     const C rho = hankel.next(n, over_x);
-    R = n == 1 ? cmul(R, rho) : cmul(R, rho) * y[n - 1].real();
+    R = n == 1 ? cmul(R, rho) : cmul(R, rho) * y[n - 1];
     s *= norm2(rho);
     in.rn[i] = index_real<Real>(n);
-    in.yx[i] = y[n].real();
+    in.yx[i] = y[n];
     in.R_re[i] = R.real(), in.R_im[i] = R.imag();
     in.s[i] = s;
     in.rho_re[i] = rho.real(), in.rho_im[i] = rho.imag();
@@ -435,7 +454,7 @@ void layered_block_terms(const LayeredProblem<Real>& p, LayeredWorkspace<Real>& 
     if (p.conducting_core) {
       y.a_re[i] = y.a_im[i] = y.b_re[i] = y.b_im[i] = Real(0);
     } else {
-      const StoredComplex<Real>& c = w.y_data[1][first + i];
+      const StoredComplex<Real>& c = w.y_data[0][first + i];
       y.a_re[i] = y.b_re[i] = c.real(), y.a_im[i] = y.b_im[i] = c.imag();
     }
   }
@@ -479,17 +498,20 @@ void layered_tables(const LayeredProblem<Real>& p, std::size_t N, LayeredWorkspa
     if constexpr (std::is_same_v<Real, double>) w.miller[j] = miller_depth(std::sqrt(norm2(m)) * x, 1.0, N);
     ++j;
   };
-  argument(p.outer_x(), C(Real(1)));
   if (!p.conducting_core) argument(p.x[0], p.index(0));
   for (std::size_t l = 1; l < p.layers; ++l) argument(p.x[l - 1], p.index(l)), argument(p.x[l], p.index(l));
-  downward_complex<Real>(w.over, w.miller.data(), N, w.y_data.data());
+  w.y_x.resize(N + 1);
+  std::size_t x_miller = 0;
+  if constexpr (std::is_same_v<Real, double>) x_miller = miller_depth(p.outer_x(), 1.0, N);
+  downward_complex<Real>(ScaledInverse<Real>(p.outer_x()), x_miller, &w.y_x[0], w.over, w.miller.data(), N,
+                         w.y_data.data());
 }
 
 // The shells' constants and recurrences before order 1.
 template <class Real>
 void layered_shells(const LayeredProblem<Real>& p, LayeredWorkspace<Real>& w) {
   const std::size_t shells = p.layers - 1;
-  const std::size_t core = p.conducting_core ? 1 : 2;  // arguments before the shells' (x, core)
+  const std::size_t core = p.conducting_core ? 0 : 1;  // complex arguments before the shells'
   w.constants.clear();
   w.recurrences.clear();
   for (std::size_t l = 1; l <= shells; ++l) {
@@ -529,8 +551,8 @@ bool layered_sum(const LayeredProblem<Real>& p, const Extras& extras, bool conve
   SeriesSums<Real> sums;
   VectorSums vector_sums;
   const Real sx = sin(x), cx = cos(x);
-  const StoredComplex<Real>* yx = w.y_data[0];
-  const Real psi1 = riccati_psi1(sx, cx, yx[0].real(), surface.over_x(Real(1)));
+  const Real* yx = &w.y_x[0];
+  const Real psi1 = riccati_psi1(sx, cx, yx[0], surface.over_x(Real(1)));
   HankelRatio<Real, C> hankel;
   C R(sx * psi1, cx * psi1);  // ψ₁/ξ₀; R₁ = ρ₁ ψ₁/ξ₀ (trap sin-zero)
   Real s(1);                  // 1/|ξ₀|²

@@ -4,7 +4,8 @@
 //
 // Layer convention.  Layers are listed from the core out, l = 0 .. L−1:
 //   x[l]  size parameter 2π r_l/λ of the OUTER radius of layer l (λ in the
-//         medium), non-decreasing (a zero-thickness layer is allowed);
+//         medium), non-decreasing (a layer of zero thickness is allowed and
+//         left out: the result is that of the sphere without it, bit for bit);
 //         x[L−1] is the particle's size parameter;
 //   m[l]  refractive index of layer l relative to the medium, m = n + ik,
 //         k >= 0 (B&H's sign, as sphere(): attenuvis/mie.hpp).
