@@ -103,4 +103,11 @@ inline bool layered_use_extended(const double* x, const std::complex<double>* m,
   return true;
 }
 
+// The layered sphere (x, m) of `layers` layers, already checked against the
+// domain (layered_error() empty): leaves out layers of zero thickness, hands
+// one layer to the homogeneous sphere and runs the series in the precision
+// of layered_use_extended() (layered_double.cpp).
+Scattering<double> layered_evaluate(const double* x, const std::complex<double>* m, std::size_t layers,
+                                    bool conducting_core, const Extras& extras, const Options& options);
+
 }  // namespace attenuvis::mie::detail

@@ -25,41 +25,54 @@ Scattering<double> to_double(const Scattering<long double>& s) {
   return out;
 }
 
-Scattering<double> evaluate(const std::vector<double>& x, const std::vector<std::complex<double>>& m,
-                            bool conducting_core, const Extras& extras, const Options& options) {
+void check_sizes(std::size_t x_size, std::size_t m_size, bool conducting_core) {
   const std::size_t first = conducting_core ? 1 : 0;
-  if (m.size() + first != x.size())
+  if (m_size + first != x_size)
     throw std::invalid_argument("mie: a layered sphere needs one index per " +
                                 std::string(conducting_core ? "shell (x.size() - 1)" : "size parameter") + ", got " +
-                                std::to_string(x.size()) + " size parameters and " + std::to_string(m.size()) +
-                                " indices");
+                                std::to_string(x_size) + " size parameters and " + std::to_string(m_size) + " indices");
+}
+
+Scattering<double> evaluate(const std::vector<double>& x, const std::vector<std::complex<double>>& m,
+                            bool conducting_core, const Extras& extras, const Options& options) {
+  check_sizes(x.size(), m.size(), conducting_core);
+  const std::size_t first = conducting_core ? 1 : 0;
   const std::string e = detail::layered_error(x.data(), m.data(), x.size(), first);
   if (!e.empty()) throw std::invalid_argument(e);
-  // A layer of zero thickness is not there: the transfer across it is the
-  // identity, which computed would only add rounding (an absorbing one even a
-  // spurious absorption, large beside a weakly scattering particle).
-  for (std::size_t l = 1; l < x.size(); ++l)
-    if (x[l] == x[l - 1]) {
-      std::vector<double> xs = x;
-      std::vector<std::complex<double>> ms = m;
-      xs.erase(xs.begin() + static_cast<std::ptrdiff_t>(l));
-      ms.erase(ms.begin() + static_cast<std::ptrdiff_t>(l - first));
-      return evaluate(xs, ms, conducting_core, extras, options);
-    }
-  // One layer: the homogeneous sphere itself (the same bits).
-  if (x.size() == 1)
-    return conducting_core ? scatter(x[0], PerfectConductor{}, extras, options) : scatter(x[0], m[0], extras, options);
-  if (detail::layered_use_extended(x.data(), m.data(), x.size(), first, options)) {
-    const std::vector<long double> xl(x.begin(), x.end());
-    std::vector<std::complex<long double>> ml;
-    for (const auto& v : m) ml.emplace_back(v.real(), v.imag());
-    return to_double(detail::layered_series<long double>({xl.data(), ml.data(), x.size(), conducting_core}, extras,
-                                                         options));
-  }
-  return detail::layered_series<double>({x.data(), m.data(), x.size(), conducting_core}, extras, options);
+  return detail::layered_evaluate(x.data(), m.data(), x.size(), conducting_core, extras, options);
 }
 
 }  // namespace
+
+namespace detail {
+
+Scattering<double> layered_evaluate(const double* x, const std::complex<double>* m, std::size_t layers,
+                                    bool conducting_core, const Extras& extras, const Options& options) {
+  const std::size_t first = conducting_core ? 1 : 0;
+  // A layer of zero thickness is not there: the transfer across it is the
+  // identity, which computed would only add rounding (an absorbing one even a
+  // spurious absorption, large beside a weakly scattering particle).
+  for (std::size_t l = 1; l < layers; ++l)
+    if (x[l] == x[l - 1]) {
+      std::vector<double> xs(x, x + layers);
+      std::vector<std::complex<double>> ms(m, m + (layers - first));
+      xs.erase(xs.begin() + static_cast<std::ptrdiff_t>(l));
+      ms.erase(ms.begin() + static_cast<std::ptrdiff_t>(l - first));
+      return layered_evaluate(xs.data(), ms.data(), xs.size(), conducting_core, extras, options);
+    }
+  // One layer: the homogeneous sphere itself (the same bits).
+  if (layers == 1)
+    return conducting_core ? scatter(x[0], PerfectConductor{}, extras, options) : scatter(x[0], m[0], extras, options);
+  if (layered_use_extended(x, m, layers, first, options)) {
+    const std::vector<long double> xl(x, x + layers);
+    std::vector<std::complex<long double>> ml;
+    for (std::size_t l = 0; l + first < layers; ++l) ml.emplace_back(m[l].real(), m[l].imag());
+    return to_double(layered_series<long double>({xl.data(), ml.data(), layers, conducting_core}, extras, options));
+  }
+  return layered_series<double>({x, m, layers, conducting_core}, extras, options);
+}
+
+}  // namespace detail
 
 Efficiencies<double> layered_sphere(const std::vector<double>& x, const std::vector<std::complex<double>>& m,
                                     const Options& options) {

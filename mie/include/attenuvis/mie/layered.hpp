@@ -43,6 +43,7 @@
 #include <vector>
 
 #include "attenuvis/mie.hpp"
+#include "attenuvis/mie/spheres.hpp"
 
 namespace attenuvis::mie {
 
@@ -62,5 +63,17 @@ Efficiencies<double> layered_sphere(PerfectConductor core, const std::vector<dou
 Scattering<double> layered_scatter(PerfectConductor core, const std::vector<double>& x,
                                    const std::vector<std::complex<double>>& m, const Extras& extras,
                                    const Options& options = {});
+
+// Many layered spheres (a size distribution of coated particles, a table):
+// particle i has the layers offsets[i] .. offsets[i+1] − 1 of x and m, from
+// the core out (offsets holds count + 1 entries).  out[i] is layered_sphere()
+// of that particle, bit for bit.  As spheres() does, it never throws for bad
+// input: each bad particle is reported with its index and the reason, its
+// output is NaN, and every good one is computed.  The particles are shared
+// out over SpheresOptions::threads threads (its instruction_set is not used:
+// each call already runs its vector kernels).
+std::vector<SphereError> layered_spheres(const std::size_t* offsets, const double* x, const std::complex<double>* m,
+                                         std::size_t count, Efficiencies<double>* out,
+                                         const SpheresOptions& options = {});
 
 }  // namespace attenuvis::mie
