@@ -152,40 +152,34 @@ Complex<Real> twice_exp_minus_1(const typename WideOf<Real>::type& t, const Comp
   return twice_exp_minus_1_in<Real, typename WideOf<Real>::type>(t, m);
 }
 
-// The start of a shell's upward recurrences at z = m x in the basis (ψ, B)
-// of its radial functions: B₀₋₁/B₀ (ρ₀) and ψ₁/B₀.
+// A shell's second solution B (ξ or χ) at z = m x: what its start needs,
+// computed before the tables (the transcendental part): ρ₀ = B₋₁/B₀ for the
+// upward recurrence, and the branch and value from which ψ₁/B₀ is formed
+// once y₀ is known (psi1_over_b0).
 template <class Real>
-struct BasisStart {
-  Complex<Real> rho0, psi1_over_b0;
+struct SecondSolution {
+  Complex<Real> rho0;  // B₋₁/B₀
+  Complex<Real> c;     // χ: tan z;  ξ: e^{2iz} − 1
+  bool chi;            // B = χ, else ξ
+  bool sin_branch;     // |sin z| >= |cos z|
 };
 
-// B = ξ (absorbing shells): ρ₀ = ξ₋₁/ξ₀ = i, and s(z) = e^{2iz} ψ₁(z)/ξ₀(z)
-// (the scale e^{2iz}, |e^{2iz}| <= 1, keeps it finite; Q's start restores it)
-// from y₀ = ψ₁/ψ₀ (trap sin-zero): (e^{2iz} − 1)/2 · y₀ where |sin z| >=
-// |cos z| (Re e^{2iz} <= 0), else i(e^{2iz} + 1)/2 · y₀/(1/z − y₀)
-// (ψ₁ = cos z · y₀/(1/z − y₀), ξ₀ = −i e^{iz}).
+// B = ξ (absorbing shells): ρ₀ = ξ₋₁/ξ₀ = i, and e^{2iz} − 1 for the scaled
+// start s(z) = e^{2iz} ψ₁/ξ₀ (|e^{2iz}| <= 1 keeps it finite; Q's start
+// restores the scale); |sin z| >= |cos z| where Re e^{2iz} <= 0.
 template <class Real>
-BasisStart<Real> hankel_start(const Real& x, const Complex<Real>& m, const Complex<Real>& y0,
-                              const Complex<Real>& inv_z) {
+SecondSolution<Real> hankel_solution(const Real& x, const Complex<Real>& m) {
   using C = Complex<Real>;
   using W = typename WideOf<Real>::type;
   const C em1 = twice_exp_minus_1<Real>(W(x), m);
-  const C half(Real(0.5), Real(0));
-  const C i(Real(0), Real(1));
-  if (em1.real() + Real(1) <= Real(0)) return {i, cmul(cmul(em1, y0), half)};
-  const C ep1 = em1 + C(Real(2));
-  const C i_ep1_half(-ep1.imag() * Real(0.5), ep1.real() * Real(0.5));
-  return {i, cmul(i_ep1_half, cmul(y0, recip(C(inv_z - y0))))};
+  return {C(Real(0), Real(1)), em1, false, em1.real() + Real(1) <= Real(0)};
 }
 
-// B = χ (nearly real shells, trap spurious-absorption): ρ₀ = χ₋₁/χ₀ = −tan z,
-// and ψ₁/χ₀ = tan z · y₀ where |sin z| >= |cos z|, else y₀/(1/z − y₀) (as
-// riccati_psi1, trap sin-zero).  tan z is formed from Re z, Im z in WideOf
-// precision beyond kNarrowPhase (phase accuracy); Im z <= kChiBasisMaxImZ
-// keeps cosh, sinh small.
+// B = χ (nearly real shells, trap spurious-absorption): ρ₀ = χ₋₁/χ₀ = −tan z.
+// tan z is formed from Re z, Im z in WideOf precision beyond kNarrowPhase
+// (phase accuracy); Im z <= kChiBasisMaxImZ keeps cosh, sinh small.
 template <class Real, class W>
-BasisStart<Real> neumann_start_in(const W& x, const Complex<Real>& m, const Complex<Real>& y0,
-                                  const Complex<Real>& inv_z) {
+SecondSolution<Real> neumann_solution_in(const W& x, const Complex<Real>& m) {
   using C = Complex<Real>;
   using std::cos;
   using std::cosh;
@@ -197,17 +191,31 @@ BasisStart<Real> neumann_start_in(const W& x, const Complex<Real>& m, const Comp
   const W cr = ca * chb, ci = -sa * shb;  // cos z
   const W d = W(1) / (cr * cr + ci * ci);
   const C tan_z(static_cast<Real>((sr * cr + si * ci) * d), static_cast<Real>((si * cr - sr * ci) * d));
-  if (sa * sa >= ca * ca) return {-tan_z, cmul(tan_z, y0)};
-  return {-tan_z, cmul(y0, recip(C(inv_z - y0)))};
+  return {-tan_z, tan_z, true, sa * sa >= ca * ca};
 }
 
 template <class Real>
-BasisStart<Real> neumann_start(const Real& x, const Complex<Real>& m, const Complex<Real>& y0,
-                               const Complex<Real>& inv_z) {
+SecondSolution<Real> neumann_solution(const Real& x, const Complex<Real>& m) {
   if constexpr (std::is_same_v<Real, double>) {
-    if (std::abs(m.real() * x) <= kNarrowPhase) return neumann_start_in<Real, double>(x, m, y0, inv_z);
+    if (std::abs(m.real() * x) <= kNarrowPhase) return neumann_solution_in<Real, double>(x, m);
   }
-  return neumann_start_in<Real, typename WideOf<Real>::type>(typename WideOf<Real>::type(x), m, y0, inv_z);
+  return neumann_solution_in<Real, typename WideOf<Real>::type>(typename WideOf<Real>::type(x), m);
+}
+
+// ψ₁/B₀ from y₀ = ψ₁/ψ₀ without dividing by ψ₀ = sin z where it is small
+// (trap sin-zero; riccati_psi1 in series.hpp): ψ₁ = sin z · y₀ where
+// |sin z| >= |cos z|, else ψ₁ = cos z · y₀/(1/z − y₀).  With ξ₀ = −i e^{iz}
+// (scaled by e^{2iz}): (e^{2iz} − 1)/2 · y₀, or i(e^{2iz} + 1)/2 ·
+// y₀/(1/z − y₀); with χ₀ = cos z: tan z · y₀, or y₀/(1/z − y₀).
+template <class Real>
+Complex<Real> psi1_over_b0(const SecondSolution<Real>& b, const Complex<Real>& y0, const Complex<Real>& inv_z) {
+  using C = Complex<Real>;
+  if (b.chi) return b.sin_branch ? cmul(b.c, y0) : cmul(y0, recip(C(inv_z - y0)));
+  const C half(Real(0.5), Real(0));
+  if (b.sin_branch) return cmul(cmul(b.c, y0), half);
+  const C ep1 = b.c + C(Real(2));
+  const C i_ep1_half(-ep1.imag() * Real(0.5), ep1.real() * Real(0.5));
+  return cmul(i_ep1_half, cmul(y0, recip(C(inv_z - y0))));
 }
 
 // Shells whose Im(m_l) x_l is at most this use the basis (ψ, χ), the others
@@ -216,20 +224,33 @@ BasisStart<Real> neumann_start(const Real& x, const Complex<Real>& m, const Comp
 // like e^{2 Im z} where the field must decay outward (≤ e² here).
 constexpr double kChiBasisMaxImZ = 1.0;
 
-// yₙ(z), n = 0 .. N, for K complex arguments at once, their state in
-// registers: the K chains are independent, so their division latencies
-// overlap.  miller[j] > 0: the recurrence from 0 at N + miller[j]
-// (miller_depth), else from Lentz's continued fraction at N + 1.  Each chain
-// performs the same operations whatever K and its neighbours are.  With
-// `real` (the first group), yₙ(x) of the real x advances beside them, in real
-// arithmetic: at a zero of ψₙ(x) the pole of yₙ(x) must stay a finite 1/den
-// (a complex reciprocal squares den and would overflow).
+// One downward pass for K complex arguments at once, their state in
+// registers: the chains are independent, so their division latencies
+// overlap.  Per argument j:
+//  * yₙ(z), n = 0 .. N, into y[j]: from 0 at N + miller[j] (miller_depth),
+//    or from Lentz's continued fraction at N + 1 (miller[j] = 0);
+//  * where rho[j] is given (a shell's z1, z2), the upward ratio of its second
+//    solution, ρₖ = 1/((2k−1)/z − ρₖ₋₁), k = 1 .. N + 1, from rho[j][0] = ρ₀,
+//    in the same loop (as downward_ratios does for ξ(x)): the upward pass of
+//    the series then has no division of its own.
+// The first group also carries the real x (`surface`): yₙ(x) in real
+// arithmetic (at a zero of ψₙ(x) the pole of yₙ(x) must stay a finite 1/den;
+// a complex reciprocal squares den and would overflow), and ρₖ(x) upward
+// from i.  Each chain performs the same operations whatever its neighbours.
+template <class Real>
+struct SurfaceChains {
+  const ScaledInverse<Real>* over_x;
+  std::size_t miller;
+  Real* y;                     // yₙ(x)
+  StoredComplex<Real>* rho;    // ρₖ(x), k = 0 .. N + 1
+};
+
 template <class Real, int K>
 void downward_group(const ScaledInverseComplex<Real, Complex<Real>>* over, const std::size_t* miller, std::size_t N,
-                    StoredComplex<Real>* const* tables, const ScaledInverse<Real>* real = nullptr,
-                    std::size_t real_miller = 0, Real* real_table = nullptr) {
+                    StoredComplex<Real>* const* tables, StoredComplex<Real>* const* rho,
+                    const SurfaceChains<Real>* surface) {
   using C = Complex<Real>;
-  C y[K];
+  C y[K], r[K];
   Real yx(0);
   const auto step = [&](int j, std::size_t n) {  // yₙ₋₁ from yₙ
     C den = over[j](index_real<Real>(2 * n + 1)) - y[j];
@@ -237,58 +258,75 @@ void downward_group(const ScaledInverseComplex<Real, Complex<Real>>* over, const
     y[j] = recip(den);
   };
   const auto step_real = [&](std::size_t n) {
-    Real den = (*real)(index_real<Real>(2 * n + 1)) - yx;
+    Real den = (*surface->over_x)(index_real<Real>(2 * n + 1)) - yx;
     avoid_zero<Real, Real>(den);
     yx = Real(1) / den;
   };
-  std::size_t top = real ? N + real_miller : N;
-  for (int j = 0; j < K; ++j) y[j] = C(Real(0)), top = std::max(top, N + miller[j]);
+  std::size_t top = surface ? N + surface->miller : N;
+  for (int j = 0; j < K; ++j) {
+    y[j] = C(Real(0)), top = std::max(top, N + miller[j]);
+    if (rho[j]) r[j] = C(rho[j][0].real(), rho[j][0].imag());
+  }
   for (std::size_t n = top; n > N; --n) {
     for (int j = 0; j < K; ++j)
       if (n <= N + miller[j]) step(j, n);
-    if (real && n <= N + real_miller) step_real(n);
+    if (surface && n <= N + surface->miller) step_real(n);
   }
   for (int j = 0; j < K; ++j)
     if (miller[j] == 0) y[j] = recip(riccati_psi_ratio<C, Real>(N + 1, over[j]));
-  if (real && real_miller == 0) yx = Real(1) / riccati_psi_ratio<Real, Real>(N + 1, *real);
+  if (surface && surface->miller == 0) yx = Real(1) / riccati_psi_ratio<Real, Real>(N + 1, *surface->over_x);
+  HankelRatio<Real, C> hankel;
+  if (surface) store(surface->rho[0], hankel.rho);
   for (std::size_t n = N;; --n) {
-    for (int j = 0; j < K; ++j) store(tables[j][n], y[j]);
-    if (real) real_table[n] = yx;
+    const std::size_t k = N + 1 - n;  // the upward order
+    for (int j = 0; j < K; ++j) {
+      store(tables[j][n], y[j]);
+      if (rho[j]) {
+        r[j] = recip(C(over[j](index_real<Real>(2 * k - 1)) - r[j]));
+        store(rho[j][k], r[j]);
+      }
+    }
+    if (surface) surface->y[n] = yx, store(surface->rho[k], hankel.next(k, *surface->over_x));
     if (n == 0) break;
     for (int j = 0; j < K; ++j) step(j, n);
-    if (real) step_real(n);
+    if (surface) step_real(n);
   }
 }
 
-// yₙ(x) and every complex argument's yₙ, in groups of up to four.
+// Every argument's chains, in groups of up to four (the surface's in the first).
 template <class Real>
-void downward_complex(const ScaledInverse<Real>& over_x, std::size_t x_miller, Real* x_table,
+void downward_complex(const SurfaceChains<Real>& surface,
                       const std::vector<ScaledInverseComplex<Real, Complex<Real>>>& over, const std::size_t* miller,
-                      std::size_t N, StoredComplex<Real>* const* tables) {
+                      std::size_t N, StoredComplex<Real>* const* tables, StoredComplex<Real>* const* rho) {
   ATTENUVIS_CHECK(!over.empty());  // every layered sphere has a core or a shell: x rides in the first group
   for (std::size_t j = 0; j < over.size(); j += 4) {
-    const ScaledInverse<Real>* real = j == 0 ? &over_x : nullptr;
+    const SurfaceChains<Real>* sc = j == 0 ? &surface : nullptr;
     switch (std::min<std::size_t>(4, over.size() - j)) {
-      case 1: downward_group<Real, 1>(&over[j], miller + j, N, tables + j, real, x_miller, x_table); break;
-      case 2: downward_group<Real, 2>(&over[j], miller + j, N, tables + j, real, x_miller, x_table); break;
-      case 3: downward_group<Real, 3>(&over[j], miller + j, N, tables + j, real, x_miller, x_table); break;
-      default: downward_group<Real, 4>(&over[j], miller + j, N, tables + j, real, x_miller, x_table); break;
+      case 1: downward_group<Real, 1>(&over[j], miller + j, N, tables + j, rho + j, sc); break;
+      case 2: downward_group<Real, 2>(&over[j], miller + j, N, tables + j, rho + j, sc); break;
+      case 3: downward_group<Real, 3>(&over[j], miller + j, N, tables + j, rho + j, sc); break;
+      default: downward_group<Real, 4>(&over[j], miller + j, N, tables + j, rho + j, sc); break;
     }
   }
 }
 
-// The upward recurrences of one shell in its basis (ψ, B), B = ξ or χ:
-// ρₙ = Bₙ₋₁/Bₙ at z1 and z2, y3ₙ = Bₙ₊₁/Bₙ = (2n+1)/z − ρₙ, and
-// Qₙ = (ψₙ/Bₙ)(z1) / (ψₙ/Bₙ)(z2).  (Both bases satisfy the same recurrences,
-// and the transfer of layered_terms.hpp holds for either.)
+// The upward pass of one shell in its basis (ψ, B), B = ξ or χ, from the
+// tables of the downward pass: ρₙ = Bₙ₋₁/Bₙ at z1 and z2 (downward_group),
+// y3ₙ = Bₙ₊₁/Bₙ = (2n+1)/z − ρₙ, and Qₙ = (ψₙ/Bₙ)(z1) / (ψₙ/Bₙ)(z2) as a
+// running product.  (Both bases satisfy the same recurrences, and the
+// transfer of layered_terms.hpp holds for either.)  Q's factor
+// ρₙ(z1) yₙ₋₁(z1) / (ρₙ(z2) yₙ₋₁(z2)) takes 1/ρₙ(z2) = (2n−1)/z2 − ρₙ₋₁(z2)
+// and 1/yₙ₋₁(z2) = (2n+1)/z2 − yₙ(z2) as the passes formed them (the same
+// operations, avoid_zero included): no division.
 template <class Real>
 struct ShellRecurrence {
   using C = Complex<Real>;
   ScaledInverseComplex<Real, C> over_in, over_out;  // k/z1, k/z2
-  const StoredComplex<Real>* y_in = nullptr;        // yₙ(z1)
-  const StoredComplex<Real>* y_out = nullptr;       // yₙ(z2)
-  C rho_in, rho_out;  // ρₙ₋₁ = B_{n−2}/B_{n−1} at z1, z2
-  C q;                // Qₙ₋₁ (before order 1: see shell_recurrence)
+  const StoredComplex<Real>* y_in;                  // yₙ(z1)
+  const StoredComplex<Real>* y_out;                 // yₙ(z2)
+  const StoredComplex<Real>* rho_in;                // ρₙ(z1), n = 0 .. N + 1
+  const StoredComplex<Real>* rho_out;               // ρₙ(z2)
+  C q;  // Qₙ₋₁ (before order 1: see shell_recurrence)
 
   // Orders first .. first + count − 1 into the block's entries 0 .. count − 1.
   // The state in locals: through `this`, every double stored into `s`
@@ -297,17 +335,20 @@ struct ShellRecurrence {
     const ScaledInverseComplex<Real, C> oi = over_in, oo = over_out;
     const StoredComplex<Real>* const yin = y_in;
     const StoredComplex<Real>* const yout = y_out;
-    C ri = rho_in, ro = rho_out, qn = q;
+    const StoredComplex<Real>* const rin = rho_in;
+    const StoredComplex<Real>* const rout = rho_out;
+    C qn = q;
     for (std::size_t i = 0; i < count; ++i) {
       const std::size_t n = first + i;
-      const C den_in = oi(index_real<Real>(2 * n - 1)) - ri;
-      const C den_out = oo(index_real<Real>(2 * n - 1)) - ro;  // 1/ρₙ(z2)
-      ri = recip(den_in);
-      ro = recip(den_out);
+      const C ri(rin[n].real(), rin[n].imag()), ro(rout[n].real(), rout[n].imag());
+      const C ro_prev(rout[n - 1].real(), rout[n - 1].imag());
+      const C den_out = oo(index_real<Real>(2 * n - 1)) - ro_prev;  // 1/ρₙ(z2)
       C f = cmul(ri, den_out);
       if (n > 1) {
-        const C yi(yin[n - 1].real(), yin[n - 1].imag()), yo(yout[n - 1].real(), yout[n - 1].imag());
-        f = cmul(f, cmul(yi, recip(yo)));
+        const C yi(yin[n - 1].real(), yin[n - 1].imag()), yo(yout[n].real(), yout[n].imag());
+        C inv_yo = oo(index_real<Real>(2 * n + 1)) - yo;  // 1/yₙ₋₁(z2)
+        avoid_zero<C, Real>(inv_yo);
+        f = cmul(f, cmul(yi, inv_yo));
       }
       qn = cmul(qn, f);
       const C y3i = oi(index_real<Real>(2 * n + 1)) - ri;
@@ -318,7 +359,7 @@ struct ShellRecurrence {
       s.y3o_re[i] = y3o.real(), s.y3o_im[i] = y3o.imag();
       s.q_re[i] = qn.real(), s.q_im[i] = qn.imag();
     }
-    rho_in = ri, rho_out = ro, q = qn;
+    q = qn;
   }
 };
 
@@ -343,9 +384,11 @@ template <class Real>
 struct LayeredWorkspace {
   // yₙ of every complex argument: [0] the core (absent on a conductor), then
   // z1, z2 per shell.  Held by pointer: the buffers do not move.
-  std::vector<std::unique_ptr<Scratch<StoredComplex<Real>>>> y;
-  Scratch<Real> y_x;  // yₙ(x) of the real x
-  std::vector<StoredComplex<Real>*> y_data;
+  std::vector<std::unique_ptr<Scratch<StoredComplex<Real>>>> y, rho;  // rho: shells' arguments only
+  std::vector<StoredComplex<Real>*> y_data, rho_data;                // rho_data: nullptr for the core
+  std::vector<SecondSolution<Real>> second;                          // per argument (shells')
+  Scratch<Real> y_x;                   // yₙ(x) of the real x
+  Scratch<StoredComplex<Real>> rho_x;  // ρₙ(x)
   std::vector<std::size_t> miller;
   std::vector<ScaledInverseComplex<Real, Complex<Real>>> over;  // k/z of every complex argument
   std::vector<ShellConstants<Real>> constants;
@@ -356,9 +399,11 @@ struct LayeredWorkspace {
   Modes<Real> modes;
   void release_large() {
     constexpr std::size_t kKeep = std::size_t(8) << 20;
-    for (auto& t : y)
-      if (t->capacity_bytes() > kKeep) t->release();
+    for (auto* tables : {&y, &rho})
+      for (auto& t : *tables)
+        if (t->capacity_bytes() > kKeep) t->release();
     if (y_x.capacity_bytes() > kKeep) y_x.release();
+    if (rho_x.capacity_bytes() > kKeep) rho_x.release();
   }
 };
 
@@ -392,44 +437,43 @@ ShellConstants<Real> shell_constants(const LayeredProblem<Real>& p, std::size_t 
           ScaledInverseComplex<Real, C>(p.x[l - 1], mo)};
 }
 
-// Shell l's recurrences before order 1: ρ₀ at z1, z2 and
-// Q₀ = [phase] (ψ₁/B₀)(z1) / (ψ₁/B₀)(z2), the phase e^{2i(z2−z1)} in the
-// basis ξ (undoing the scale of hankel_start).
+// Whether shell l transfers in the basis (ψ, χ) (trap spurious-absorption).
 template <class Real>
-ShellRecurrence<Real> shell_recurrence(const LayeredProblem<Real>& p, std::size_t l,
-                                       const ScaledInverseComplex<Real, Complex<Real>>& over_in,
-                                       const ScaledInverseComplex<Real, Complex<Real>>& over_out,
-                                       const StoredComplex<Real>* y_in, const StoredComplex<Real>* y_out) {
+bool chi_basis(const LayeredProblem<Real>& p, std::size_t l) {
+  return static_cast<double>(p.index(l).imag() * p.x[l]) <= kChiBasisMaxImZ;
+}
+
+// Shell l's upward pass before order 1 (arguments j, j + 1):
+// Q₀ = [phase] (ψ₁/B₀)(z1) / (ψ₁/B₀)(z2), the phase e^{2i(z2−z1)} in the
+// basis ξ (undoing the scale of hankel_solution).
+template <class Real>
+ShellRecurrence<Real> shell_recurrence(const LayeredProblem<Real>& p, std::size_t l, std::size_t j,
+                                       const LayeredWorkspace<Real>& w) {
   using C = Complex<Real>;
   using W = typename WideOf<Real>::type;
   const C m = p.index(l);
-  const C y0_in(y_in[0].real(), y_in[0].imag()), y0_out(y_out[0].real(), y_out[0].imag());
-  const bool chi = static_cast<double>(m.imag() * p.x[l]) <= kChiBasisMaxImZ;
-  const auto start = chi ? neumann_start<Real> : hankel_start<Real>;
-  const BasisStart<Real> in = start(p.x[l - 1], m, y0_in, over_in(Real(1)));
-  const BasisStart<Real> out = start(p.x[l], m, y0_out, over_out(Real(1)));
-  C q = cmul(in.psi1_over_b0, recip(out.psi1_over_b0));
+  const StoredComplex<Real>*yi = w.y_data[j], *yo = w.y_data[j + 1];
+  const C s_in = psi1_over_b0(w.second[j], C(yi[0].real(), yi[0].imag()), w.over[j](Real(1)));
+  const C s_out = psi1_over_b0(w.second[j + 1], C(yo[0].real(), yo[0].imag()), w.over[j + 1](Real(1)));
+  C q = cmul(s_in, recip(s_out));
   // e^{2i m_l (x_l − x_{l−1})} (trap thin-shell: the difference of two doubles, exact in W).
-  if (!chi) q = cmul(twice_exp_minus_1<Real>(W(p.x[l]) - W(p.x[l - 1]), m) + C(Real(1)), q);
-  return {over_in, over_out, y_in, y_out, in.rho0, out.rho0, q};
+  if (!w.second[j].chi) q = cmul(twice_exp_minus_1<Real>(W(p.x[l]) - W(p.x[l - 1]), m) + C(Real(1)), q);
+  return {w.over[j], w.over[j + 1], yi, yo, w.rho_data[j], w.rho_data[j + 1], q};
 }
 
-// Pass 1 at the surface (as block_inputs_for in series.hpp): ρₙ(x) upward,
-// Rₙ, sₙ, and yₙ(x) from its table.
+// Pass 1 at the surface (as block_inputs_for in series.hpp): Rₙ, sₙ, and
+// yₙ(x), ρₙ(x) from their tables.
 template <class Real>
-void surface_inputs(std::size_t first, std::size_t count, const Real* y,
-                    const ScaledInverse<Real>& over_x_in, HankelRatio<Real, Complex<Real>>& hankel_io,
+void surface_inputs(std::size_t first, std::size_t count, const Real* y, const StoredComplex<Real>* rho_x,
                     Complex<Real>& R_io, Real& s_io, TermInputs<Real>& in) {
   using C = Complex<Real>;
   // The running state in locals (see ShellRecurrence::block).
-  const ScaledInverse<Real> over_x = over_x_in;
-  HankelRatio<Real, C> hankel = hankel_io;
   C R = R_io;
   Real s = s_io;
   Real sign = first % 2 == 0 ? Real(1) : Real(-1);
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t n = first + i;
-    const C rho = hankel.next(n, over_x);
+    const C rho(rho_x[n].real(), rho_x[n].imag());
     R = n == 1 ? cmul(R, rho) : cmul(R, rho) * y[n - 1];
     s *= norm2(rho);
     in.rn[i] = index_real<Real>(n);
@@ -440,7 +484,7 @@ void surface_inputs(std::size_t first, std::size_t count, const Real* y,
     in.sign[i] = sign;
     sign = -sign;
   }
-  hankel_io = hankel, R_io = R, s_io = s;
+  R_io = R, s_io = s;
 }
 
 // Pass 2 of a block: the modes from the core out through every shell, then
@@ -483,28 +527,49 @@ SurfaceConstants<Real> surface_constants(const LayeredProblem<Real>& p) {
           ScaledInverseComplex<Real, C>(x, m)};
 }
 
-// Fills the downward tables of every argument for orders 0 .. N.
+// A table of at least n entries held by pointer (the buffers do not move).
+template <class T>
+T* table(std::vector<std::unique_ptr<Scratch<T>>>& tables, std::size_t j, std::size_t n) {
+  while (tables.size() <= j) tables.push_back(std::make_unique<Scratch<T>>());
+  tables[j]->resize(n);
+  return &(*tables[j])[0];
+}
+
+// Fills the tables of every argument: yₙ for n = 0 .. N, and for the shells'
+// arguments and the real x ρₙ for n = 0 .. N + 1.
 template <class Real>
 void layered_tables(const LayeredProblem<Real>& p, std::size_t N, LayeredWorkspace<Real>& w) {
   using C = Complex<Real>;
   const std::size_t count = w.over.size();
-  while (w.y.size() < count) w.y.push_back(std::make_unique<Scratch<StoredComplex<Real>>>());
-  w.y_data.resize(count);
+  w.y_data.assign(count, nullptr);
+  w.rho_data.assign(count, nullptr);
+  w.second.resize(count);
   w.miller.assign(count, 0);
   std::size_t j = 0;
-  const auto argument = [&](const Real& x, const C& m) {
-    w.y[j]->resize(N + 1);
-    w.y_data[j] = &(*w.y[j])[0];
+  const auto argument = [&](const Real& x, const C& m, const SecondSolution<Real>* second) {
+    w.y_data[j] = table<StoredComplex<Real>>(w.y, j, N + 1);
+    if (second) {
+      w.second[j] = *second;
+      w.rho_data[j] = table<StoredComplex<Real>>(w.rho, j, N + 2);
+      store(w.rho_data[j][0], second->rho0);
+    }
     if constexpr (std::is_same_v<Real, double>) w.miller[j] = miller_depth(std::sqrt(norm2(m)) * x, 1.0, N);
     ++j;
   };
-  if (!p.conducting_core) argument(p.x[0], p.index(0));
-  for (std::size_t l = 1; l < p.layers; ++l) argument(p.x[l - 1], p.index(l)), argument(p.x[l], p.index(l));
+  if (!p.conducting_core) argument(p.x[0], p.index(0), nullptr);
+  for (std::size_t l = 1; l < p.layers; ++l) {
+    const C m = p.index(l);
+    const bool chi = chi_basis(p, l);
+    const SecondSolution<Real> in = chi ? neumann_solution(p.x[l - 1], m) : hankel_solution(p.x[l - 1], m);
+    const SecondSolution<Real> out = chi ? neumann_solution(p.x[l], m) : hankel_solution(p.x[l], m);
+    argument(p.x[l - 1], m, &in), argument(p.x[l], m, &out);
+  }
   w.y_x.resize(N + 1);
-  std::size_t x_miller = 0;
-  if constexpr (std::is_same_v<Real, double>) x_miller = miller_depth(p.outer_x(), 1.0, N);
-  downward_complex<Real>(ScaledInverse<Real>(p.outer_x()), x_miller, &w.y_x[0], w.over, w.miller.data(), N,
-                         w.y_data.data());
+  w.rho_x.resize(N + 2);
+  const ScaledInverse<Real> over_x(p.outer_x());
+  SurfaceChains<Real> surface{&over_x, 0, &w.y_x[0], &w.rho_x[0]};
+  if constexpr (std::is_same_v<Real, double>) surface.miller = miller_depth(p.outer_x(), 1.0, N);
+  downward_complex<Real>(surface, w.over, w.miller.data(), N, w.y_data.data(), w.rho_data.data());
 }
 
 // The shells' constants and recurrences before order 1.
@@ -517,7 +582,7 @@ void layered_shells(const LayeredProblem<Real>& p, LayeredWorkspace<Real>& w) {
   for (std::size_t l = 1; l <= shells; ++l) {
     const std::size_t j = core + 2 * (l - 1);
     w.constants.push_back(shell_constants(p, l));
-    w.recurrences.push_back(shell_recurrence(p, l, w.over[j], w.over[j + 1], w.y_data[j], w.y_data[j + 1]));
+    w.recurrences.push_back(shell_recurrence(p, l, j, w));
   }
   if (w.shell_in.size() < shells) w.shell_in.resize(shells);
 }
@@ -553,7 +618,6 @@ bool layered_sum(const LayeredProblem<Real>& p, const Extras& extras, bool conve
   const Real sx = sin(x), cx = cos(x);
   const Real* yx = &w.y_x[0];
   const Real psi1 = riccati_psi1(sx, cx, yx[0], surface.over_x(Real(1)));
-  HankelRatio<Real, C> hankel;
   C R(sx * psi1, cx * psi1);  // ψ₁/ξ₀; R₁ = ρ₁ ψ₁/ξ₀ (trap sin-zero)
   Real s(1);                  // 1/|ξ₀|²
   C a_prev(Real(0)), b_prev(Real(0));
@@ -563,7 +627,7 @@ bool layered_sum(const LayeredProblem<Real>& p, const Extras& extras, bool conve
   for (std::size_t first = 1, count = 0; first <= N && !stopped; first += count, block = kTermBlock) {
     count = std::min(block, N + 1 - first);
     // Pass 1 (serial): the upward recurrences.
-    surface_inputs(first, count, yx, surface.over_x, hankel, R, s, w.in);
+    surface_inputs(first, count, yx, &w.rho_x[0], R, s, w.in);
     for (std::size_t l = 0; l < w.recurrences.size(); ++l) w.recurrences[l].block(first, count, w.shell_in[l]);
     // Pass 2 (every order independently).
     layered_block_terms(p, w, surface, first, count, a_prev, b_prev);
