@@ -252,6 +252,13 @@ std::string distribution_ranges() {
          w::range_text(density_per_radius) + ", dN/dln r and counts " + w::range_text(number_per_volume);
 }
 
+// "advection, radiation, marshall-palmer:R, gunn-marshall:R" (size_distribution.hpp).
+std::string preset_names() {
+  std::string out;
+  for (const auto& p : w::distribution_presets()) out += (out.empty() ? "" : ", ") + p.name;
+  return out;
+}
+
 }  // namespace
 
 void register_weather(CLI::App& app) {
@@ -293,9 +300,8 @@ void register_weather(CLI::App& app) {
     cmd->callback([=] { run_table(*t, *opts); });
   }
   {
-    auto* cmd = app.add_subcommand("distribution", std::string("moments and checks of a size distribution: a preset "
-                                                               "(advection, radiation, marshall-palmer:R, "
-                                                               "gunn-marshall:R) or a CSV file\n") +
+    auto* cmd = app.add_subcommand("distribution", "moments and checks of a size distribution: a preset (" +
+                                                       preset_names() + ") or a CSV file\n" +
                                                        w::distribution_file_format() + "\n" + distribution_ranges());
     auto what = std::make_shared<std::string>();
     auto density = std::make_shared<std::string>("1000");

@@ -6,6 +6,7 @@
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/mie/batch.hpp"
 #include "attenuvis/weather/domains.hpp"
+#include "attenuvis/weather/refractive_index.hpp"
 #include "attenuvis/weather/units.hpp"
 
 namespace attenuvis::cli {
@@ -21,6 +22,22 @@ auto for_option(const char* option, Read read) {
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string(option) + ": " + e.what());
   }
+}
+
+// "hale-querry or segelstein (water), ice (Warren & Brandt 2008)": the
+// tables of refractive_index.hpp by substance; a table named after its
+// substance names its source instead.
+std::string water_table_choices() {
+  const auto& tables = w::water_tables();
+  std::string out;
+  for (std::size_t i = 0, next = 0; i < tables.size(); i = next) {
+    std::string names;
+    for (next = i; next < tables.size() && tables[next].substance == tables[i].substance; ++next)
+      names += (next == i ? "" : " or ") + tables[next].name;
+    const bool named_after_substance = next == i + 1 && tables[i].name == tables[i].substance;
+    out += (i == 0 ? "" : ", ") + names + " (" + (named_after_substance ? tables[i].source : tables[i].substance) + ")";
+  }
+  return out;
 }
 
 }  // namespace
@@ -41,7 +58,7 @@ void add_weather_options(CLI::App* cmd, WeatherOptions& o, WeatherOptionSet whic
     cmd->add_option("--tolerance", o.tolerance,
                     "relative tolerance of Mie size integrals; " + w::range_text(w::domain::tolerance))
         ->capture_default_str();
-  cmd->add_option("--water", o.water, "refractive-index table of the drops: hale-querry or segelstein (water), ice (Warren & Brandt 2008)")
+  cmd->add_option("--water", o.water, "refractive-index table of the drops: " + water_table_choices())
       ->capture_default_str();
 }
 
@@ -50,8 +67,8 @@ weather::Settings weather_settings(const WeatherOptions& o) {
   s.convention = for_option("--convention", [&] { return w::parse_convention(o.convention); });
   s.contrast_threshold = for_option("--threshold", [&] { return w::read_in(w::domain::contrast_threshold, o.threshold); });
   s.rel_tolerance = for_option("--tolerance", [&] { return w::read_in(w::domain::tolerance, o.tolerance); });
-  if (o.water != "hale-querry" && o.water != "water" && o.water != "segelstein" && o.water != "ice")
-    throw std::invalid_argument("--water: unknown table '" + o.water + "' (hale-querry, segelstein or ice)");
+  if (!w::find_water_table(o.water))
+    throw std::invalid_argument("--water: unknown table '" + o.water + "' (" + w::water_table_names() + ")");
   s.water_table = o.water;
   return s;
 }

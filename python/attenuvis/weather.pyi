@@ -69,13 +69,25 @@ class Optics:
     absorption: Estimate
     albedo: Tuple[float, float]
     asymmetry: Tuple[float, float]
+    evaluations: int
+    floor_panels: int
+    max_size_parameter: float
+    scattering_computed: bool
+    method: str
+    backscatter_computed: bool
+    backscatter: Estimate
+    lidar_ratio: Tuple[float, float]
+    moments: Tuple[np.ndarray, np.ndarray]
+    angles_deg: np.ndarray
+    phase: Tuple[np.ndarray, np.ndarray]
+    expansion: Dict[str, Tuple[np.ndarray, np.ndarray]]
     m: complex
     def __getattr__(self, name: str) -> Any: ...
 
-@dataclass
 DEFAULT_PHASE_ANGLES: Tuple[float, ...]
 PHASE_NORMALISATION: str
 
+@dataclass
 class Table:
     labels: Sequence[str]
     wavelengths: np.ndarray
@@ -95,3 +107,5 @@ def table(conditions: Union[ConditionLike, Sequence[ConditionLike]], wavelengths
           contrast_threshold: float = ..., rel_tolerance: float = ..., water_table: str = ...,
           threads: int = ..., angles: Optional[ArrayLike] = ...) -> Table: ...
 def refractive_index(wavelength: ArrayLike, table: str = ...) -> np.ndarray: ...
+def registry_kinds() -> List[str]: ...
+def registry(kind: str) -> List[Dict[str, Any]]: ...

@@ -1,15 +1,18 @@
 // attenuvis._attenuvis.weather: the typed conditions (condition.hpp) as
 // Python classes, one per C++ struct, with the variant Condition converted by
 // pybind11 in both directions; sigma, bulk optics, sigma tables and size
-// distributions.
+// distributions; the registries of names (registry.hpp).
 //
 // sigma, bulk optics and tables run through watched_call (watched_call.hpp):
 // Ctrl-C sets Settings::cancel, the quadrature stops at its next panel and
 // KeyboardInterrupt reaches Python.
 //
-// Bulk optics are returned as a dict of named fields (optics_fields below), so
-// that a field added to BulkOptics needs one line here and none in the
-// Python layer, which shows whatever the dict holds.
+// Names come from the C++ registries only: the enums are bound from them
+// (a name's '-' becomes '_': naboulsi-advection is
+// VisibilityFogModel.naboulsi_advection), and registry(kind) hands the Python
+// layer every entry.  Bulk optics are returned as a dict built from
+// BulkOptics' own field list (bulk_optics.hpp: for_each_field), so a field
+// added there reaches Python with no change here or in the Python layer.
 #include <pybind11/complex.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -23,6 +26,7 @@
 #include "attenuvis/weather/condition.hpp"
 #include "attenuvis/weather/condition_grammar.hpp"
 #include "attenuvis/weather/refractive_index.hpp"
+#include "attenuvis/weather/registry.hpp"
 #include "attenuvis/weather/sigma.hpp"
 #include "attenuvis/weather/sigma_table.hpp"
 #include "attenuvis/weather/size_distribution.hpp"
@@ -37,31 +41,44 @@ namespace {
 
 using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
+py::array_t<double> array(const std::vector<double>& v) { return py::array_t<double>(v.size(), v.data()); }
+
+// An integral as {value, error, its parts}: error() and every field.
 py::dict estimate(const w::IntegralEstimate& e) {
   py::dict d;
   d["value"] = e.value;
   d["error"] = e.error();
-  d["quadrature_error"] = e.quadrature_error;
-  d["tail_error"] = e.tail_error;
-  d["asymptotic_error"] = e.asymptotic_error;
-  d["resonance_error"] = e.resonance_error;
-  d["rounding_error"] = e.rounding_error;
+  w::for_each_field(e, [&](const char* name, double v) { d[name] = v; });
   return d;
 }
 
-// Every field of BulkOptics, by name (integrals as {value, error, parts}).
+// One BulkOptics field into the dict: integrals as estimate(), a value with
+// its error as (value, error), the expansion as {alpha1: (values, errors), ...}.
+struct OpticsField {
+  py::dict& d;
+  void operator()(const char* name, const w::IntegralEstimate& e) const { d[name] = estimate(e); }
+  void operator()(const char* name, double value, double error) const { d[name] = py::make_tuple(value, error); }
+  void operator()(const char* name, const std::vector<double>& values, const std::vector<double>& errors) const {
+    d[name] = py::make_tuple(array(values), array(errors));
+  }
+  void operator()(const char* name, const std::vector<double>& values) const { d[name] = array(values); }
+  void operator()(const char* name, const w::MatrixExpansion& values, const w::MatrixExpansion& errors) const {
+    py::dict parts;
+    w::for_each_field(values, errors, [&](const char* part, const std::vector<double>& v, const std::vector<double>& e) {
+      parts[part] = py::make_tuple(array(v), array(e));
+    });
+    d[name] = parts;
+  }
+  template <class Scalar>  // counts, flags, the method text
+  void operator()(const char* name, const Scalar& value) const {
+    d[name] = value;
+  }
+};
+
+// Every field of BulkOptics, by name.
 py::dict optics_fields(const w::BulkOptics& b) {
   py::dict d;
-  d["extinction"] = estimate(b.extinction);
-  d["scattering"] = estimate(b.scattering);
-  d["absorption"] = estimate(b.absorption);
-  d["albedo"] = py::make_tuple(b.albedo, b.albedo_error);
-  d["asymmetry"] = py::make_tuple(b.asymmetry, b.asymmetry_error);
-  d["evaluations"] = b.evaluations;
-  d["floor_panels"] = b.floor_panels;
-  d["max_size_parameter"] = b.max_size_parameter;
-  d["scattering_computed"] = b.scattering_computed;
-  d["method"] = b.method;
+  w::for_each_field(b, OpticsField{d});
   return d;
 }
 
@@ -85,25 +102,31 @@ py::dict sigma_fields(const w::Sigma& s) {
   return d;
 }
 
-void bind_conditions(py::module_& m) {
-  py::enum_<w::RainLaw>(m, "RainLaw")
-      .value("seed", w::RainLaw::seed)
-      .value("carbonneau", w::RainLaw::carbonneau)
-      .value("p1814", w::RainLaw::p1814);
-  py::enum_<w::SnowType>(m, "SnowType").value("wet", w::SnowType::wet).value("dry", w::SnowType::dry);
-  py::enum_<w::VisibilityFogModel>(m, "VisibilityFogModel")
-      .value("kruse", w::VisibilityFogModel::kruse)
-      .value("kim", w::VisibilityFogModel::kim)
-      .value("naboulsi_advection", w::VisibilityFogModel::naboulsi_advection)
-      .value("naboulsi_radiation", w::VisibilityFogModel::naboulsi_radiation);
-  py::enum_<w::FogPreset>(m, "FogPreset")
-      .value("advection", w::FogPreset::advection)
-      .value("radiation", w::FogPreset::radiation);
-  py::enum_<w::WaterTable>(m, "WaterTable")
-      .value("hale_querry", w::WaterTable::hale_querry)
-      .value("segelstein", w::WaterTable::segelstein)
-      .value("ice", w::WaterTable::ice);
+// A registry's name as a Python identifier: naboulsi-advection -> naboulsi_advection.
+std::string identifier(std::string name) {
+  for (char& c : name)
+    if (c == '-') c = '_';
+  return name;
+}
 
+// A Python enum with one value per row of a registry, named after the row.
+template <class Enum, class Rows, class Member>
+void bind_named_enum(py::module_& m, const char* name, const Rows& rows, Member id) {
+  py::enum_<Enum> e(m, name);
+  for (const auto& row : rows) e.value(identifier(row.name).c_str(), row.*id);
+}
+
+void bind_named_enums(py::module_& m) {
+  bind_named_enum<w::RainLaw>(m, "RainLaw", w::rain_power_laws(), &w::RainLawCoefficients::law);
+  bind_named_enum<w::SnowType>(m, "SnowType", w::snow_types(), &w::SnowTypeInfo::id);
+  bind_named_enum<w::VisibilityFogModel>(m, "VisibilityFogModel", w::visibility_fog_models(),
+                                         &w::VisibilityFogModelInfo::id);
+  bind_named_enum<w::FogPreset>(m, "FogPreset", w::fog_presets(), &w::FogPresetInfo::id);
+  bind_named_enum<w::WaterTable>(m, "WaterTable", w::water_tables(), &w::WaterTableInfo::id);
+}
+
+// The conditions set by a number and a model (no drops).
+void bind_closed_form_conditions(py::module_& m) {
   py::class_<w::ClearAir>(m, "ClearAir")
       .def(py::init([](std::optional<double> v) { return w::ClearAir{v}; }), py::arg("visibility_m") = py::none())
       .def_readwrite("visibility_m", &w::ClearAir::visibility_m);
@@ -127,6 +150,10 @@ void bind_conditions(py::module_& m) {
            py::arg("model"), py::arg("visibility_m"))
       .def_readwrite("model", &w::FogFromVisibility::model)
       .def_readwrite("visibility_m", &w::FogFromVisibility::visibility_m);
+}
+
+// A Mie condition and its parts: the drops, the refractive index, the rescaling.
+void bind_mie_condition(py::module_& m) {
   py::class_<w::MarshallPalmerRain>(m, "MarshallPalmerRain")
       .def(py::init([](double r) { return w::MarshallPalmerRain{r}; }), py::arg("rate_mm_h"))
       .def_readwrite("rate_mm_h", &w::MarshallPalmerRain::rate_mm_h);
@@ -154,7 +181,9 @@ void bind_conditions(py::module_& m) {
       .def_readwrite("drops", &w::MieCondition::drops)
       .def_readwrite("index", &w::MieCondition::index)
       .def_readwrite("rescaling", &w::MieCondition::rescaling);
+}
 
+void bind_grammar(py::module_& m) {
   m.def("parse", &w::parse_condition, py::arg("text"));
   m.def(
       "expand",
@@ -167,6 +196,28 @@ void bind_conditions(py::module_& m) {
   m.def("to_text", &w::to_text, py::arg("condition"));
   m.def("needs_mie", &w::needs_mie, py::arg("condition"));
   m.def("grammar", &w::condition_grammar);
+}
+
+void bind_conditions(py::module_& m) {
+  bind_named_enums(m);
+  bind_closed_form_conditions(m);
+  bind_mie_condition(m);
+  bind_grammar(m);
+}
+
+// registry(kind): the entries as dicts {name, units, help, citation, and the kind's details}.
+py::list registry_entries(const std::string& kind) {
+  py::list out;
+  for (const w::RegistryEntry& e : w::registry(kind)) {
+    py::dict d;
+    d["name"] = e.name;
+    d["units"] = e.units;
+    d["help"] = e.help;
+    d["citation"] = e.citation;
+    for (const auto& [key, value] : e.details) d[py::str(key)] = py::cast(value);
+    out.append(d);
+  }
+  return out;
 }
 
 w::SizeDistribution distribution_from_arrays(const Doubles& radius_m, const Doubles& density_per_m4,
@@ -231,12 +282,42 @@ void bind_distributions(py::module_& m) {
       .def("describe", &w::SizeDistribution::describe);
 }
 
-}  // namespace
+// The cells of a table as arrays: per quantity (by its C++ name) the values
+// and the errors over (conditions, wavelengths); the model of each
+// condition; the bulk phase function (int p dOmega = 4 pi) and its error over
+// (conditions, wavelengths, angles).  NaN where a cell has no such value.
+py::tuple table_arrays(const w::SigmaTable& t) {
+  const std::size_t W = t.wavelengths_m.size(), C = t.conditions.size(), A = t.angles_deg.size();
+  const auto shape = [](std::size_t n) { return static_cast<py::ssize_t>(n); };
+  py::dict values, errors;
+  for (const w::Quantity q : t.quantities) {
+    py::array_t<double> value({shape(C), shape(W)}), error({shape(C), shape(W)});
+    for (std::size_t c = 0; c < C; ++c)
+      for (std::size_t wl = 0; wl < W; ++wl) {
+        const w::QuantityValue v = w::table_value(t.at(wl, c), q);
+        value.mutable_at(c, wl) = v.value;
+        error.mutable_at(c, wl) = v.error;
+      }
+    values[py::str(w::info(q).name)] = value;
+    errors[py::str(w::info(q).name)] = error;
+  }
+  py::array_t<double> phase({shape(C), shape(W), shape(A)}), phase_error({shape(C), shape(W), shape(A)});
+  std::vector<std::string> models(C);
+  for (std::size_t c = 0; c < C; ++c)
+    for (std::size_t wl = 0; wl < W; ++wl) {
+      const w::TableCell& cell = t.at(wl, c);
+      if (wl == 0) models[c] = cell.sigma.model;
+      for (std::size_t a = 0; a < A; ++a) {
+        const w::QuantityValue p = w::table_phase(cell, a);
+        phase.mutable_at(c, wl, a) = p.value;
+        phase_error.mutable_at(c, wl, a) = p.error;
+      }
+    }
+  return py::make_tuple(values, errors, models, phase, phase_error);
+}
 
-void bind_weather(py::module_ module) {
-  bind_conditions(module);
-  bind_distributions(module);
-  module.def(
+void bind_sigma(py::module_& m) {
+  m.def(
       "sigma",
       [](const w::Condition& c, double wavelength_m, const std::string& convention, double contrast_threshold,
          double rel_tolerance, const std::string& water_table) {
@@ -247,76 +328,77 @@ void bind_weather(py::module_ module) {
       },
       py::arg("condition"), py::arg("wavelength_m"), py::arg("convention"), py::arg("contrast_threshold"),
       py::arg("rel_tolerance"), py::arg("water_table"));
-  module.def(
+  m.def(
+      "refractive_index",
+      [](const std::string& table, double wavelength_m) { return w::refractive_index_table(table).at(wavelength_m); },
+      py::arg("table"), py::arg("wavelength_m"));
+  m.def("data_directory", &w::data_directory);
+}
+
+void bind_optics(py::module_& m) {
+  m.def(
       "condition_optics",
       [](const w::MieCondition& c, double wavelength_m, double rel_tolerance, const std::string& water_table) {
         w::Settings s;
         s.rel_tolerance = rel_tolerance;
         s.water_table = water_table;
         std::string source;
-        const std::complex<double> m = w::condition_refractive_index(c, wavelength_m, s, &source);
+        const std::complex<double> index = w::condition_refractive_index(c, wavelength_m, s, &source);
         std::atomic<bool> cancel{false};
         s.cancel = &cancel;
         py::dict d = optics_fields(watched_call([&] { return w::condition_bulk_optics(c, wavelength_m, s); }, cancel));
-        d["m"] = m;
+        d["m"] = index;
         d["index_source"] = source;
         return d;
       },
       py::arg("condition"), py::arg("wavelength_m"), py::arg("rel_tolerance"), py::arg("water_table"));
-  module.def(
+  m.def(
       "distribution_optics",
-      [](const w::SizeDistribution& d, double wavelength_m, std::complex<double> m, double rel_tolerance) {
+      [](const w::SizeDistribution& d, double wavelength_m, std::complex<double> index, double rel_tolerance) {
         w::QuadratureSettings q;
         q.rel_tolerance = rel_tolerance;
         std::atomic<bool> cancel{false};
         q.cancel = &cancel;
-        py::dict out = optics_fields(watched_call([&] { return w::bulk_optics(d, wavelength_m, m, q); }, cancel));
-        out["m"] = m;
+        py::dict out = optics_fields(watched_call([&] { return w::bulk_optics(d, wavelength_m, index, q); }, cancel));
+        out["m"] = index;
         return out;
       },
       py::arg("distribution"), py::arg("wavelength_m"), py::arg("m"), py::arg("rel_tolerance"));
-  module.def(
-      "refractive_index",
-      [](const std::string& table, double wavelength_m) { return w::refractive_index_table(table).at(wavelength_m); },
-      py::arg("table"), py::arg("wavelength_m"));
-  module.def("data_directory", &w::data_directory);
-  module.def(
+}
+
+void bind_table(py::module_& m) {
+  m.def(
       "table",
       [](const std::vector<std::pair<std::string, w::Condition>>& conditions, const std::vector<double>& wavelengths,
          const std::string& convention, double contrast_threshold, double rel_tolerance,
-         const std::string& water_table, int threads, const std::vector<double>& angles_deg) {
+         const std::string& water_table, int threads, const std::vector<std::string>& quantities,
+         const std::vector<double>& angles_deg) {
         std::vector<w::LabelledCondition> labelled;
         for (const auto& [label, c] : conditions) labelled.push_back({label, c});
+        std::string names;
+        for (const auto& q : quantities) names += (names.empty() ? "" : ",") + q;
+        const std::vector<w::Quantity> asked = w::parse_quantity_list(names);
         w::Settings s = settings(convention, contrast_threshold, rel_tolerance, water_table);
         std::atomic<bool> cancel{false};
         s.cancel = &cancel;
-        const w::SigmaTable t = watched_call(
-            [&] { return w::sigma_table(labelled, wavelengths, s, threads, {w::Quantity::sigma_ext}, -1, angles_deg); },
-            cancel);
-        const py::ssize_t W = static_cast<py::ssize_t>(wavelengths.size());
-        const py::ssize_t C = static_cast<py::ssize_t>(labelled.size());
-        const py::ssize_t A = static_cast<py::ssize_t>(angles_deg.size());
-        py::array_t<double> value({C, W}), error({C, W});
-        // The bulk phase function (int p dOmega = 4 pi) and its error; NaN where a cell has none.
-        py::array_t<double> phase({C, W, A}), phase_error({C, W, A});
-        std::vector<std::string> models(static_cast<std::size_t>(C));
-        for (py::ssize_t c = 0; c < C; ++c)
-          for (py::ssize_t wl = 0; wl < W; ++wl) {
-            const w::TableCell& cell = t.at(static_cast<std::size_t>(wl), static_cast<std::size_t>(c));
-            value.mutable_at(c, wl) = cell.sigma.per_m;
-            error.mutable_at(c, wl) = cell.sigma.error_per_m;
-            if (wl == 0) models[static_cast<std::size_t>(c)] = cell.sigma.model;
-            for (py::ssize_t a = 0; a < A; ++a) {
-              const w::QuantityValue p = w::table_phase(cell, static_cast<std::size_t>(a));
-              phase.mutable_at(c, wl, a) = p.value;
-              phase_error.mutable_at(c, wl, a) = p.error;
-            }
-          }
-        return py::make_tuple(value, error, models, phase, phase_error);
+        return table_arrays(watched_call(
+            [&] { return w::sigma_table(labelled, wavelengths, s, threads, asked, -1, angles_deg); }, cancel));
       },
       py::arg("conditions"), py::arg("wavelengths_m"), py::arg("convention"), py::arg("contrast_threshold"),
       py::arg("rel_tolerance"), py::arg("water_table"), py::arg("threads"),
-      py::arg("angles_deg") = std::vector<double>{});
+      py::arg("quantities") = std::vector<std::string>{"sigma_ext"}, py::arg("angles_deg") = std::vector<double>{});
+}
+
+}  // namespace
+
+void bind_weather(py::module_ module) {
+  bind_conditions(module);
+  bind_distributions(module);
+  bind_sigma(module);
+  bind_optics(module);
+  bind_table(module);
+  module.def("registry", &registry_entries, py::arg("kind"));
+  module.def("registry_kinds", &w::registry_kinds);
 }
 
 }  // namespace attenuvis::python

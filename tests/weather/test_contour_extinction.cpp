@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "attenuvis/weather.hpp"
+#include "attenuvis/weather/detail/analytic_density.hpp"
 
 using namespace attenuvis::weather;
 
@@ -82,7 +83,7 @@ TEST_CASE("contour extinction declines what it cannot do", "[weather][contour]")
   CHECK_FALSE(contour_extinction(SizeDistribution::marshall_palmer(8.0), 550e-9, kWater550));
   // analytic_density continues the real density.
   const auto d = preset_distribution("advection");
-  for (double r : {1e-6, 1e-5, 5e-5}) CHECK(analytic_density(d, r)->real() == Approx(d.density(r)).epsilon(1e-13));
+  for (double r : {1e-6, 1e-5, 5e-5}) CHECK(detail::analytic_density(d, r)->real() == Approx(d.density(r)).epsilon(1e-13));
 }
 
 TEST_CASE("sigma() of a fog preset uses the contour and says so", "[weather][contour]") {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "attenuvis/weather.hpp"
+#include "attenuvis/weather/detail/sigma_table_formats.hpp"
 
 using namespace attenuvis::weather;
 using Catch::Matchers::Contains;
@@ -101,7 +102,7 @@ TEST_CASE("CSV table: a plain header first, parameters as numeric columns, missi
   Settings s;
   const auto t = sigma_table(conditions, parse_wavelength_list("500:600:50nm"), s, 2,
                              parse_quantity_list("sigma_ext,ssa"));
-  const std::string csv = format_sigma_table_csv(t, SigmaUnit::per_km);
+  const std::string csv = detail::format_sigma_table_csv(t, SigmaUnit::per_km);
   CHECK(first_line(csv) ==
         "wavelength_nm,condition,rate_mm_h,visibility_m,sigma_ext_per_km,sigma_ext_error_per_km,ssa,ssa_error,"
         "koschmieder_visibility_m,convention");
@@ -117,7 +118,7 @@ TEST_CASE("CSV table: a plain header first, parameters as numeric columns, missi
   while (std::getline(count, line)) ++rows;
   CHECK(rows == 1 + 3 * 5);  // header + 3 wavelengths (500, 550, 600: STOP on the grid) x 5 conditions
   CHECK(csv.find('#') == std::string::npos);
-  const std::string sidecar = format_sigma_table_sidecar(t, SigmaUnit::per_km, {"attenuvis test"});
+  const std::string sidecar = detail::format_sigma_table_sidecar(t, SigmaUnit::per_km, {"attenuvis test"});
   CHECK_THAT(sidecar, Contains("\"sigma_ext_per_km\"") && Contains("\"1/km\"") && Contains("missing_values") &&
                           Contains("attenuvis test"));
 }
@@ -192,6 +193,6 @@ TEST_CASE("table moments:L: chi_0..chi_L of Mie cells, the bulk optics' values, 
     CHECK(std::isnan(table_moment(t.at(0, 1), l).value));  // no drops: missing
   }
   CHECK(std::isnan(table_moment(t.at(0, 0), 4).value));  // beyond L
-  const std::string csv = format_sigma_table_csv(t, SigmaUnit::per_m);
+  const std::string csv = detail::format_sigma_table_csv(t, SigmaUnit::per_m);
   CHECK_THAT(first_line(csv), Contains(",chi_0,chi_0_error,chi_1,") && Contains(",chi_3_error,"));
 }

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "attenuvis/weather.hpp"
+#include "attenuvis/weather/detail/sigma_table_formats.hpp"
 
 using namespace attenuvis::weather;
 using Catch::Matchers::Contains;
@@ -100,7 +101,7 @@ TEST_CASE("table phase: the bulk optics' phase function and error at the table's
   CHECK(conditions_with_missing_values(t) == std::vector<std::string>{"rain:8"});
 
   // CSV: a plain header, two columns per angle in the style of the moments, values that read back exactly.
-  const std::string csv = format_sigma_table_csv(t, SigmaUnit::per_km);
+  const std::string csv = detail::format_sigma_table_csv(t, SigmaUnit::per_km);
   std::istringstream in(csv);
   std::string header, fog_row, rain_row;
   std::getline(in, header);
@@ -122,9 +123,9 @@ TEST_CASE("table phase: the bulk optics' phase function and error at the table's
     CHECK(rain[col].empty());
   }
   // The sidecar and the JSON document name the normalisation and the angles.
-  const std::string sidecar = format_sigma_table_sidecar(t, SigmaUnit::per_km, {"attenuvis test"});
+  const std::string sidecar = detail::format_sigma_table_sidecar(t, SigmaUnit::per_km, {"attenuvis test"});
   CHECK_THAT(sidecar, Contains("\"phase_90deg_error\"") && Contains("int p dOmega = 4 pi"));
-  const auto doc = nlohmann::json::parse(format_sigma_table_json(t, SigmaUnit::per_km, {"attenuvis test"}));
+  const auto doc = nlohmann::json::parse(detail::format_sigma_table_json(t, SigmaUnit::per_km, {"attenuvis test"}));
   CHECK(doc["phase_function"]["angle_deg"].get<std::vector<double>>() == angles);
   CHECK_THAT(doc["phase_function"]["normalisation"].get<std::string>(), Contains("int p dOmega = 4 pi"));
   REQUIRE(doc["rows"][0]["phase"].size() == angles.size());

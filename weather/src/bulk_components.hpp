@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -13,9 +14,21 @@ namespace attenuvis::weather::detail {
 
 // Components integrated together: ext, sca, abs, g*sca, asymptotic-bound,
 // the weight pi r^2 n(r) alone (the geometric cross-section of the panel),
-// Q_back/(4 pi), then as requested chi_l Q_sca (l = 0..L) and p(theta_j) Q_sca.
+// Q_back/(4 pi), then as requested chi_l Q_sca (l = 0..L), p(theta_j) Q_sca
+// and the expansion's coefficients times Q_sca.
 constexpr int kExt = 0, kSca = 1, kAbs = 2, kGSca = 3, kAsym = 4, kWeight = 5, kBack = 6, kFixed = 7;
 using Vec = std::vector<double>;
+
+// The coefficient vectors of the scattering-matrix expansion, in the order
+// Efficiency::expansion concatenates them: alpha1..alpha4, beta1, beta2.
+// The structured binding names every member of MatrixExpansion, so the
+// count cannot drift from the struct.
+constexpr int kExpansionParts = 6;
+inline std::array<std::vector<double>*, kExpansionParts> expansion_parts(MatrixExpansion& e) {
+  auto& [alpha1, alpha2, alpha3, alpha4, beta1, beta2] = e;
+  return {&alpha1, &alpha2, &alpha3, &alpha4, &beta1, &beta2};
+}
+constexpr const char* kExpansionPartNames[kExpansionParts] = {"alpha1", "alpha2", "alpha3", "alpha4", "beta1", "beta2"};
 
 // Where the optional components sit, and which components the tolerances
 // govern, each with the scale its error is measured against.
@@ -23,10 +36,10 @@ struct Layout {
   bool back = false;
   int moments = 0;  // L + 1, or 0
   int angles = 0;
-  int expansion = 0;  // 6 (L + 1): alpha1..4, beta1, beta2
+  int expansion = 0;  // kExpansionParts (L + 1): alpha1..4, beta1, beta2
   explicit Layout(const QuadratureSettings& s)
       : back(s.backscatter), moments(s.legendre_moments >= 0 ? s.legendre_moments + 1 : 0),
-        angles(static_cast<int>(s.angles_deg.size())), expansion(s.polarised ? 6 * moments : 0) {}
+        angles(static_cast<int>(s.angles_deg.size())), expansion(s.polarised ? kExpansionParts * moments : 0) {}
   int moment(int l) const { return kFixed + l; }
   int angle(int j) const { return kFixed + moments + j; }
   int expansion_at(int i) const { return kFixed + moments + angles + i; }

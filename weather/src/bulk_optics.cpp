@@ -13,8 +13,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include "attenuvis/io/check.hpp"
 #include "attenuvis/weather/cancel.hpp"
-#include "attenuvis/weather/resonance.hpp"
+#include "resonance.hpp"
 #include "bulk_components.hpp"
 #include "extinction_tail.hpp"
 #include "gauss_kronrod_rule.hpp"
@@ -362,12 +363,24 @@ class Refinement {
     for (int c : checked_) worst = std::max(worst, p.error[c] / scale0_[c]);
     return worst;
   }
+  // The integral of a component the tolerances govern (Layout::checked), by
+  // its constant (bulk_components.hpp), not by its position among them.
   std::string component_name(int c) const {
-    const char* names[] = {"sigma_ext", "sigma_sca", "sigma_abs", "asymmetry g"};
-    if (c < 4) return names[c];
-    if (c == kBack) return "backscatter beta_pi";
-    if (c < kFixed + layout_.moments) return "Legendre moment chi_" + std::to_string(c - kFixed);
-    return "phase function at " + significant(s_.angles_deg[c - kFixed - layout_.moments], 6) + " deg";
+    switch (c) {
+      case kExt: return "sigma_ext";
+      case kSca: return "sigma_sca";
+      case kAbs: return "sigma_abs";
+      case kGSca: return "asymmetry g";
+      case kBack: return "backscatter beta_pi";
+      default: break;
+    }
+    ATTENUVIS_CHECK_GE(c, kFixed);  // kAsym and kWeight are never checked
+    ATTENUVIS_CHECK_LT(c, layout_.size());
+    const int angle = c - layout_.angle(0), part = c - layout_.expansion_at(0);
+    if (c < layout_.angle(0)) return "Legendre moment chi_" + std::to_string(c - kFixed);
+    if (c < layout_.expansion_at(0)) return "phase function at " + significant(s_.angles_deg[angle], 6) + " deg";
+    return std::string("scattering-matrix expansion ") + detail::kExpansionPartNames[part / layout_.moments] + "_" +
+           std::to_string(part % layout_.moments);
   }
   // In pass 2 the order must not depend on what the nodes sampled: splitting
   // where |K - G| is large splits away the nodes that hit a resonance while
@@ -468,12 +481,10 @@ void fill_optional(BulkOptics& out, const Refinement& r, const Support& support,
   out.phase_error.assign(layout.angles, 0.0);
   for (int j = 0; j < layout.angles; ++j) normalised(layout.angle(j), out.phase[j], out.phase_error[j]);
   if (layout.expansion > 0) {
-    std::vector<double>* values[] = {&out.expansion.alpha1, &out.expansion.alpha2, &out.expansion.alpha3,
-                                     &out.expansion.alpha4, &out.expansion.beta1,  &out.expansion.beta2};
-    std::vector<double>* errors[] = {&out.expansion_error.alpha1, &out.expansion_error.alpha2,
-                                     &out.expansion_error.alpha3, &out.expansion_error.alpha4,
-                                     &out.expansion_error.beta1,  &out.expansion_error.beta2};
-    for (int k = 0; k < 6; ++k) {
+    const auto values = detail::expansion_parts(out.expansion);
+    const auto errors = detail::expansion_parts(out.expansion_error);
+    ATTENUVIS_CHECK_EQ(layout.expansion, detail::kExpansionParts * layout.moments);
+    for (int k = 0; k < detail::kExpansionParts; ++k) {
       values[k]->assign(layout.moments, 0.0);
       errors[k]->assign(layout.moments, 0.0);
       for (int l = 0; l < layout.moments; ++l)

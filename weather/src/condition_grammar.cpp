@@ -15,6 +15,7 @@
 #include "attenuvis/weather/domains.hpp"
 #include "attenuvis/weather/units.hpp"
 #include "condition_fields.hpp"
+#include "registry_rows.hpp"
 
 namespace attenuvis::weather {
 namespace {
@@ -44,9 +45,9 @@ std::complex<double> parse_index(const std::string& text, const Fields& f) {
 }
 
 struct MieOption {
-  const char* key;  // "m=" ...
-  const char* grammar;
-  const char* help;
+  std::string key;  // "m=" ...
+  std::string grammar;
+  std::string help;
   void (*apply)(MieCondition& c, const std::string& value, const Fields& f);
 };
 
@@ -56,29 +57,40 @@ void set_rescaling(MieCondition& c, Rescaling r, const Fields& f) {
   c.rescaling = r;
 }
 
-const MieOption kMieOptions[] = {
-    {"m=", ":m=N+Ki | :m=N,K", "constant refractive index instead of the water table (m=1.33+0.001i or m=1.33,0.001)",
-     [](MieCondition& c, const std::string& v, const Fields& f) { c.index = ConstantIndex{parse_index(v, f)}; }},
-    {"water=", ":water=hale-querry|segelstein|ice",
-     "refractive-index table (ice: Warren & Brandt 2008; default: the --water setting)",
-     [](MieCondition& c, const std::string& v, const Fields& f) {
-       if (v == "hale-querry" || v == "water") c.index = WaterTable::hale_querry;
-       else if (v == "segelstein") c.index = WaterTable::segelstein;
-       else if (v == "ice") c.index = WaterTable::ice;
-       else f.fail("water table '" + v + "' is not hale-querry, segelstein or ice");
-     }},
-    {"N=", ":N=PER_CM3", "rescale the drops to this many particles per cm^3",
-     [](MieCondition& c, const std::string& v, const Fields& f) {
-       set_rescaling(c, NumberDensity{f.in(domain::number_density, v)}, f);
-     }},
-    {"lwc=", ":lwc=G_PER_M3", "rescale the drops to this liquid water content (g/m^3)",
-     [](MieCondition& c, const std::string& v, const Fields& f) {
-       set_rescaling(c, LiquidWaterContent{f.in(domain::water_content, v)}, f);
-     }},
-};
+// "a|b|c": the names of a registry as the grammar lines write alternatives.
+template <class Rows>
+std::string alternatives(const Rows& rows) {
+  std::string out;
+  for (const auto& row : rows) out += (out.empty() ? "" : "|") + row.name;
+  return out;
+}
+
+const std::vector<MieOption>& mie_options() {
+  static const std::vector<MieOption> options = {
+      {"m=", ":m=N+Ki | :m=N,K",
+       "constant refractive index instead of the water table (m=1.33+0.001i or m=1.33,0.001)",
+       [](MieCondition& c, const std::string& v, const Fields& f) { c.index = ConstantIndex{parse_index(v, f)}; }},
+      {"water=", ":water=" + alternatives(water_tables()),
+       "refractive-index table (ice: " + info(WaterTable::ice).source + "; default: the --water setting)",
+       [](MieCondition& c, const std::string& v, const Fields& f) {
+         const WaterTableInfo* table = find_water_table(v);
+         if (!table) f.fail("water table '" + v + "' is not " + water_table_names());
+         c.index = table->id;
+       }},
+      {"N=", ":N=PER_CM3", "rescale the drops to this many particles per cm^3",
+       [](MieCondition& c, const std::string& v, const Fields& f) {
+         set_rescaling(c, NumberDensity{f.in(domain::number_density, v)}, f);
+       }},
+      {"lwc=", ":lwc=G_PER_M3", "rescale the drops to this liquid water content (g/m^3)",
+       [](MieCondition& c, const std::string& v, const Fields& f) {
+         set_rescaling(c, LiquidWaterContent{f.in(domain::water_content, v)}, f);
+       }},
+  };
+  return options;
+}
 
 const MieOption* find_option(const std::string& field) {
-  for (const auto& o : kMieOptions)
+  for (const auto& o : mie_options())
     if (field.rfind(o.key, 0) == 0) return &o;
   return nullptr;
 }
@@ -90,7 +102,7 @@ MieCondition detail::with_options(Drops drops, const Fields& f, std::size_t from
   for (std::size_t i = from; i < f.size(); ++i) {
     const MieOption* o = find_option(f[i]);
     if (!o) f.fail("unexpected field '" + f[i] + "'");
-    o->apply(c, f[i].substr(std::string(o->key).size()), f);
+    o->apply(c, f[i].substr(o->key.size()), f);
   }
   return c;
 }
@@ -100,9 +112,9 @@ namespace {
 // ---- The kinds --------------------------------------------------------------
 
 struct Kind {
-  const char* keyword;
-  const char* grammar;  // the grammar line
-  const char* help;
+  std::string keyword;
+  std::string grammar;  // the grammar line
+  std::string help;
   bool (*matches)(const Fields& f);  // among the kinds that share a keyword
   Condition (*parse)(const Fields& f);
 };
@@ -110,118 +122,135 @@ struct Kind {
 bool always(const Fields&) { return true; }
 bool family_is(const Fields& f, const char* name) { return f.size() >= 2 && f[1] == name; }
 
-bool is_empirical_fog(const std::string& name) {
-  return name == "kruse" || name == "kim" || name == "naboulsi-advection" || name == "naboulsi-radiation";
+// "fog:advection | fog:radiation | ": one alternative per fog preset.
+std::string fog_preset_lines() {
+  std::string out;
+  for (const auto& p : fog_presets()) out += "fog:" + p.name + " | ";
+  return out;
 }
 
-const Kind kKinds[] = {
-    {"clear", "clear | clear:DIST",
-     "clear air: sigma = 0.00015 1/m (seed paper, Sec. Results), or Koschmieder from visibility DIST", always,
-     [](const Fields& f) -> Condition {
-       f.at_most(2, "clear takes at most a visibility");
-       if (f.size() == 2) return ClearAir{f.distance(1)};
-       return ClearAir{};
-     }},
-    {"visibility", "visibility:DIST", "any atmosphere of visibility DIST (Koschmieder), e.g. visibility:2km", always,
-     [](const Fields& f) -> Condition {
-       f.require(2);
-       f.at_most(2, "visibility takes one distance");
-       return Visibility{f.distance(1)};
-     }},
-    {"sigma", "sigma:VALUE[/m|/km|dB/km]", "a given sigma (default 1/m), e.g. sigma:0.002, sigma:3dB/km", always,
-     [](const Fields& f) -> Condition {
-       f.require(2);
-       f.at_most(2, "sigma takes one value");
-       return GivenSigma{f.sigma(1)};
-     }},
-    {"rain", "rain:RATE:mie[:OPTIONS]", "Mie over Marshall-Palmer drops, RATE mm/h, e.g. rain:8:mie",
-     [](const Fields& f) { return f.size() >= 3 && f[2] == "mie"; },
-     [](const Fields& f) -> Condition { return with_options(MarshallPalmerRain{f.rate(1, domain::rain_rate)}, f, 3); }},
-    {"rain", "rain:RATE[:seed|carbonneau|p1814]",
-     "power law, RATE mm/h, read per --convention; seed (default): k=1.17, alpha=0.65; e.g. rain:8", always,
-     [](const Fields& f) -> Condition {
-       f.require(2);
-       const double rate = f.rate(1, domain::rain_rate);
-       if (f.size() < 3) return RainPowerLaw{rate, RainLaw::seed};
-       f.at_most(3, "options (m=, N=...) apply only to rain:RATE:mie");
-       try {
-         return RainPowerLaw{rate, rain_power_law(f[2]).law};
-       } catch (const std::invalid_argument&) {
-         std::string names;
-         for (const auto& l : rain_power_laws()) names += l.name + ", ";
-         f.fail("unknown rain model '" + f[2] + "' (" + names + "or mie)");
-       }
-     }},
-    {"snow", "snow:wet:RATE | snow:dry:RATE", "P.1817-1 a(lambda) S^b, RATE mm/h, read per --convention", always,
-     [](const Fields& f) -> Condition {
-       f.require(3);
-       SnowType type = SnowType::dry;
-       if (f[1] == "wet") type = SnowType::wet;
-       else if (f[1] != "dry") f.fail("snow type must be wet or dry");
-       f.at_most(3, "snow takes a type and a rate");
-       return Snow{type, f.rate(2, domain::snow_rate)};
-     }},
-    {"fog", "fog:advection | fog:radiation | fog:file=PATH  [:OPTIONS]",
-     "Mie over the P.1817-1 / seed modified-gamma presets or a size-distribution CSV",
-     [](const Fields& f) {
-       return f.size() >= 2 && (f[1] == "advection" || f[1] == "radiation" || f[1].rfind("file=", 0) == 0);
-     },
-     [](const Fields& f) -> Condition {
-       if (f[1] == "advection") return with_options(FogPreset::advection, f, 2);
-       if (f[1] == "radiation") return with_options(FogPreset::radiation, f, 2);
-       // A path may itself contain ':'; it runs up to the first option field.
-       std::string path = f[1].substr(5);
-       std::size_t i = 2;
-       while (i < f.size() && !find_option(f[i])) path += ":" + f[i++];
-       if (path.empty()) f.fail("fog:file= needs a path");
-       return with_options(DistributionFile{path}, f, i);
-     }},
-    {"drops", "drops:lognormal:r=RADIUS:sg=SG  [:OPTIONS]",
-     "Mie over a log-normal: median radius, geometric std. dev. SG in (1, 20]; needs N= or lwc=",
-     [](const Fields& f) { return family_is(f, "lognormal"); },
-     detail::parse_lognormal_drops},
-    {"drops", "drops:gamma:r=RADIUS:alpha=A  [:OPTIONS]",
-     "Mie over a gamma n ~ r^A exp(-A r/RADIUS): mode radius, shape A in (0, 100]; needs N= or lwc=",
-     [](const Fields& f) { return family_is(f, "gamma"); },
-     detail::parse_gamma_drops},
-    {"drops", "drops:mgamma:a=A:alpha=AL:b=B[:gamma=G] | drops:mgamma:rc=RADIUS:alpha=AL[:gamma=G]",
-     "Mie over Deirmendjian's n = A r^AL exp(-B r^G), r in um, n in cm^-3 um^-1 (G = 1 by default); "
-     "with rc= (mode radius, B = AL/(G rc^G)) it needs N= or lwc=",
-     [](const Fields& f) { return family_is(f, "mgamma"); },
-     detail::parse_mgamma_drops},
-    {"drops", "drops:exponential:n0=N0:lambda=L  [:OPTIONS]",
-     "Mie over N(D) = N0 exp(-L D) in diameter D: N0 in m^-3 mm^-1, L in mm^-1 (Marshall & Palmer form)",
-     [](const Fields& f) { return family_is(f, "exponential"); },
-     detail::parse_exponential_drops},
-    {"drops", "drops:powerlaw:nu=NU:rmin=RADIUS:rmax=RADIUS  [:OPTIONS]",
-     "Mie over a Junge power law n ~ r^-NU on [rmin, rmax]; needs N= or lwc=",
-     [](const Fields& f) { return family_is(f, "powerlaw"); },
-     detail::parse_powerlaw_drops},
-    {"fog", "fog:kruse|kim|naboulsi-advection|naboulsi-radiation:DIST", "empirical fog from visibility DIST",
-     [](const Fields& f) { return f.size() >= 2 && is_empirical_fog(f[1]); },
-     [](const Fields& f) -> Condition {
-       f.require(3);
-       f.at_most(3, "empirical fog takes one visibility");
-       const VisibilityFogModel model = f[1] == "kruse"                ? VisibilityFogModel::kruse
-                                        : f[1] == "kim"                ? VisibilityFogModel::kim
-                                        : f[1] == "naboulsi-advection" ? VisibilityFogModel::naboulsi_advection
-                                                                       : VisibilityFogModel::naboulsi_radiation;
-       return FogFromVisibility{model, f.distance(2)};
-     }},
-};
+// "snow:wet:RATE | snow:dry:RATE".
+std::string snow_lines() {
+  std::string out;
+  for (const auto& t : snow_types()) out += std::string(out.empty() ? "" : " | ") + "snow:" + t.name + ":RATE";
+  return out;
+}
+
+// The default rain law (the first) and its coefficients: "seed (default): k=1.17, alpha=0.65".
+std::string default_rain_law_text() {
+  const RainLawCoefficients& law = rain_power_laws().front();
+  return law.name + " (default): k=" + io::shortest(law.k) + ", alpha=" + io::shortest(law.alpha);
+}
+
+Condition parse_rain_power_law(const Fields& f) {
+  f.require(2);
+  const double rate = f.rate(1, domain::rain_rate);
+  if (f.size() < 3) return RainPowerLaw{rate, rain_power_laws().front().law};
+  f.at_most(3, "options (m=, N=...) apply only to rain:RATE:mie");
+  try {
+    return RainPowerLaw{rate, rain_power_law(f[2]).law};
+  } catch (const std::invalid_argument&) {
+    std::string names;
+    for (const auto& l : rain_power_laws()) names += l.name + ", ";
+    f.fail("unknown rain model '" + f[2] + "' (" + names + "or mie)");
+  }
+}
+
+Condition parse_snow(const Fields& f) {
+  f.require(3);
+  const SnowTypeInfo* type = find_snow_type(f[1]);
+  if (!type) f.fail("snow type must be " + detail::name_list(detail::names_of(snow_types())));
+  f.at_most(3, "snow takes a type and a rate");
+  return Snow{type->id, f.rate(2, domain::snow_rate)};
+}
+
+Condition parse_mie_fog(const Fields& f) {
+  if (const FogPresetInfo* preset = find_fog_preset(f[1])) return with_options(preset->id, f, 2);
+  // A path may itself contain ':'; it runs up to the first option field.
+  std::string path = f[1].substr(5);
+  std::size_t i = 2;
+  while (i < f.size() && !find_option(f[i])) path += ":" + f[i++];
+  if (path.empty()) f.fail("fog:file= needs a path");
+  return with_options(DistributionFile{path}, f, i);
+}
+
+Condition parse_empirical_fog(const Fields& f) {
+  f.require(3);
+  f.at_most(3, "empirical fog takes one visibility");
+  return FogFromVisibility{find_visibility_fog_model(f[1])->id, f.distance(2)};
+}
+
+const std::vector<Kind>& kinds() {
+  static const std::vector<Kind> table = {
+      {"clear", "clear | clear:DIST",
+       "clear air: sigma = 0.00015 1/m (seed paper, Sec. Results), or Koschmieder from visibility DIST", always,
+       [](const Fields& f) -> Condition {
+         f.at_most(2, "clear takes at most a visibility");
+         if (f.size() == 2) return ClearAir{f.distance(1)};
+         return ClearAir{};
+       }},
+      {"visibility", "visibility:DIST", "any atmosphere of visibility DIST (Koschmieder), e.g. visibility:2km", always,
+       [](const Fields& f) -> Condition {
+         f.require(2);
+         f.at_most(2, "visibility takes one distance");
+         return Visibility{f.distance(1)};
+       }},
+      {"sigma", "sigma:VALUE[/m|/km|dB/km]", "a given sigma (default 1/m), e.g. sigma:0.002, sigma:3dB/km", always,
+       [](const Fields& f) -> Condition {
+         f.require(2);
+         f.at_most(2, "sigma takes one value");
+         return GivenSigma{f.sigma(1)};
+       }},
+      {"rain", "rain:RATE:mie[:OPTIONS]", "Mie over Marshall-Palmer drops, RATE mm/h, e.g. rain:8:mie",
+       [](const Fields& f) { return f.size() >= 3 && f[2] == "mie"; },
+       [](const Fields& f) -> Condition {
+         return with_options(MarshallPalmerRain{f.rate(1, domain::rain_rate)}, f, 3);
+       }},
+      {"rain", "rain:RATE[:" + alternatives(rain_power_laws()) + "]",
+       "power law, RATE mm/h, read per --convention; " + default_rain_law_text() + "; e.g. rain:8", always,
+       parse_rain_power_law},
+      {"snow", snow_lines(), "P.1817-1 a(lambda) S^b, RATE mm/h, read per --convention", always, parse_snow},
+      {"fog", fog_preset_lines() + "fog:file=PATH  [:OPTIONS]",
+       "Mie over the P.1817-1 / seed modified-gamma presets or a size-distribution CSV",
+       [](const Fields& f) {
+         return f.size() >= 2 && (find_fog_preset(f[1]) != nullptr || f[1].rfind("file=", 0) == 0);
+       },
+       parse_mie_fog},
+      {"drops", "drops:lognormal:r=RADIUS:sg=SG  [:OPTIONS]",
+       "Mie over a log-normal: median radius, geometric std. dev. SG in (1, 20]; needs N= or lwc=",
+       [](const Fields& f) { return family_is(f, "lognormal"); }, detail::parse_lognormal_drops},
+      {"drops", "drops:gamma:r=RADIUS:alpha=A  [:OPTIONS]",
+       "Mie over a gamma n ~ r^A exp(-A r/RADIUS): mode radius, shape A in (0, 100]; needs N= or lwc=",
+       [](const Fields& f) { return family_is(f, "gamma"); }, detail::parse_gamma_drops},
+      {"drops", "drops:mgamma:a=A:alpha=AL:b=B[:gamma=G] | drops:mgamma:rc=RADIUS:alpha=AL[:gamma=G]",
+       "Mie over Deirmendjian's n = A r^AL exp(-B r^G), r in um, n in cm^-3 um^-1 (G = 1 by default); "
+       "with rc= (mode radius, B = AL/(G rc^G)) it needs N= or lwc=",
+       [](const Fields& f) { return family_is(f, "mgamma"); }, detail::parse_mgamma_drops},
+      {"drops", "drops:exponential:n0=N0:lambda=L  [:OPTIONS]",
+       "Mie over N(D) = N0 exp(-L D) in diameter D: N0 in m^-3 mm^-1, L in mm^-1 (Marshall & Palmer form)",
+       [](const Fields& f) { return family_is(f, "exponential"); }, detail::parse_exponential_drops},
+      {"drops", "drops:powerlaw:nu=NU:rmin=RADIUS:rmax=RADIUS  [:OPTIONS]",
+       "Mie over a Junge power law n ~ r^-NU on [rmin, rmax]; needs N= or lwc=",
+       [](const Fields& f) { return family_is(f, "powerlaw"); }, detail::parse_powerlaw_drops},
+      {"fog", "fog:" + alternatives(visibility_fog_models()) + ":DIST", "empirical fog from visibility DIST",
+       [](const Fields& f) { return f.size() >= 2 && find_visibility_fog_model(f[1]) != nullptr; },
+       parse_empirical_fog},
+  };
+  return table;
+}
 
 std::string generate_grammar() {
   std::size_t width = 0;
-  for (const auto& k : kKinds) width = std::max(width, std::string(k.grammar).size());
-  for (const auto& o : kMieOptions) width = std::max(width, std::string(o.grammar).size() + 2);
+  for (const auto& k : kinds()) width = std::max(width, k.grammar.size());
+  for (const auto& o : mie_options()) width = std::max(width, o.grammar.size() + 2);
   std::ostringstream out;
   const auto line = [&](const std::string& left, const std::string& right) {
     out << "  " << left << std::string(width + 2 - left.size(), ' ') << right << "\n";
   };
   out << "conditions:\n";
-  for (const auto& k : kKinds) line(k.grammar, k.help);
+  for (const auto& k : kinds()) line(k.grammar, k.help);
   out << "  OPTIONS after a Mie condition (fog:..., rain:RATE:mie, drops:...), any order:\n";
-  for (const auto& o : kMieOptions) line(std::string("  ") + o.grammar, o.help);
+  for (const auto& o : mie_options()) line("  " + o.grammar, o.help);
   out << "  RATE in mm/h; DIST a number with unit " << distance_units() << " (bare number: m), e.g. 500m, 2km\n"
       << "  in tables a RATE, DIST or VALUE may sweep: A..B or A..B/STEP (rain:1..100, fog:kim:200..1000/200m);\n"
       << "  a sweep ends at B (rain:1..100/10: 1, 11, ..., 91, 100)\n"
@@ -236,7 +265,7 @@ std::string generate_grammar() {
 Condition parse_fields(const Fields& f) {
   if (f.text().empty()) f.fail("empty condition");
   bool keyword_known = false;
-  for (const auto& k : kKinds) {
+  for (const auto& k : kinds()) {
     if (f[0] != k.keyword) continue;
     keyword_known = true;
     if (!k.matches(f)) continue;

@@ -6,6 +6,7 @@
 
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/weather/sigma.hpp"
+#include "real_axis_settings.hpp"
 
 namespace attenuvis::weather {
 
@@ -27,21 +28,12 @@ ConditionOptics condition_optics(const MieCondition& c, double wavelength_m, con
   const std::complex<double> m = condition_refractive_index(c, wavelength_m, s, &out.index_source);
   const SizeDistribution d = condition_distribution(c);
   out.distribution = d.describe();
-  QuadratureSettings q;
-  q.rel_tolerance = s.rel_tolerance;
-  q.cancel = s.cancel;
+  // As sigma() on the real axis: rain at short wavelengths gives sigma_ext alone.
+  QuadratureSettings q = detail::real_axis_settings(c, s);
   q.backscatter = request.backscatter;
   q.legendre_moments = request.legendre_moments;
   q.angles_deg = request.angles_deg;
   q.polarised = request.polarised;
-  if (std::holds_alternative<MarshallPalmerRain>(c.drops)) {
-    // As sigma(): beyond rain_asymptotic_x only Q_ext's large-x expansion is
-    // known, so rain at short wavelengths gives sigma_ext alone
-    // (BulkOptics::scattering_computed false).
-    q.asymptotic_x = s.rain_asymptotic_x;
-    q.resonance_tolerance = 1e-3;
-    q.max_evaluations = 1000000;
-  }
   out.bulk = mie_bulk_optics(d, wavelength_m, m, q);
   return out;
 }

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <sstream>
 #include <stdexcept>
 #include <variant>
@@ -15,7 +14,7 @@
 
 #include "attenuvis/mie/forward_amplitude.hpp"
 #include "attenuvis/weather/cancel.hpp"
-#include "analytic_density.hpp"
+#include "attenuvis/weather/detail/analytic_density.hpp"
 #include "extinction_tail.hpp"
 #include "contour_panel.hpp"
 #include "gauss_kronrod_rule.hpp"
@@ -37,23 +36,6 @@ std::optional<double> path_angle(const SizeDistribution& d) {
   return std::nullopt;
 }
 
-// S(0) in double arithmetic where its rounding bound (~1e-11 |S(0)| at height
-// 4 and x <= 1000, mie/forward_amplitude.hpp) leaves the tolerance a 100-fold
-// margin; long double (4x slower) otherwise.
-mie::Precision arithmetic_for(const ContourSettings& s) {
-  return s.rel_tolerance >= 1e-9 && s.height <= 4 ? mie::Precision::double_precision : mie::Precision::extended;
-}
-
-// Relative amplitude left of the resonance ripple at height h above the real
-// axis: exp(-2 pi h / dx), dx the ripple period in x (Chylek 1976); for
-// n <= 1 (no whispering-gallery modes) dx = 1, the n -> 1 limit.
-double ripple_residual(Complex m, double h) {
-  const double n = m.real();
-  const double root = n > 1 ? std::sqrt(n * n - 1) : 0.0;
-  const double period = root > 1e-8 ? std::atan(root) / root : 1.0;
-  return std::exp(-2 * kPi * h / period);
-}
-
 using PanelResult = detail::PathPanel;
 
 class PathIntegrand {
@@ -72,7 +54,7 @@ class PathIntegrand {
   // The integrand is S(0) times 4/x^2 pi r^2 n(r) dr/dx.
   Complex weight(Complex x) const {
     const Complex r = x / k_;
-    return 4.0 / (x * x) * kPi * r * r * *analytic_density(d_, r) / k_;
+    return 4.0 / (x * x) * kPi * r * r * *detail::analytic_density(d_, r) / k_;
   }
 
   // Gauss-Kronrod on [a, b] in t along x = point(t).
@@ -90,52 +72,24 @@ class PathIntegrand {
   mie::Precision arithmetic_;
 };
 
-}  // namespace
-
-std::optional<Complex> analytic_density(const SizeDistribution& d, Complex r) {
-  if (const auto* g = std::get_if<ModifiedGamma>(&d.form())) return detail::modified_gamma_density(*g, r);
-  if (const auto* l = std::get_if<LogNormal>(&d.form())) return detail::log_normal_density(*l, r);
-  return std::nullopt;
-}
-
-std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, double wavelength_m, Complex m,
-                                                    const ContourSettings& s) {
-  const auto angle = path_angle(d);
-  if (!angle) return std::nullopt;
-  const double tail_fraction = s.effective_tail_fraction();
-  const Support support = d.support(2.0, tail_fraction);
-  const double k = 2 * kPi / wavelength_m;
-  const double x_max = k * support.breakpoints_m.back();
-  if (!(x_max <= s.max_x)) return std::nullopt;
-
-  const detail::Rule rule = detail::rule_for(s.kronrod_points);
-  const mie::Precision arithmetic = arithmetic_for(s);
-  const PathIntegrand f(d, wavelength_m, m, s.height, *angle, arithmetic);
-  const auto on_path = [&](double t) { return f.x(t); };
-  const auto path_jacobian = [&](double t) { return f.dxdt(t); };
-  const auto panel = [&](double a, double b) {
-    throw_if_cancelled(s.cancel);  // once per panel: kronrod_points Mie evaluations
-    return f.panel(rule, a, b, on_path, path_jacobian);
-  };
-
-  // Initial panels.  At height H the integrand is smooth on the scale of the
-  // interference period pi/(n - 1) (~9.4 in x for water), so a 61-point panel
-  // spans initial_panel_heights x H (~10 periods) where the weight is large;
-  // beyond the point that leaves tail_panel_fraction of the r^2 moment, where
-  // a panel's share of the error budget is far larger than its share of the
-  // integral, panels start tail_panel_widths times wider.  Either kind is
-  // split by the adaptive loop below if it misses its share.
+// Initial panel edges in t.  At height H the integrand is smooth on the
+// scale of the interference period pi/(n - 1) (~9.4 in x for water), so a
+// 61-point panel spans initial_panel_heights x H (~10 periods) where the
+// weight is large; beyond x_bulk, the point that leaves tail_panel_fraction of
+// the r^2 moment, where a panel's share of the error budget is far larger
+// than its share of the integral, panels start tail_panel_widths times wider.
+// Either kind is split by the adaptive loop if it misses its share.
+// Near t = 0 the path is low (h ~ theta t) while resonance poles sit just
+// below the real axis, at ~theta x_p from the path: a panel [0, L] sees
+// them at a fixed fraction of its width, and Kronrod and Gauss then err
+// alike (|K - G| stalls below the true error: radiation fog, one panel
+// [0, 55], 4e-11 against 1.6e-10).  Panels graded towards 0 up to the
+// rise length 2H/theta keep every pole a panel's width away; they cost
+// little, S(0) being cheap at small x.
+std::vector<double> initial_edges(const ContourSettings& s, double angle, double x_bulk, double x_max) {
   const double width = s.initial_panel_heights * s.height;
-  const double x_bulk = std::min(x_max, k * d.support(2.0, s.tail_panel_fraction).breakpoints_m.back());
-  // Near t = 0 the path is low (h ~ theta t) while resonance poles sit just
-  // below the real axis, at ~theta x_p from the path: a panel [0, L] sees
-  // them at a fixed fraction of its width, and Kronrod and Gauss then err
-  // alike (|K - G| stalls below the true error: radiation fog, one panel
-  // [0, 55], 4e-11 against 1.6e-10).  Panels graded towards 0 up to the
-  // rise length 2H/theta keep every pole a panel's width away; they cost
-  // little, S(0) being cheap at small x.
   std::vector<double> edges{0.0};
-  for (double g = s.height / *angle / 4; g < std::min(2 * s.height / *angle, x_max); g *= 2) edges.push_back(g);
+  for (double g = s.height / angle / 4; g < std::min(2 * s.height / angle, x_max); g *= 2) edges.push_back(g);
   const auto cover = [&](double to, double w) {
     const double from = edges.back();
     const int n = std::max(1, static_cast<int>(std::ceil((to - from) / w)));
@@ -143,25 +97,63 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
   };
   if (x_bulk > edges.back()) cover(x_bulk, width);
   if (x_max > edges.back()) cover(x_max, s.tail_panel_widths * width);
-  std::vector<PanelResult> panels(edges.size() - 1);
-  tbb::parallel_for(std::size_t(0), panels.size(), [&](std::size_t i) { panels[i] = panel(edges[i], edges[i + 1]); });
-  // Straight down from x_max + i h(x_max) to x_max: -i int_0^h F(x_max + i s) ds.
-  // The weight there is ~tail_fraction of its peak: a 15-point rule suffices
-  // (its |K - G| is charged like every panel's).
-  const double top = f.x(x_max).imag();
-  const PanelResult down = f.panel(
-      detail::rule_for(15), 0.0, top, [&](double v) { return Complex(x_max, v); },
-      [](double) { return Complex(0, -1); });
+  return edges;
+}
 
-  std::size_t evaluations = down.evaluations;
-  for (const auto& p : panels) evaluations += p.evaluations;
-  // Sums over a set of panels plus the downward leg.
-  struct Sums {
-    Complex total;
-    double error = 0, rounding = 0, q_max = 0;
-  };
-  const auto sums = [&](const std::vector<PanelResult>& ps) {
-    Sums out{down.kronrod, down.error, down.rounding, down.q_max};
+// Sums over a set of panels plus the downward leg.
+struct Sums {
+  Complex total;
+  double error = 0, rounding = 0, q_max = 0;
+};
+
+// The path's panels and their adaptive refinement: split panels until the
+// summed |K - G| meets the tolerance, then (with verification) halve them
+// all and charge the change (contour_panel.hpp: refined_sums).
+class PathQuadrature {
+ public:
+  PathQuadrature(const PathIntegrand& f, const SizeDistribution& d, const ContourSettings& s,
+                 const std::vector<double>& edges, double x_max)
+      : f_(f), d_(d), s_(s), rule_(detail::rule_for(s.kronrod_points)), panels_(edges.size() - 1) {
+    tbb::parallel_for(std::size_t(0), panels_.size(),
+                      [&](std::size_t i) { panels_[i] = panel(edges[i], edges[i + 1]); });
+    // Straight down from x_max + i h(x_max) to x_max: -i int_0^h F(x_max + i s) ds.
+    // The weight there is ~tail_fraction of its peak: a 15-point rule suffices
+    // (its |K - G| is charged like every panel's).
+    top_ = f.x(x_max).imag();
+    down_ = f.panel(
+        detail::rule_for(15), 0.0, top_, [&](double v) { return Complex(x_max, v); },
+        [](double) { return Complex(0, -1); });
+    evaluations_ = down_.evaluations;
+    for (const auto& p : panels_) evaluations_ += p.evaluations;
+  }
+
+  double top() const { return top_; }  // h(x_max), the path's top height
+  std::size_t evaluations() const { return evaluations_; }
+
+  // The sums once the panels meet the tolerance (and, with `verify`, the
+  // verification by halving does too).
+  Sums converged_sums(bool verify) {
+    return detail::refined_sums(
+        panels_, verify, [&](std::vector<PanelResult>& ps) { refine(ps); },
+        [&](const std::vector<PanelResult>& ps) { return sums(ps); },
+        [&](const std::vector<PanelResult>& ps) { return halves_of(ps, detail::every_index(ps.size())); },
+        [&](const Sums& fine) {
+          require_finite(fine);
+          if (fine.error <= s_.rel_tolerance * std::abs(fine.total.real())) return true;
+          check_budget("verified quadrature error", fine);
+          return false;
+        });
+  }
+
+ private:
+  PanelResult panel(double a, double b) const {
+    throw_if_cancelled(s_.cancel);  // once per panel: kronrod_points Mie evaluations
+    return f_.panel(
+        rule_, a, b, [&](double t) { return f_.x(t); }, [&](double t) { return f_.dxdt(t); });
+  }
+
+  Sums sums(const std::vector<PanelResult>& ps) const {
+    Sums out{down_.kronrod, down_.error, down_.rounding, down_.q_max};
     for (const auto& p : ps) {
       out.total += p.kronrod;
       out.error += p.error;
@@ -169,37 +161,41 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
       out.q_max = std::max(out.q_max, p.q_max);
     }
     return out;
-  };
-  // The halves of panels[which[j / 2]] for j = 0, 1, ..., evaluated in parallel.
-  const auto halves_of = [&](const std::vector<PanelResult>& ps, const std::vector<std::size_t>& which) {
+  }
+
+  // The halves of ps[which[j / 2]] for j = 0, 1, ..., evaluated in parallel.
+  std::vector<PanelResult> halves_of(const std::vector<PanelResult>& ps, const std::vector<std::size_t>& which) {
     std::vector<PanelResult> halves(2 * which.size());
     tbb::parallel_for(std::size_t(0), halves.size(), [&](std::size_t j) {
       const PanelResult& p = ps[which[j / 2]];
       const double mid = 0.5 * (p.a + p.b);
       halves[j] = j % 2 == 0 ? panel(p.a, mid) : panel(mid, p.b);
     });
-    for (const auto& h : halves) evaluations += h.evaluations;
+    for (const auto& h : halves) evaluations_ += h.evaluations;
     return halves;
-  };
+  }
+
   // A sum that overflowed (or a density that is not finite) would never meet
   // a tolerance; it is an error, not a number.
-  const auto require_finite = [&](const Sums& sum) {
+  void require_finite(const Sums& sum) const {
     if (!std::isfinite(sum.total.real()) || !std::isfinite(sum.error))
-      throw std::runtime_error("sigma_ext by contour over " + d.describe() +
+      throw std::runtime_error("sigma_ext by contour over " + d_.describe() +
                                ": the integral is not finite in double precision (sum " +
                                significant(sum.total.real(), 3) + ", error " + significant(sum.error, 3) +
                                "); the distribution's number density is out of range");
-  };
-  const auto check_budget = [&](const char* what, const Sums& sum) {
+  }
+
+  void check_budget(const char* what, const Sums& sum) const {
     detail::check_evaluation_budget("sigma_ext by contour", what, sum.error / std::abs(sum.total.real()),
-                                    s.rel_tolerance, evaluations, s.max_evaluations);
-  };
+                                    s_.rel_tolerance, evaluations_, s_.max_evaluations);
+  }
+
   // Adaptive: split panels until the summed |K - G| meets the target.
-  const auto refine = [&](std::vector<PanelResult>& ps) {
+  void refine(std::vector<PanelResult>& ps) {
     for (;;) {
       const Sums sum = sums(ps);
       require_finite(sum);
-      const double target = s.rel_tolerance * std::abs(sum.total.real());
+      const double target = s_.rel_tolerance * std::abs(sum.total.real());
       if (sum.error <= target) return;
       check_budget("quadrature error", sum);
       // Split every panel above its share of the target, and at least the
@@ -215,7 +211,53 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
       if (split.empty()) split.push_back(worst);
       ps = detail::with_halves(ps, split, halves_of(ps, split));
     }
-  };
+  }
+
+  const PathIntegrand& f_;
+  const SizeDistribution& d_;
+  const ContourSettings& s_;
+  const detail::Rule rule_;
+  std::vector<PanelResult> panels_;
+  PanelResult down_;
+  double top_ = 0;
+  std::size_t evaluations_ = 0;
+};
+
+std::string method_text(const ContourSettings& s, double angle, bool verify, mie::Precision arithmetic,
+                        double tail_fraction, std::size_t evaluations, double x_max) {
+  std::ostringstream method;
+  method << "contour integral of 4 Re S(0)/x^2 along x = t + i h(t), h <= " << significant(s.height, 3)
+         << ", arg x <= " << significant(angle, 3) << " (resonances smoothed out; contour_extinction.hpp), "
+         << "adaptive Gauss-Kronrod " << s.kronrod_points << " (Boost.Math)" << (verify ? ", verified by halving" : "")
+         << ", S(0) in " << (arithmetic == mie::Precision::double_precision ? "double" : "long double")
+         << ", rel. tol " << significant(s.rel_tolerance, 3)
+         << ", tail cut at " << significant(tail_fraction, 3) << " of the r^2 moment, " << evaluations
+         << " evaluations, x <= " << significant(x_max, 3);
+  return method.str();
+}
+
+}  // namespace
+
+std::optional<Complex> detail::analytic_density(const SizeDistribution& d, Complex r) {
+  if (const auto* g = std::get_if<ModifiedGamma>(&d.form())) return detail::modified_gamma_density(*g, r);
+  if (const auto* l = std::get_if<LogNormal>(&d.form())) return detail::log_normal_density(*l, r);
+  return std::nullopt;
+}
+
+std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, double wavelength_m, Complex m,
+                                                    const ContourSettings& s) {
+  const auto angle = path_angle(d);
+  if (!angle) return std::nullopt;
+  const double tail_fraction = s.effective_tail_fraction();
+  const Support support = d.support(2.0, tail_fraction);
+  const double k = 2 * kPi / wavelength_m;
+  const double x_max = k * support.breakpoints_m.back();
+  if (!(x_max <= s.max_x)) return std::nullopt;
+
+  const mie::Precision arithmetic = detail::contour_arithmetic(s.rel_tolerance, s.height);
+  const PathIntegrand f(d, wavelength_m, m, s.height, *angle, arithmetic);
+  const double x_bulk = std::min(x_max, k * d.support(2.0, s.tail_panel_fraction).breakpoints_m.back());
+  PathQuadrature quadrature(f, d, s, initial_edges(s, *angle, x_bulk, x_max), x_max);
 
   // Verification pass: |K - G| is an estimate, not a bound.  It stalls (K
   // and G err alike, |K - G| below the true error) where the integrand carries
@@ -230,39 +272,19 @@ std::optional<ContourExtinction> contour_extinction(const SizeDistribution& d, d
   // target, refine from the fine panels.
   // h is the path's top height, below H where theta x_max / H is small (a
   // narrow log-normal's path stays near the axis).
-  const bool verify = s.verify || ripple_residual(m, top) > 1e-2 * s.rel_tolerance;
-  const Sums fine = detail::refined_sums(
-      panels, verify, refine, sums,
-      [&](const std::vector<PanelResult>& ps) {
-        std::vector<std::size_t> all(ps.size());
-        std::iota(all.begin(), all.end(), std::size_t(0));
-        return halves_of(ps, all);
-      },
-      [&](const Sums& fine) {
-        require_finite(fine);
-        if (fine.error <= s.rel_tolerance * std::abs(fine.total.real())) return true;
-        check_budget("verified quadrature error", fine);
-        return false;
-      });
+  const bool verify = s.verify || detail::ripple_residual(m, quadrature.top()) > 1e-2 * s.rel_tolerance;
+  const Sums fine = quadrature.converged_sums(verify);
   ContourExtinction out;
   out.extinction.value = fine.total.real();
   out.extinction.quadrature_error = fine.error;
   out.extinction.rounding_error = fine.rounding;
   out.extinction.tail_error = detail::extinction_tail_bound(fine.q_max, support.omitted_moment);
-  out.evaluations = evaluations;
+  out.evaluations = quadrature.evaluations();
   out.max_size_parameter = x_max;
   out.height = s.height;
   out.angle = *angle;
   out.verified = verify;
-  std::ostringstream method;
-  method << "contour integral of 4 Re S(0)/x^2 along x = t + i h(t), h <= " << significant(s.height, 3)
-         << ", arg x <= " << significant(*angle, 3) << " (resonances smoothed out; contour_extinction.hpp), "
-         << "adaptive Gauss-Kronrod " << s.kronrod_points << " (Boost.Math)" << (verify ? ", verified by halving" : "")
-         << ", S(0) in " << (arithmetic == mie::Precision::double_precision ? "double" : "long double")
-         << ", rel. tol " << significant(s.rel_tolerance, 3)
-         << ", tail cut at " << significant(tail_fraction, 3) << " of the r^2 moment, " << evaluations
-         << " evaluations, x <= " << significant(x_max, 3);
-  out.method = method.str();
+  out.method = method_text(s, *angle, verify, arithmetic, tail_fraction, out.evaluations, x_max);
   return out;
 }
 

@@ -1,22 +1,51 @@
 // One Gauss-Kronrod panel of an integral of S(0; x) w(x) along a path in the
-// complex size-parameter plane: the building block shared by the contour
-// rule of analytic distributions (contour_extinction.cpp) and of tabulated
-// ones (segmented_contour.cpp).
+// complex size-parameter plane, and the refinement around it: the building
+// blocks shared by the contour rule of analytic distributions
+// (contour_extinction.cpp) and of tabulated ones (segmented_contour.cpp).
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <complex>
 #include <cstddef>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <boost/math/constants/constants.hpp>
+
+#include "attenuvis/io/check.hpp"
 #include "attenuvis/io/number_text.hpp"
 
 #include "attenuvis/mie/forward_amplitude.hpp"
 #include "gauss_kronrod_rule.hpp"
 
 namespace attenuvis::weather::detail {
+
+// S(0) in double arithmetic where its rounding bound (~1e-11 |S(0)| at height
+// 4 and x <= 1000, mie/forward_amplitude.hpp) leaves the tolerance a 100-fold
+// margin; long double (4x slower) otherwise.
+inline mie::Precision contour_arithmetic(double rel_tolerance, double height) {
+  return rel_tolerance >= 1e-9 && height <= 4 ? mie::Precision::double_precision : mie::Precision::extended;
+}
+
+// Relative amplitude left of the resonance ripple at height h above the real
+// axis: exp(-2 pi h / dx), dx the ripple period in x (Chylek 1976); for
+// n <= 1 (no whispering-gallery modes) dx = 1, the n -> 1 limit.
+inline double ripple_residual(std::complex<double> m, double h) {
+  const double n = m.real();
+  const double root = n > 1 ? std::sqrt(n * n - 1) : 0.0;
+  const double period = root > 1e-8 ? std::atan(root) / root : 1.0;
+  return std::exp(-2 * boost::math::constants::pi<double>() * h / period);
+}
+
+// 0, 1, ..., n - 1: every panel, for the verification pass that halves them all.
+inline std::vector<std::size_t> every_index(std::size_t n) {
+  std::vector<std::size_t> all(n);
+  std::iota(all.begin(), all.end(), std::size_t(0));
+  return all;
+}
 
 struct PathPanel {
   double a = 0, b = 0;            // parameter interval of the path
@@ -81,9 +110,11 @@ PathPanel evaluate_path_panel(const Rule& rule, double a, double b, const Point&
 template <class Panel>
 std::vector<Panel> with_halves(const std::vector<Panel>& panels, const std::vector<std::size_t>& split,
                                const std::vector<Panel>& halves) {
+  ATTENUVIS_CHECK_EQ(halves.size(), 2 * split.size());
   std::vector<Panel> next;
   next.reserve(panels.size() + split.size());
-  for (std::size_t i = 0, h = 0; i < panels.size(); ++i) {
+  std::size_t h = 0;
+  for (std::size_t i = 0; i < panels.size(); ++i) {
     if (h < split.size() && split[h] == i) {
       next.push_back(halves[2 * h]);
       next.push_back(halves[2 * h + 1]);
@@ -92,6 +123,7 @@ std::vector<Panel> with_halves(const std::vector<Panel>& panels, const std::vect
       next.push_back(panels[i]);
     }
   }
+  ATTENUVIS_CHECK_EQ(h, split.size());  // every split index was a panel's, in increasing order
   return next;
 }
 

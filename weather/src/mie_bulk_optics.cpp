@@ -12,7 +12,7 @@
 #include "attenuvis/mie/scattering_matrix.hpp"
 #include "attenuvis/mie/spheres.hpp"
 #include "attenuvis/weather/bulk_optics.hpp"
-#include "attenuvis/weather/resonance.hpp"
+#include "resonance.hpp"
 
 namespace attenuvis::weather {
 

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "attenuvis/io/number_text.hpp"
+#include "registry_rows.hpp"
 
 #include <dlfcn.h>  // dladdr: where the running program or module was loaded from
 
@@ -22,6 +23,42 @@
 #endif
 
 namespace attenuvis::weather {
+
+const std::vector<WaterTableInfo>& water_tables() {
+  static const std::vector<WaterTableInfo> tables = [] {
+    std::vector<WaterTableInfo> t = {
+        {WaterTable::hale_querry, "hale-querry", {"water"}, "water-hale-querry-1973", "water", "Hale & Querry 1973",
+         "liquid water, 25 C, 0.2-200 um (the default table)",
+         "G. M. Hale and M. R. Querry, \"Optical constants of water in the 200-nm to 200-um wavelength region\", "
+         "Appl. Opt. 12, 555-563 (1973), doi:10.1364/AO.12.000555"},
+        {WaterTable::segelstein, "segelstein", {}, "water-segelstein-1981", "water", "Segelstein 1981",
+         "liquid water, 25 C, 0.01 um - 10 m",
+         "D. J. Segelstein, \"The complex refractive index of water\", M.S. thesis, University of Missouri-Kansas "
+         "City (1981), hdl:10355/11599"},
+        {WaterTable::ice, "ice", {}, "ice-warren-brandt-2008", "ice", "Warren & Brandt 2008",
+         "water ice, -7 C, 0.044 um - 2 m",
+         "S. G. Warren and R. E. Brandt, \"Optical constants of ice from the ultraviolet to the microwave: A revised "
+         "compilation\", J. Geophys. Res. 113, D14220 (2008), doi:10.1029/2007JD009744"},
+    };
+    detail::check_enum_order(t, &WaterTableInfo::id);
+    return t;
+  }();
+  return tables;
+}
+
+const WaterTableInfo& info(WaterTable t) { return detail::row_of(water_tables(), t); }
+
+const WaterTableInfo* find_water_table(const std::string& name) {
+  if (const WaterTableInfo* t = detail::find_by_name(water_tables(), name)) return t;
+  for (const auto& t : water_tables())
+    for (const auto& alias : t.aliases)
+      if (alias == name) return &t;
+  return nullptr;
+}
+
+std::string to_string(WaterTable t) { return info(t).name; }
+
+std::string water_table_names() { return detail::name_list(detail::names_of(water_tables())); }
 
 RefractiveIndexTable RefractiveIndexTable::read(const std::string& path, const std::string& name) {
   std::ifstream in(path);
@@ -92,14 +129,34 @@ std::string data_directory() {
   return ATTENUVIS_DATA_DIR;
 }
 
+namespace {
+
+// A table by its name, alias or file name; nullptr for any other text.
+const WaterTableInfo* table_named(const std::string& name) {
+  if (const WaterTableInfo* t = find_water_table(name)) return t;
+  for (const auto& t : water_tables())
+    if (t.file == name) return &t;
+  return nullptr;
+}
+
+// "water, hale-querry, segelstein, ice, ": the names and aliases, each followed by ", ".
+std::string short_table_names() {
+  std::string out;
+  for (const auto& t : water_tables()) {
+    for (const auto& alias : t.aliases) out += alias + ", ";
+    out += t.name + ", ";
+  }
+  return out;
+}
+
+}  // namespace
+
 const RefractiveIndexTable& refractive_index_table(const std::string& name) {
-  std::string file = name;
-  if (name == "water" || name == "hale-querry") file = "water-hale-querry-1973";
-  else if (name == "segelstein") file = "water-segelstein-1981";
-  else if (name == "ice") file = "ice-warren-brandt-2008";
-  if (file != "water-hale-querry-1973" && file != "water-segelstein-1981" && file != "ice-warren-brandt-2008")
-    throw std::invalid_argument("unknown refractive-index table '" + name +
-                                "' (water, hale-querry, segelstein, ice, or a full table name)");
+  const WaterTableInfo* table = table_named(name);
+  if (!table)
+    throw std::invalid_argument("unknown refractive-index table '" + name + "' (" + short_table_names() +
+                                "or a full table name)");
+  const std::string& file = table->file;
   static std::mutex mutex;
   static std::map<std::string, std::unique_ptr<RefractiveIndexTable>> cache;
   std::lock_guard<std::mutex> lock(mutex);

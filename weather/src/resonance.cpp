@@ -1,5 +1,5 @@
 // Large-x expansion of Q_ext and the resonance threshold (see resonance.hpp).
-#include "attenuvis/weather/resonance.hpp"
+#include "resonance.hpp"
 
 #include <cmath>
 

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <sstream>
 #include <stdexcept>
 #include <variant>
@@ -106,6 +105,7 @@ class Integrand {
   // The jump and the change of slope (both in SI, the slope per metre) of
   // the density at breakpoint k, right minus left.
   void difference_at(std::size_t k, double& jump, double& slope_change) const {
+    ATTENUVIS_CHECK_LT(k, breakpoints());
     const double r = x_at(k) / k_;
     const Piece* right = k < pieces_.size() ? &pieces_[k] : nullptr;
     const Piece* left = k > 0 ? &pieces_[k - 1] : nullptr;
@@ -205,21 +205,193 @@ class Integrand {
   mie::Precision arithmetic_;
 };
 
-// Relative amplitude left of the resonance ripple at height h (Chylek 1976;
-// contour_extinction.cpp).
-double ripple_residual(Complex m, double h) {
-  const double n = m.real();
-  const double root = n > 1 ? std::sqrt(n * n - 1) : 0.0;
-  const double period = root > 1e-8 ? std::atan(root) / root : 1.0;
-  return std::exp(-2 * kPi * h / period);
-}
-
 // Where a panel is split: at the middle, or, for a leg's panel on the axis,
 // low enough that the new near-axis bound is about `allowed` (it falls like
 // y_1 or y_1^2).
 double split_point(const Integrand& f, const Panel& p, double allowed) {
   if (p.where == Where::leg && p.quad.a == 0) return f.axis_cut(p.index, p.quad.b, allowed, p.quad.b / 8);
   return 0.5 * (p.quad.a + p.quad.b);
+}
+
+// A panel to evaluate: where it lies and its interval.
+struct Task {
+  Where where;
+  std::size_t index;
+  double a, b;
+};
+
+// The path over each piece: edges at the breakpoints, and inside a piece
+// every panel_width, graded towards x = 0 up to the rise length 2H/theta as
+// contour_extinction.cpp does (resonance poles sit at ~theta x from the low
+// path there).
+std::vector<Task> path_tasks(const Integrand& f, const SegmentedContourSettings& s) {
+  std::vector<Task> tasks;
+  std::vector<double> grid;
+  for (double g = s.height / s.angle / 4; g < 2 * s.height / s.angle; g *= 2) grid.push_back(g);
+  for (std::size_t i = 0; i + 1 < f.breakpoints(); ++i) {
+    if (f.zero_piece(i)) continue;
+    const double a = f.x_at(i), b = f.x_at(i + 1);
+    std::vector<double> edges{a};
+    for (double g : grid)
+      if (g > a && g < b) edges.push_back(g);
+    const double from = edges.back();
+    const int n = std::max(1, static_cast<int>(std::ceil((b - from) / s.panel_width)));
+    for (int j = 1; j <= n; ++j) edges.push_back(j == n ? b : from + (b - from) * j / n);
+    for (std::size_t j = 0; j + 1 < edges.size(); ++j) tasks.push_back({Where::path, i, edges[j], edges[j + 1]});
+  }
+  return tasks;
+}
+
+// The breakpoints whose leg does not vanish.
+std::size_t leg_count(const Integrand& f) {
+  std::size_t legs = 0;
+  for (std::size_t kb = 0; kb < f.breakpoints(); ++kb) legs += !f.leg_vanishes(kb);
+  return legs;
+}
+
+// The legs add ~h^2 / w^2 of sigma_ext (w the width of the distribution in
+// x), so the path alone sizes their near-axis budget: each leg starts as
+// panels [0, c], [c, 16c], [16c, 256c], ..., h, c set so that the bound below
+// its lowest node is a quarter of the leg's share of the tolerance.
+std::vector<Task> leg_tasks(const Integrand& f, const std::vector<Panel>& path, const SegmentedContourSettings& s) {
+  Complex path_total{};
+  for (const auto& p : path) path_total += p.quad.kronrod;
+  const double leg_allowed =
+      0.25 * s.rel_tolerance * std::abs(path_total.real()) / std::max<std::size_t>(leg_count(f), 1);
+  std::vector<Task> tasks;
+  for (std::size_t kb = 0; kb < f.breakpoints(); ++kb) {
+    if (f.leg_vanishes(kb)) continue;
+    const double h = f.height(f.x_at(kb));
+    double c = f.axis_cut(kb, h, leg_allowed, h);
+    tasks.push_back({Where::leg, kb, 0.0, c});
+    for (; c < h; c *= 16) tasks.push_back({Where::leg, kb, c, std::min(16 * c, h)});
+  }
+  return tasks;
+}
+
+struct Sums {
+  Complex total;
+  double error = 0, near_axis = 0, rounding = 0;
+};
+
+Sums sums(const std::vector<Panel>& ps) {
+  Sums out;
+  for (const auto& p : ps) {
+    out.total += p.quad.kronrod;
+    out.error += p.quad.error;
+    out.near_axis += p.near_axis;
+    out.rounding += p.quad.rounding;
+  }
+  return out;
+}
+
+// The panels of the path and the legs and their adaptive refinement: split
+// panels until |K - G| plus the near-axis bounds meet the tolerance, then
+// (with verification) halve them all and charge the change
+// (contour_panel.hpp: refined_sums).
+class PieceQuadrature {
+ public:
+  PieceQuadrature(const Integrand& f, const SizeDistribution& d, const SegmentedContourSettings& s)
+      : f_(f), d_(d), s_(s) {}
+
+  std::size_t evaluations() const { return evaluations_; }
+
+  std::vector<Panel> evaluate_all(const std::vector<Task>& ts) {
+    std::vector<Panel> out(ts.size());
+    tbb::parallel_for(std::size_t(0), ts.size(),
+                      [&](std::size_t i) { out[i] = f_.evaluate(ts[i].where, ts[i].index, ts[i].a, ts[i].b); });
+    for (const auto& p : out) evaluations_ += p.quad.evaluations;
+    return out;
+  }
+
+  Sums converged_sums(std::vector<Panel>& panels, bool verify) {
+    return detail::refined_sums(
+        panels, verify, [&](std::vector<Panel>& ps) { refine(ps); }, sums,
+        [&](const std::vector<Panel>& ps) { return halves_of(ps, detail::every_index(ps.size()), 0.0); },
+        [&](const Sums& fine) {
+          require_finite(fine);
+          if (fine.error + fine.near_axis <= s_.rel_tolerance * std::abs(fine.total.real())) return true;
+          check_budget("verified quadrature error", fine.error + fine.near_axis, fine);
+          return false;
+        });
+  }
+
+ private:
+  std::vector<Panel> halves_of(const std::vector<Panel>& ps, const std::vector<std::size_t>& which, double allowed) {
+    std::vector<Panel> halves(2 * which.size());
+    tbb::parallel_for(std::size_t(0), halves.size(), [&](std::size_t j) {
+      const Panel& p = ps[which[j / 2]];
+      const double cut = split_point(f_, p, allowed > 0 ? allowed : p.near_axis / 8);
+      halves[j] =
+          j % 2 == 0 ? f_.evaluate(p.where, p.index, p.quad.a, cut) : f_.evaluate(p.where, p.index, cut, p.quad.b);
+    });
+    for (const auto& h : halves) evaluations_ += h.quad.evaluations;
+    return halves;
+  }
+
+  void require_finite(const Sums& sum) const {
+    if (!std::isfinite(sum.total.real()) || !std::isfinite(sum.error) || !std::isfinite(sum.near_axis))
+      throw std::runtime_error("sigma_ext by segmented contour over " + d_.describe() +
+                               ": the integral is not finite in double precision (sum " +
+                               significant(sum.total.real(), 3) + "); the distribution's number density is out of range");
+  }
+
+  void check_budget(const char* what, double error, const Sums& sum) const {
+    detail::check_evaluation_budget("sigma_ext by segmented contour", what, error / std::abs(sum.total.real()),
+                                    s_.rel_tolerance, evaluations_, s_.max_evaluations);
+  }
+
+  // Adaptive: split panels until |K - G| plus the near-axis bounds meet the target.
+  void refine(std::vector<Panel>& ps) {
+    for (;;) {
+      const Sums sum = sums(ps);
+      require_finite(sum);
+      const double target = s_.rel_tolerance * std::abs(sum.total.real());
+      if (sum.error + sum.near_axis <= target) return;
+      check_budget("quadrature error", sum.error + sum.near_axis, sum);
+      const double share = target / static_cast<double>(ps.size());
+      std::vector<std::size_t> split = largest_charges(ps, sum.error + sum.near_axis - 0.5 * target);
+      ps = detail::with_halves(ps, split, halves_of(ps, split, 0.5 * share));
+    }
+  }
+
+  // The largest charges first, until they cover the excess over half the
+  // target (the halves keep some of it); at least the worst, so every round
+  // spends evaluations and the budget ends the loop.  Which ones depends on
+  // the values alone, not on the thread count.  In increasing index.
+  static std::vector<std::size_t> largest_charges(const std::vector<Panel>& ps, double excess) {
+    std::vector<std::size_t> order = detail::every_index(ps.size());
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t i, std::size_t j) { return ps[i].charged() > ps[j].charged(); });
+    std::vector<std::size_t> split;
+    double taken = 0;
+    for (std::size_t i : order) {
+      if (!split.empty() && taken >= excess) break;
+      split.push_back(i);
+      taken += ps[i].charged();
+    }
+    std::sort(split.begin(), split.end());
+    return split;
+  }
+
+  const Integrand& f_;
+  const SizeDistribution& d_;
+  const SegmentedContourSettings& s_;
+  std::size_t evaluations_ = 0;
+};
+
+std::string method_text(const SizeDistribution& d, const SegmentedContourSettings& s, std::size_t pieces,
+                        std::size_t legs, bool verify, mie::Precision arithmetic, std::size_t evaluations,
+                        double x_max) {
+  std::ostringstream method;
+  method << "segmented contour: Cauchy on each of " << pieces << " pieces of the "
+         << (std::holds_alternative<PowerLaw>(d.form()) ? "power law" : "table")
+         << ", path x = t + i h(t), h <= " << significant(s.height, 3) << ", with " << legs
+         << " legs down to the breakpoints, near-axis parts bounded (segmented_contour.hpp), Gauss-Kronrod "
+         << s.kronrod_points << " (Boost.Math)" << (verify ? ", verified by halving" : "") << ", S(0) in "
+         << (arithmetic == mie::Precision::double_precision ? "double" : "long double") << ", rel. tol "
+         << significant(s.rel_tolerance, 3) << ", " << evaluations << " evaluations, x <= " << significant(x_max, 3);
+  return method.str();
 }
 
 }  // namespace
@@ -231,163 +403,30 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
   const double k = 2 * kPi / wavelength_m;
   const double x_min = k * pieces->front().r0, x_max = k * pieces->back().r1;
   if (!(x_max <= s.max_x) || !(x_min > 0) || pieces->size() > s.max_pieces) return std::nullopt;
-  const mie::Precision arithmetic = s.rel_tolerance >= 1e-9 && s.height <= 4 ? mie::Precision::double_precision
-                                                                               : mie::Precision::extended;
+  const mie::Precision arithmetic = detail::contour_arithmetic(s.rel_tolerance, s.height);
   const Integrand f(std::move(*pieces), wavelength_m, m, s, arithmetic);
-  const std::size_t n_pieces = f.breakpoints() - 1;
 
-  // Initial panels.  The path over each piece: edges at the breakpoints, and
-  // inside a piece every panel_width, graded towards x = 0 up to the rise
-  // length 2H/theta as contour_extinction.cpp does (resonance poles sit at
-  // ~theta x from the low path there).  The legs follow, once the path has
-  // given the scale of sigma_ext.
-  struct Task {
-    Where where;
-    std::size_t index;
-    double a, b;
-  };
-  std::vector<Task> tasks;
-  std::vector<double> grid;
-  for (double g = s.height / s.angle / 4; g < 2 * s.height / s.angle; g *= 2) grid.push_back(g);
-  for (std::size_t i = 0; i < n_pieces; ++i) {
-    if (f.zero_piece(i)) continue;
-    const double a = f.x_at(i), b = f.x_at(i + 1);
-    std::vector<double> edges{a};
-    for (double g : grid)
-      if (g > a && g < b) edges.push_back(g);
-    const double from = edges.back();
-    const int n = std::max(1, static_cast<int>(std::ceil((b - from) / s.panel_width)));
-    for (int j = 1; j <= n; ++j) edges.push_back(j == n ? b : from + (b - from) * j / n);
-    for (std::size_t j = 0; j + 1 < edges.size(); ++j) tasks.push_back({Where::path, i, edges[j], edges[j + 1]});
-  }
-  const auto evaluate_all = [&](const std::vector<Task>& ts) {
-    std::vector<Panel> out(ts.size());
-    tbb::parallel_for(std::size_t(0), ts.size(),
-                      [&](std::size_t i) { out[i] = f.evaluate(ts[i].where, ts[i].index, ts[i].a, ts[i].b); });
-    return out;
-  };
-  std::vector<Panel> panels = evaluate_all(tasks);
-  // The legs add ~h^2 / w^2 of sigma_ext (w the width of the distribution in
-  // x), so the path alone sizes their near-axis budget: each leg starts as
-  // panels [0, c], [c, 16c], [16c, 256c], ..., h, c set so that the bound below
-  // its lowest node is a quarter of the leg's share of the tolerance.
-  std::size_t legs = 0;
-  for (std::size_t kb = 0; kb < f.breakpoints(); ++kb) legs += !f.leg_vanishes(kb);
-  Complex path_total{};
-  for (const auto& p : panels) path_total += p.quad.kronrod;
-  const double leg_allowed = 0.25 * s.rel_tolerance * std::abs(path_total.real()) / std::max<std::size_t>(legs, 1);
-  std::vector<Task> leg_tasks;
-  for (std::size_t kb = 0; kb < f.breakpoints(); ++kb) {
-    if (f.leg_vanishes(kb)) continue;
-    const double h = f.height(f.x_at(kb));
-    double c = f.axis_cut(kb, h, leg_allowed, h);
-    leg_tasks.push_back({Where::leg, kb, 0.0, c});
-    for (; c < h; c *= 16) leg_tasks.push_back({Where::leg, kb, c, std::min(16 * c, h)});
-  }
-  for (Panel& p : evaluate_all(leg_tasks)) panels.push_back(std::move(p));
-
-  std::size_t evaluations = 0;
-  for (const auto& p : panels) evaluations += p.quad.evaluations;
-  struct Sums {
-    Complex total;
-    double error = 0, near_axis = 0, rounding = 0;
-  };
-  const auto sums = [](const std::vector<Panel>& ps) {
-    Sums out;
-    for (const auto& p : ps) {
-      out.total += p.quad.kronrod;
-      out.error += p.quad.error;
-      out.near_axis += p.near_axis;
-      out.rounding += p.quad.rounding;
-    }
-    return out;
-  };
-  const auto halves_of = [&](const std::vector<Panel>& ps, const std::vector<std::size_t>& which, double allowed) {
-    std::vector<Panel> halves(2 * which.size());
-    tbb::parallel_for(std::size_t(0), halves.size(), [&](std::size_t j) {
-      const Panel& p = ps[which[j / 2]];
-      const double cut = split_point(f, p, allowed > 0 ? allowed : p.near_axis / 8);
-      halves[j] = j % 2 == 0 ? f.evaluate(p.where, p.index, p.quad.a, cut) : f.evaluate(p.where, p.index, cut, p.quad.b);
-    });
-    for (const auto& h : halves) evaluations += h.quad.evaluations;
-    return halves;
-  };
-  const auto require_finite = [&](const Sums& sum) {
-    if (!std::isfinite(sum.total.real()) || !std::isfinite(sum.error) || !std::isfinite(sum.near_axis))
-      throw std::runtime_error("sigma_ext by segmented contour over " + d.describe() +
-                               ": the integral is not finite in double precision (sum " +
-                               significant(sum.total.real(), 3) + "); the distribution's number density is out of range");
-  };
-  const auto check_budget = [&](const char* what, double error, const Sums& sum) {
-    detail::check_evaluation_budget("sigma_ext by segmented contour", what, error / std::abs(sum.total.real()),
-                                    s.rel_tolerance, evaluations, s.max_evaluations);
-  };
-  // Adaptive: split panels until |K - G| plus the near-axis bounds meet the target.
-  const auto refine = [&](std::vector<Panel>& ps) {
-    for (;;) {
-      const Sums sum = sums(ps);
-      require_finite(sum);
-      const double target = s.rel_tolerance * std::abs(sum.total.real());
-      if (sum.error + sum.near_axis <= target) return;
-      check_budget("quadrature error", sum.error + sum.near_axis, sum);
-      // The largest charges first, until they cover the excess over half
-      // the target (the halves keep some of it); at least the worst, so every
-      // round spends evaluations and the budget ends the loop.  Which ones
-      // depends on the values alone, not on the thread count.
-      const double share = target / static_cast<double>(ps.size());
-      std::vector<std::size_t> order(ps.size());
-      std::iota(order.begin(), order.end(), std::size_t(0));
-      std::stable_sort(order.begin(), order.end(),
-                       [&](std::size_t i, std::size_t j) { return ps[i].charged() > ps[j].charged(); });
-      const double excess = sum.error + sum.near_axis - 0.5 * target;
-      std::vector<std::size_t> split;
-      double taken = 0;
-      for (std::size_t i : order) {
-        if (!split.empty() && taken >= excess) break;
-        split.push_back(i);
-        taken += ps[i].charged();
-      }
-      std::sort(split.begin(), split.end());
-      ps = detail::with_halves(ps, split, halves_of(ps, split, 0.5 * share));
-    }
-  };
+  // The path first, then the legs, whose budget the path's sum sets.
+  PieceQuadrature quadrature(f, d, s);
+  std::vector<Panel> panels = quadrature.evaluate_all(path_tasks(f, s));
+  for (Panel& p : quadrature.evaluate_all(leg_tasks(f, panels, s))) panels.push_back(std::move(p));
   // Verification by halving, as contour_extinction.cpp: |K - G| stalls where
   // the ripple left at height H is not far below the tolerance.
-  const bool verify = s.verify || ripple_residual(m, s.height * std::tanh(s.angle * x_max / s.height)) >
+  const bool verify = s.verify || detail::ripple_residual(m, s.height * std::tanh(s.angle * x_max / s.height)) >
                                       1e-2 * s.rel_tolerance;
-  const Sums fine = detail::refined_sums(
-      panels, verify, refine, sums,
-      [&](const std::vector<Panel>& ps) {
-        std::vector<std::size_t> all(ps.size());
-        std::iota(all.begin(), all.end(), std::size_t(0));
-        return halves_of(ps, all, 0.0);
-      },
-      [&](const Sums& fine) {
-        require_finite(fine);
-        if (fine.error + fine.near_axis <= s.rel_tolerance * std::abs(fine.total.real())) return true;
-        check_budget("verified quadrature error", fine.error + fine.near_axis, fine);
-        return false;
-      });
+  const Sums fine = quadrature.converged_sums(panels, verify);
 
   ContourExtinction out;
   out.extinction.value = fine.total.real();
   out.extinction.quadrature_error = fine.error;
   out.extinction.resonance_error = fine.near_axis;
   out.extinction.rounding_error = fine.rounding;
-  out.evaluations = evaluations;
+  out.evaluations = quadrature.evaluations();
   out.max_size_parameter = x_max;
   out.height = s.height;
   out.angle = s.angle;
   out.verified = verify;
-  std::ostringstream method;
-  method << "segmented contour: Cauchy on each of " << n_pieces << " pieces of the "
-         << (std::holds_alternative<PowerLaw>(d.form()) ? "power law" : "table")
-         << ", path x = t + i h(t), h <= " << significant(s.height, 3) << ", with " << legs
-         << " legs down to the breakpoints, near-axis parts bounded (segmented_contour.hpp), Gauss-Kronrod "
-         << s.kronrod_points << " (Boost.Math)" << (verify ? ", verified by halving" : "") << ", S(0) in "
-         << (arithmetic == mie::Precision::double_precision ? "double" : "long double") << ", rel. tol "
-         << significant(s.rel_tolerance, 3) << ", " << evaluations << " evaluations, x <= " << significant(x_max, 3);
-  out.method = method.str();
+  out.method = method_text(d, s, f.breakpoints() - 1, leg_count(f), verify, arithmetic, out.evaluations, x_max);
   return out;
 }
 

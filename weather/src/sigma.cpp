@@ -16,6 +16,7 @@
 #include "attenuvis/weather/refractive_index.hpp"
 #include "attenuvis/weather/segmented_contour.hpp"
 #include "attenuvis/weather/visibility.hpp"
+#include "real_axis_settings.hpp"
 
 namespace attenuvis::weather {
 namespace {
@@ -28,17 +29,7 @@ bool is_rain(const MieCondition& c) { return std::holds_alternative<MarshallPalm
 // the caller already has (sigma() needs them for the contour first).
 BulkOptics real_axis_optics(const MieCondition& c, double wavelength_m, const Settings& s, const SizeDistribution& d,
                             std::complex<double> m) {
-  QuadratureSettings q;
-  q.rel_tolerance = s.rel_tolerance;
-  q.cancel = s.cancel;
-  if (is_rain(c)) {
-    // Rain's error is dominated by the large-x bound (~5e-3 relative), so the
-    // resonances need not be refined below 1e-3 of sigma.
-    q.asymptotic_x = s.rain_asymptotic_x;
-    q.resonance_tolerance = 1e-3;
-    q.max_evaluations = 1000000;
-  }
-  return integrate_bulk_optics(d, wavelength_m, mie_efficiency_batch(m), q, m);
+  return integrate_bulk_optics(d, wavelength_m, mie_efficiency_batch(m), detail::real_axis_settings(c, s), m);
 }
 
 // What a Mie result depends on: the condition's value, the wavelength and
@@ -161,6 +152,20 @@ std::string power_law_words(double published, const Settings& s) {
 }
 
 }  // namespace
+
+QuadratureSettings detail::real_axis_settings(const MieCondition& c, const Settings& s) {
+  QuadratureSettings q;
+  q.rel_tolerance = s.rel_tolerance;
+  q.cancel = s.cancel;
+  if (is_rain(c)) {
+    // Rain's error is dominated by the large-x bound (~5e-3 relative), so the
+    // resonances need not be refined below 1e-3 of sigma.
+    q.asymptotic_x = s.rain_asymptotic_x;
+    q.resonance_tolerance = 1e-3;
+    q.max_evaluations = 1000000;
+  }
+  return q;
+}
 
 // The distribution of parametric drops; those without an amount of their own
 // hold one particle per cm^3 (condition.hpp), rescaled by N= or lwc= below.

@@ -1,6 +1,8 @@
 // Parallel tables of optical quantities; the choice of output format.
 #include "attenuvis/weather/sigma_table.hpp"
 
+#include "attenuvis/weather/detail/sigma_table_formats.hpp"
+
 #include "attenuvis/weather/cancel.hpp"
 #include "attenuvis/weather/condition_optics.hpp"
 
@@ -211,13 +213,13 @@ void write_sigma_table(const SigmaTable& t, const std::string& path, TableFormat
   switch (format) {
     case TableFormat::csv: {
       io::StagedFiles files;
-      files.add(path).write(format_sigma_table_csv(t, unit));
-      files.add(csv_sidecar_path(path)).write(format_sigma_table_sidecar(t, unit, provenance));
+      files.add(path).write(detail::format_sigma_table_csv(t, unit));
+      files.add(csv_sidecar_path(path)).write(detail::format_sigma_table_sidecar(t, unit, provenance));
       files.commit_all();
       return;
     }
-    case TableFormat::json: io::write_file_atomically(path, format_sigma_table_json(t, unit, provenance)); return;
-    case TableFormat::netcdf: write_sigma_table_netcdf(t, path, unit, provenance); return;
+    case TableFormat::json: io::write_file_atomically(path, detail::format_sigma_table_json(t, unit, provenance)); return;
+    case TableFormat::netcdf: detail::write_sigma_table_netcdf(t, path, unit, provenance); return;
   }
 }
 

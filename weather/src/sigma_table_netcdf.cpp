@@ -34,6 +34,7 @@
 #include "attenuvis/io/netcdf_file.hpp"
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/weather/refractive_index.hpp"
+#include "attenuvis/weather/detail/sigma_table_formats.hpp"
 #include "attenuvis/weather/sigma_table.hpp"
 #include "attenuvis/weather/visibility.hpp"
 
@@ -189,7 +190,7 @@ std::vector<std::string> per_condition(const SigmaTable& t, const std::function<
 
 }  // namespace
 
-void write_sigma_table_netcdf(const SigmaTable& t, const std::string& path, SigmaUnit unit,
+void detail::write_sigma_table_netcdf(const SigmaTable& t, const std::string& path, SigmaUnit unit,
                               const TableProvenance& provenance) {
   if (!udunits_text(QuantityKind::coefficient, unit))
     throw std::invalid_argument("netCDF tables take --units m or km: " + to_string(unit) +

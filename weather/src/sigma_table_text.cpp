@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "attenuvis/io/number_text.hpp"
+#include "attenuvis/weather/detail/sigma_table_formats.hpp"
 #include "attenuvis/weather/sigma_table.hpp"
 #include "attenuvis/weather/visibility.hpp"
 
@@ -150,7 +151,7 @@ nlohmann::ordered_json metadata(const SigmaTable& t, SigmaUnit unit, const Table
 
 }  // namespace
 
-std::string format_sigma_table_csv(const SigmaTable& t, SigmaUnit unit) {
+std::string detail::format_sigma_table_csv(const SigmaTable& t, SigmaUnit unit) {
   const auto columns = numeric_columns(t, unit);
   std::ostringstream o;
   // Header: the first line, plain names (csv.DictReader, pandas.read_csv read it as is).
@@ -169,13 +170,13 @@ std::string format_sigma_table_csv(const SigmaTable& t, SigmaUnit unit) {
   return o.str();
 }
 
-std::string format_sigma_table_sidecar(const SigmaTable& t, SigmaUnit unit, const TableProvenance& provenance) {
+std::string detail::format_sigma_table_sidecar(const SigmaTable& t, SigmaUnit unit, const TableProvenance& provenance) {
   nlohmann::ordered_json m = {{"describes", "the CSV table beside this file (same name without .meta.json)"}};
   m.update(metadata(t, unit, provenance, numeric_columns(t, unit)));
   return m.dump(2) + "\n";
 }
 
-std::string format_sigma_table_json(const SigmaTable& t, SigmaUnit unit, const TableProvenance& provenance) {
+std::string detail::format_sigma_table_json(const SigmaTable& t, SigmaUnit unit, const TableProvenance& provenance) {
   const auto columns = numeric_columns(t, unit, /*phase_columns=*/false);
   nlohmann::ordered_json doc = metadata(t, unit, provenance, columns);
   // The phase function: per row, arrays over the document's phase_function.angle_deg.

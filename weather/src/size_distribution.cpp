@@ -11,8 +11,10 @@
 #include <boost/math/special_functions/erf.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 
-#include "analytic_density.hpp"
+#include "attenuvis/weather/detail/analytic_density.hpp"
+#include "attenuvis/io/number_text.hpp"
 #include "attenuvis/weather/domains.hpp"
+#include "registry_rows.hpp"
 
 namespace attenuvis::weather {
 namespace {
@@ -216,38 +218,93 @@ SizeDistribution SizeDistribution::scaled(double f) const {
 
 std::string SizeDistribution::describe() const { return name_; }
 
+const std::vector<FogPresetInfo>& fog_presets() {
+  // The seed paper's Table "Attenuation coefficient parameters for Fog" (from ITU-R P.1817-1).
+  static const std::string source =
+      "ITU-R P.1817-1, as tabulated in the seed paper (Schwartz, Vinnikov, Federici, SimAUD 2021), Table "
+      "\"Attenuation coefficient parameters for Fog\"";
+  static const std::vector<FogPresetInfo> presets = [] {
+    std::vector<FogPresetInfo> p = {
+        {FogPreset::advection, "advection", "heavy advection fog", 0.027, 3, 0.3, source},
+        {FogPreset::radiation, "radiation", "moderate radiation fog", 607.5, 6, 3, source},
+    };
+    detail::check_enum_order(p, &FogPresetInfo::id);
+    return p;
+  }();
+  return presets;
+}
+
+const FogPresetInfo& info(FogPreset p) { return detail::row_of(fog_presets(), p); }
+
+const FogPresetInfo* find_fog_preset(const std::string& name) { return detail::find_by_name(fog_presets(), name); }
+
+std::string to_string(FogPreset p) { return info(p).name; }
+
 namespace {
-const char* kPresetList =
-    "advection (heavy advection fog), radiation (moderate radiation fog), marshall-palmer:R (rain, R mm/h), "
-    "gunn-marshall:R (snow, R mm/h melted)";
+
+// The presets set by a rate: the name up to and including ':', the rate's
+// range and the distribution of that rate.
+struct RatePreset {
+  const char* prefix;  // "marshall-palmer:"
+  const char* help;
+  const char* citation;
+  const Domain& rate;
+  SizeDistribution (*at)(double rate_mm_h);
+};
+const RatePreset kRatePresets[] = {
+    {"marshall-palmer:", "rain, R mm/h", "J. S. Marshall and W. McK. Palmer, J. Meteor. 5, 165 (1948)",
+     domain::rain_rate, &SizeDistribution::marshall_palmer},
+    {"gunn-marshall:", "snow, R mm/h melted", "K. L. S. Gunn and J. S. Marshall, J. Meteor. 15, 452 (1958)",
+     domain::snow_rate, &SizeDistribution::gunn_marshall},
+};
+
+const RatePreset* rate_preset(const std::string& name) {
+  for (const auto& p : kRatePresets)
+    if (name.rfind(p.prefix, 0) == 0) return &p;
+  return nullptr;
+}
+
+// "advection (heavy advection fog), ..., gunn-marshall:R (snow, R mm/h melted)".
+std::string preset_list() {
+  std::string out;
+  for (const auto& p : distribution_presets()) out += (out.empty() ? "" : ", ") + p.name + " (" + p.help + ")";
+  return out;
+}
+
+}  // namespace
+
+const std::vector<DistributionPresetInfo>& distribution_presets() {
+  static const std::vector<DistributionPresetInfo> presets = [] {
+    std::vector<DistributionPresetInfo> out;
+    for (const auto& p : fog_presets()) out.push_back({p.name, p.help, p.citation});
+    for (const auto& p : kRatePresets) out.push_back({std::string(p.prefix) + "R", p.help, p.citation});
+    return out;
+  }();
+  return presets;
 }
 
 bool is_preset_distribution(const std::string& name) {
-  return name == "advection" || name == "radiation" || name.rfind("marshall-palmer:", 0) == 0 ||
-         name.rfind("gunn-marshall:", 0) == 0;
+  return find_fog_preset(name) != nullptr || rate_preset(name) != nullptr;
 }
 
 SizeDistribution preset_distribution(const std::string& name) {
-  // Seed paper Table "Attenuation coefficient parameters for Fog" (from ITU-R P.1817-1).
-  if (name == "advection") {
-    auto d = SizeDistribution::modified_gamma_um(0.027, 3, 0.3);
-    return SizeDistribution(d.form(), "heavy advection fog (P.1817-1: alpha=3, a=0.027, b=0.3; r um, n cm^-3 um^-1)");
+  if (const FogPresetInfo* fog = find_fog_preset(name)) {
+    auto d = SizeDistribution::modified_gamma_um(fog->a, fog->alpha, fog->b);
+    return SizeDistribution(d.form(), fog->help + " (P.1817-1: alpha=" + io::shortest(fog->alpha) +
+                                          ", a=" + io::shortest(fog->a) + ", b=" + io::shortest(fog->b) +
+                                          "; r um, n cm^-3 um^-1)");
   }
-  if (name == "radiation") {
-    auto d = SizeDistribution::modified_gamma_um(607.5, 6, 3);
-    return SizeDistribution(d.form(), "moderate radiation fog (P.1817-1: alpha=6, a=607.5, b=3; r um, n cm^-3 um^-1)");
-  }
-  auto rate_of = [&](std::size_t prefix, const Domain& range) {
+  if (const RatePreset* p = rate_preset(name)) {
+    const std::size_t prefix = std::string(p->prefix).size();
+    double rate = 0;
     try {
-      return read_in(range, name.substr(prefix));
+      rate = read_in(p->rate, name.substr(prefix));
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("size distribution preset " + quote_text(name) + ": " + e.what());
     }
-  };
-  if (name.rfind("marshall-palmer:", 0) == 0)
-    return SizeDistribution::marshall_palmer(rate_of(16, domain::rain_rate));
-  if (name.rfind("gunn-marshall:", 0) == 0) return SizeDistribution::gunn_marshall(rate_of(14, domain::snow_rate));
-  throw std::invalid_argument("unknown size distribution preset '" + name + "'; presets: " + kPresetList);
+    return p->at(rate);
+  }
+  throw std::invalid_argument("unknown size distribution preset '" + name + "'; presets: " + preset_list());
 }
 
 Moments moments(const SizeDistribution& d, double rho) {

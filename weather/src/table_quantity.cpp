@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "registry_rows.hpp"
+
 namespace attenuvis::weather {
 
 const std::vector<QuantityInfo>& table_quantities() {
@@ -18,28 +20,33 @@ const std::vector<QuantityInfo>& table_quantities() {
   static const std::string no_cf_name =
       "no CF standard_name: CF's volume_*_coefficient_in_air_due_to_ambient_aerosol_particles exclude cloud "
       "droplets, and fog, rain and snow are hydrometeors";
-  static const std::vector<QuantityInfo> table = {
-      {Quantity::sigma_ext, "sigma_ext", QuantityKind::coefficient, "volume extinction coefficient", "", no_cf_name,
-       false},
-      {Quantity::sigma_sca, "sigma_sca", QuantityKind::coefficient, "volume scattering coefficient", "", no_cf_name,
-       true},
-      {Quantity::sigma_abs, "sigma_abs", QuantityKind::coefficient, "volume absorption coefficient", "", no_cf_name,
-       true},
-      {Quantity::ssa, "ssa", QuantityKind::dimensionless, "single-scattering albedo sigma_sca/sigma_ext", "", "", true},
-      {Quantity::g, "g", QuantityKind::dimensionless, "asymmetry parameter <cos theta>, scattering-weighted", "", "",
-       true},
-      {Quantity::backscatter, "backscatter", QuantityKind::coefficient_per_sr,
-       "volume backscatter coefficient beta_pi = integral of (Q_back/4 pi) pi r^2 n(r) dr", "",
-       "no CF standard_name: CF's volume_attenuated_backwards_scattering_function_in_air includes attenuation on "
-       "the way; this is the unattenuated coefficient of the drops",
-       true},
-      {Quantity::lidar_ratio, "lidar_ratio", QuantityKind::steradian,
-       "lidar (extinction-to-backscatter) ratio sigma_ext/beta_pi", "", "", true},
-  };
+  static const std::vector<QuantityInfo> table = [] {
+    std::vector<QuantityInfo> t = {
+        {Quantity::sigma_ext, "sigma_ext", "sigma", QuantityKind::coefficient, "volume extinction coefficient", "",
+         no_cf_name, false},
+        {Quantity::sigma_sca, "sigma_sca", "scattering", QuantityKind::coefficient, "volume scattering coefficient",
+         "", no_cf_name, true},
+        {Quantity::sigma_abs, "sigma_abs", "absorption", QuantityKind::coefficient, "volume absorption coefficient",
+         "", no_cf_name, true},
+        {Quantity::ssa, "ssa", "albedo", QuantityKind::dimensionless, "single-scattering albedo sigma_sca/sigma_ext",
+         "", "", true},
+        {Quantity::g, "g", "asymmetry", QuantityKind::dimensionless,
+         "asymmetry parameter <cos theta>, scattering-weighted", "", "", true},
+        {Quantity::backscatter, "backscatter", "backscatter", QuantityKind::coefficient_per_sr,
+         "volume backscatter coefficient beta_pi = integral of (Q_back/4 pi) pi r^2 n(r) dr", "",
+         "no CF standard_name: CF's volume_attenuated_backwards_scattering_function_in_air includes attenuation on "
+         "the way; this is the unattenuated coefficient of the drops",
+         true},
+        {Quantity::lidar_ratio, "lidar_ratio", "lidar_ratio", QuantityKind::steradian,
+         "lidar (extinction-to-backscatter) ratio sigma_ext/beta_pi", "", "", true},
+    };
+    detail::check_enum_order(t, &QuantityInfo::id);
+    return t;
+  }();
   return table;
 }
 
-const QuantityInfo& info(Quantity q) { return table_quantities().at(static_cast<std::size_t>(q)); }
+const QuantityInfo& info(Quantity q) { return detail::row_of(table_quantities(), q); }
 
 std::string quantity_names() {
   std::string out;
@@ -197,12 +204,16 @@ std::optional<ConditionParameter> condition_parameter(const Condition& condition
 const ParameterInfo& info(ParameterKind k) {
   // lwe_precipitation_rate: CF's liquid-water-equivalent precipitation rate (canonical m s-1), which is what
   // the rain and snow rates of ITU-R P.1817-1 and of Marshall-Palmer are; visibility_in_air (m): CF's name.
-  static const std::vector<ParameterInfo> table = {
-      {ParameterKind::rate, "rate", "precipitation rate (liquid water equivalent)", "lwe_precipitation_rate", "mm/h",
-       "mm h-1"},
-      {ParameterKind::visibility, "visibility", "visibility the condition is set by", "visibility_in_air", "m", "m"},
-      {ParameterKind::given_sigma, "given_sigma", "extinction coefficient given by the condition", "", "", ""},
-  };
+  static const std::vector<ParameterInfo> table = [] {
+    std::vector<ParameterInfo> t = {
+        {ParameterKind::rate, "rate", "precipitation rate (liquid water equivalent)", "lwe_precipitation_rate",
+         "mm/h", "mm h-1"},
+        {ParameterKind::visibility, "visibility", "visibility the condition is set by", "visibility_in_air", "m", "m"},
+        {ParameterKind::given_sigma, "given_sigma", "extinction coefficient given by the condition", "", "", ""},
+    };
+    detail::check_enum_order(t, &ParameterInfo::kind);
+    return t;
+  }();
   return table.at(static_cast<std::size_t>(k));
 }
 

@@ -17,6 +17,7 @@
 #include "attenuvis/weather/domains.hpp"
 #include "attenuvis/weather/empirical_models.hpp"
 #include "attenuvis/weather/refractive_index.hpp"
+#include "attenuvis/weather/registry.hpp"
 #include "attenuvis/weather/segmented_contour.hpp"
 #include "attenuvis/weather/settings.hpp"
 #include "attenuvis/weather/sigma.hpp"

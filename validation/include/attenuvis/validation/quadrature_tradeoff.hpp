@@ -14,7 +14,7 @@ struct QuadratureTradeoffRow {
   double rel_tolerance = 0;
   int kronrod_points = 0;
   double tail_fraction = 0;
-  double resonance_x_span = 0;     // panels this narrow in x count as resonance panels (resonance.hpp)
+  double resonance_x_span = 0;     // panels this narrow in x count as resonance panels (weather/src/resonance.hpp)
   double resonance_tolerance = 0;  // resonance panels refined until their error is below this x sigma
   double sigma_per_m = 0;
   double reported_quadrature_tail_error = 0;  // what the integrator claims (quadrature + tails)

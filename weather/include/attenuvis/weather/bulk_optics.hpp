@@ -34,7 +34,7 @@
 //               1.5 x (sampled range of Q) x (panel's geometric cross-section)
 //               is added, since K and G can alias alike there,
 //   resonance   for nearly non-absorbing particles, what panels no wider
-//               than resonance_x_span still disagree on (resonance.hpp);
+//               than resonance_x_span still disagree on (src/resonance.hpp);
 //               not counted against rel_tolerance: those panels are split
 //               in an order set by the weight alone (not by |K - G|, which
 //               would bias sigma low) until it is below resonance_tolerance
@@ -89,7 +89,7 @@ struct QuadratureSettings {
   double tail_fraction = 0;        // fraction of the r^2 moment left outside; 0: 1e-3 * rel_tolerance
   std::size_t max_evaluations = 400000;
   double asymptotic_x = 0;         // > 0: use the large-x expansion of Q_ext beyond this x (extinction only)
-  // Nearly non-absorbing spheres (Im m < resonance_free_k(), see resonance.hpp):
+  // Nearly non-absorbing spheres (Im m < resonance_free_k(), see src/resonance.hpp):
   bool estimate_resonances = true;
   double resonance_x_span = 2.0;      // panels this narrow in x resolve the ripple: their |K - G| is resonance error
   double resonance_tolerance = 5e-5;  // split such panels until the resonance error is below this x sigma_ext...
@@ -134,6 +134,59 @@ struct BulkOptics {
   std::vector<double> angles_deg, phase, phase_error;  // p(theta), int p dOmega = 4 pi
   MatrixExpansion expansion, expansion_error;          // scattering-weighted, as chi_l
 };
+
+// Every field of a result by name, in declaration order, for outputs that
+// show them all (the Python bindings): visit(name, value) for a field of its
+// own, visit(name, value, error) for a value and its error.  Each
+// structured binding names every data member, so a field added to one of
+// these structs does not compile until it is listed here, and then reaches
+// those outputs without further change.
+template <class Visit>
+void for_each_field(const IntegralEstimate& e, Visit&& visit) {
+  const auto& [value, quadrature_error, tail_error, asymptotic_error, resonance_error, rounding_error] = e;
+  visit("value", value);
+  visit("quadrature_error", quadrature_error);
+  visit("tail_error", tail_error);
+  visit("asymptotic_error", asymptotic_error);
+  visit("resonance_error", resonance_error);
+  visit("rounding_error", rounding_error);
+}
+// The expansion and its error, coefficient by coefficient: visit(name, values, errors).
+template <class Visit>
+void for_each_field(const MatrixExpansion& value, const MatrixExpansion& error, Visit&& visit) {
+  const auto& [alpha1, alpha2, alpha3, alpha4, beta1, beta2] = value;
+  const auto& [alpha1_error, alpha2_error, alpha3_error, alpha4_error, beta1_error, beta2_error] = error;
+  visit("alpha1", alpha1, alpha1_error);
+  visit("alpha2", alpha2, alpha2_error);
+  visit("alpha3", alpha3, alpha3_error);
+  visit("alpha4", alpha4, alpha4_error);
+  visit("beta1", beta1, beta1_error);
+  visit("beta2", beta2, beta2_error);
+}
+template <class Visit>
+void for_each_field(const BulkOptics& b, Visit&& visit) {
+  const auto& [extinction, scattering, absorption, albedo, albedo_error, asymmetry, asymmetry_error, evaluations,
+               floor_panels, max_size_parameter, scattering_computed, method, backscatter_computed, backscatter,
+               lidar_ratio, lidar_ratio_error, moments, moments_error, angles_deg, phase, phase_error, expansion,
+               expansion_error] = b;
+  visit("extinction", extinction);
+  visit("scattering", scattering);
+  visit("absorption", absorption);
+  visit("albedo", albedo, albedo_error);
+  visit("asymmetry", asymmetry, asymmetry_error);
+  visit("evaluations", evaluations);
+  visit("floor_panels", floor_panels);
+  visit("max_size_parameter", max_size_parameter);
+  visit("scattering_computed", scattering_computed);
+  visit("method", method);
+  visit("backscatter_computed", backscatter_computed);
+  visit("backscatter", backscatter);
+  visit("lidar_ratio", lidar_ratio, lidar_ratio_error);
+  visit("moments", moments, moments_error);
+  visit("angles_deg", angles_deg);
+  visit("phase", phase, phase_error);
+  visit("expansion", expansion, expansion_error);
+}
 
 // With any efficiency function (analytic test integrands, a cached Mie table...).
 // `m` is used only for the error terms (resonances, large-x bound); the default

@@ -15,6 +15,8 @@
 #include <variant>
 
 #include "attenuvis/weather/empirical_models.hpp"
+#include "attenuvis/weather/refractive_index.hpp"
+#include "attenuvis/weather/size_distribution.hpp"
 
 namespace attenuvis::weather {
 
@@ -48,12 +50,12 @@ struct FogFromVisibility {
 };
 
 // ---- Mie over a size distribution -------------------------------------------
-// The drops: Marshall-Palmer rain, a P.1817-1 / seed fog preset, a file
-// (distribution_file.hpp), or a parametric distribution.
+// The drops: Marshall-Palmer rain, a P.1817-1 / seed fog preset (FogPreset,
+// size_distribution.hpp), a file (distribution_file.hpp), or a parametric
+// distribution.
 struct MarshallPalmerRain {
   double rate_mm_h = 0;
 };
-enum class FogPreset { advection, radiation };
 struct DistributionFile {
   std::string path;
 };
@@ -83,10 +85,9 @@ bool needs_amount(const ParametricDrops& d);
 
 using Drops = std::variant<MarshallPalmerRain, FogPreset, DistributionFile, ParametricDrops>;
 
-// The refractive index: Settings::water_table, a named water table, or a constant.
+// The refractive index: Settings::water_table, a named table (WaterTable,
+// refractive_index.hpp: water or ice), or a constant.
 struct SettingsWaterTable {};
-// ice: Warren & Brandt 2008 (data/refractive-index/ice-warren-brandt-2008).
-enum class WaterTable { hale_querry, segelstein, ice };
 struct ConstantIndex {
   std::complex<double> m;  // n + i k, k >= 0
 };
@@ -120,9 +121,6 @@ struct LabelledCondition {
 bool needs_mie(const Condition& c);
 // True for the power laws, whose sigma depends on Settings::convention.
 bool depends_on_convention(const Condition& c);
-
-std::string to_string(FogPreset p);   // "advection" | "radiation"
-std::string to_string(WaterTable t);  // "hale-querry" | "segelstein" | "ice"
 
 // Grammar text (condition_grammar.hpp) that parses back to the same
 // condition, numbers in shortest round-trip form: for echoing conditions

@@ -2,7 +2,8 @@
 //
 // Each kind of condition (condition.hpp) owns one line of the grammar and its
 // help text, in one table (condition_grammar.cpp); condition_grammar() prints
-// that table, and every parse error shows it.  In short:
+// that table, and every parse error shows it.  The names of models, presets
+// and tables come from their registries (registry.hpp).  In short:
 //
 //   clear | clear:DIST | visibility:DIST | sigma:VALUE[/m|/km|dB/km]
 //   rain:RATE[:seed|carbonneau|p1814] | rain:RATE:mie | snow:wet|dry:RATE

@@ -69,9 +69,6 @@ struct ContourExtinction {
   std::string method;
 };
 
-// The density continued to complex r (m^-4), for the analytic families only.
-std::optional<std::complex<double>> analytic_density(const SizeDistribution& d, std::complex<double> r_m);
-
 // Nothing (no throw) when the method does not apply: the density is not
 // analytic, or x_max exceeds s.max_x.  Throws std::runtime_error if the
 // tolerance cannot be met within s.max_evaluations.

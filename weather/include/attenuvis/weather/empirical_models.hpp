@@ -13,8 +13,12 @@
 
 namespace attenuvis::weather {
 
+// Each kind of model below is listed once, in a table the condition grammar,
+// the command line's help and the Python layer read (names, coefficients,
+// sources); registry.hpp shows them all in one shape.
+
 // The rain power laws gamma = k R^alpha (R in mm/h):
-//   seed        k=1.17,   alpha=0.65    seed paper Sec. Rain
+//   seed        k=1.17,   alpha=0.65    seed paper Sec. Rain (the default)
 //   carbonneau  k=1.076,  alpha=0.67    ITU-R P.1817-1, after Carbonneau et al. (1998)
 //   p1814       k=1.2924, alpha=0.6436  ITU-R P.1814-1 with mu = 0
 enum class RainLaw { seed, carbonneau, p1814 };
@@ -24,25 +28,48 @@ struct RainLawCoefficients {
   double k, alpha;
   std::string source;
 };
+// Every law, in the order of the enum (the first, seed, is the default).
 const std::vector<RainLawCoefficients>& rain_power_laws();
 const RainLawCoefficients& rain_power_law(RainLaw law);
 // By grammar name; throws std::invalid_argument listing the names.
 const RainLawCoefficients& rain_power_law(const std::string& name);
 std::string to_string(RainLaw law);
 
-enum class SnowType { wet, dry };
-std::string to_string(SnowType type);  // "wet" | "dry"
 // a(lambda) S^b, S in mm/h (P.1817-1; seed Table "Wet and Dry Snow"):
 //   wet a = 0.0001023 lambda_nm + 3.7855466, b = 0.72
 //   dry a = 0.0000542 lambda_nm + 5.4958776, b = 1.38
+enum class SnowType { wet, dry };
+struct SnowTypeInfo {
+  SnowType id;
+  std::string name;  // as the condition grammar spells it: "wet"
+  double a_per_nm, a_at_0nm, b;  // a = a_per_nm lambda_nm + a_at_0nm
+  std::string source;
+};
+// Every type, in the order of the enum.
+const std::vector<SnowTypeInfo>& snow_types();
+const SnowTypeInfo& info(SnowType type);
+const SnowTypeInfo* find_snow_type(const std::string& name);  // nullptr for any other name
+std::string to_string(SnowType type);                          // "wet" | "dry"
 struct SnowCoefficients { double a, b; };
 SnowCoefficients snow_coefficients(SnowType type, double wavelength_m);
 
 // A power-law value (dB/km as published) read under `c`, in 1/m.
 double power_law_sigma_per_m(double published_value, Convention c);
 
+// The empirical fog models from a visibility V (fog_from_visibility below).
 enum class VisibilityFogModel { kruse, kim, naboulsi_advection, naboulsi_radiation };
-std::string to_string(VisibilityFogModel m);
+struct VisibilityFogModelInfo {
+  VisibilityFogModel id;
+  std::string name;      // as the condition grammar spells it: "naboulsi-advection"
+  std::string formula;   // sigma from V and lambda, in words
+  std::string validity;  // the range the model was stated or fit for
+  std::string source;
+};
+// Every model, in the order of the enum.
+const std::vector<VisibilityFogModelInfo>& visibility_fog_models();
+const VisibilityFogModelInfo& info(VisibilityFogModel m);
+const VisibilityFogModelInfo* find_visibility_fog_model(const std::string& name);  // nullptr for any other name
+std::string to_string(VisibilityFogModel m);  // its name
 
 struct EmpiricalResult {
   double sigma_per_m = 0;

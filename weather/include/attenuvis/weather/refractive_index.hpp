@@ -1,10 +1,11 @@
 // Complex refractive index m = n + i k (k >= 0 absorbing) of water and ice
 // from tables, interpolated in wavelength.
 //
-// Tables (data/refractive-index/*.csv, each carrying its citation):
+// Tables (data/refractive-index/*.csv, each carrying its citation), listed
+// once in water_tables() below:
 //   water-hale-querry-1973   Hale & Querry, Appl. Opt. 12, 555 (1973), 25 C, 0.2-200 um
 //   water-segelstein-1981    Segelstein, M.S. thesis UMKC (1981), 25 C, 0.01 um - 10 m
-//   ice-warren-brandt-2008   Warren & Brandt, J. Geophys. Res. 113, D14220 (2008), -7 C
+//   ice-warren-brandt-2008   Warren & Brandt, J. Geophys. Res. 113, D14220 (2008), -7 C, 0.044 um - 2 m
 //
 // Interpolation scheme: between neighbouring table wavelengths, n is linear in
 // ln(lambda) and ln(k) is linear in ln(lambda) (k spans 10 decades across the
@@ -25,6 +26,28 @@
 
 namespace attenuvis::weather {
 
+// The tables by name: the one list that the condition grammar (water=),
+// the --water option, Settings::water_table and the Python layer read.
+enum class WaterTable { hale_querry, segelstein, ice };
+struct WaterTableInfo {
+  WaterTable id;
+  std::string name;                  // "hale-querry": as the grammar, --water and Python spell it
+  std::vector<std::string> aliases;  // further names of the same table: "water" (the default table)
+  std::string file;                  // "water-hale-querry-1973": data/refractive-index/<file>.csv
+  std::string substance;             // "water" or "ice"
+  std::string source;                // authors and year: "Hale & Querry 1973"
+  std::string help;                  // temperature and wavelength range
+  std::string citation;              // as the table's file states it ("# Source: ")
+};
+// Every table, in the order of the enum.
+const std::vector<WaterTableInfo>& water_tables();
+const WaterTableInfo& info(WaterTable t);
+// By name or alias; nullptr for any other text.
+const WaterTableInfo* find_water_table(const std::string& name);
+std::string to_string(WaterTable t);  // its name: "hale-querry" | "segelstein" | "ice"
+// The names for messages: "hale-querry, segelstein or ice".
+std::string water_table_names();
+
 class RefractiveIndexTable {
  public:
   // Reads a "wavelength_um,n,k" CSV whose '#' lines hold the citation.
@@ -44,8 +67,9 @@ class RefractiveIndexTable {
 // Directory holding refractive-index/, searched as described above.
 std::string data_directory();
 
-// Named tables: "water-hale-querry-1973", "water-segelstein-1981", "ice-warren-brandt-2008",
-// and the short names "water" (= Hale & Querry 1973, the default), "hale-querry", "segelstein", "ice".
+// A table by its name or alias in water_tables() ("water" = Hale & Querry
+// 1973, the default), or by its file name ("water-segelstein-1981"); throws
+// std::invalid_argument listing them for any other.
 const RefractiveIndexTable& refractive_index_table(const std::string& name);
 
 }  // namespace attenuvis::weather

@@ -13,8 +13,9 @@ struct Settings {
   Convention convention = Convention::itu;  // how P.1817 power laws are read (units.hpp)
   double contrast_threshold = 0.02;         // Koschmieder epsilon: 0.02 (3.912) or 0.05 (2.996)
   double rel_tolerance = 1e-9;              // Mie integrals: quadrature + tails, relative to sigma_ext
-  // Liquid-water refractive index table for Mie conditions (refractive_index.hpp):
-  // "water" = Hale & Querry (1973), or "segelstein" (1981).  A condition's m=... overrides it.
+  // Refractive-index table of Mie conditions that name none: a name or alias
+  // in water_tables() (refractive_index.hpp), "water" = Hale & Querry (1973).
+  // A condition's water= or m= overrides it.
   std::string water_table = "water";
   // Mie over rain drops: beyond this size parameter Q_ext's large-x expansion
   // (with its error bound, bulk_optics.hpp) replaces Mie.

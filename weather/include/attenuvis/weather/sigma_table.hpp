@@ -5,9 +5,12 @@
 // contour integral, otherwise the real-axis quadrature.  The quantities that
 // need the whole single-scattering result (sigma_sca, sigma_abs, ssa, g) come
 // from condition_bulk_optics(), the real-axis quadrature, computed only when
-// one of them is asked for; the Legendre moments and the phase function on
-// an angle grid come from condition_optics() (its second pass: per drop,
-// O(x^2) for the moments, O(x) per angle), only when asked for.  Only Mie conditions have a size distribution:
+// one of them is asked for; the backscatter coefficient and lidar ratio, the
+// Legendre moments and the phase function on an angle grid come from
+// condition_optics() (the moments and the phase function from its second
+// pass: per drop, O(x^2) for the moments, O(x) per angle), only when asked
+// for, and then the others come from its first pass.  Only Mie conditions
+// have a size distribution:
 // for every other condition (power laws, visibility models, clear air, a
 // given sigma) those quantities are missing — an empty CSV cell, JSON null,
 // the netCDF _FillValue — and so are they where the integral used the
@@ -105,15 +108,8 @@ std::string csv_sidecar_path(const std::string& csv_path);
 // sidecar together (both or neither).  Every number is finite or missing;
 // where sigma_ext = 0 the Koschmieder visibility is unbounded: missing too.
 // netCDF refuses SigmaUnit::dB_per_km (no UDUNITS spelling; CF needs one).
+// The writer of each format: detail/sigma_table_formats.hpp.
 void write_sigma_table(const SigmaTable& t, const std::string& path, TableFormat format, SigmaUnit unit,
                        const TableProvenance& provenance);
-
-// The text formats as strings (sigma_table_text.cpp): the CSV, its sidecar, the JSON document.
-std::string format_sigma_table_csv(const SigmaTable& t, SigmaUnit unit);
-std::string format_sigma_table_sidecar(const SigmaTable& t, SigmaUnit unit, const TableProvenance& provenance);
-std::string format_sigma_table_json(const SigmaTable& t, SigmaUnit unit, const TableProvenance& provenance);
-// netCDF-4, CF-1.8 (sigma_table_netcdf.cpp).
-void write_sigma_table_netcdf(const SigmaTable& t, const std::string& path, SigmaUnit unit,
-                              const TableProvenance& provenance);
 
 }  // namespace attenuvis::weather

@@ -75,13 +75,40 @@ class SizeDistribution {
   std::string name_;
 };
 
-// Named presets:
-//   advection            heavy advection fog, P.1817-1 / seed Table: alpha=3, a=0.027, b=0.3 (r um, n cm^-3 um^-1)
-//   radiation            moderate radiation fog: alpha=6, a=607.5, b=3
-//   marshall-palmer:R    rain at R mm/h;  gunn-marshall:R  snow at R mm/h (melted)
+// Named presets, listed once in distribution_presets() (the `distribution`
+// command's help and Python's preset() read it):
+//   advection, radiation   the fog presets below
+//   marshall-palmer:R      rain at R mm/h;  gunn-marshall:R  snow at R mm/h (melted)
 // Throws std::invalid_argument listing the presets.
 SizeDistribution preset_distribution(const std::string& name);
 bool is_preset_distribution(const std::string& name);
+
+// The fog presets of ITU-R P.1817-1 (the seed paper's Table "Attenuation
+// coefficient parameters for Fog"): modified gamma distributions
+// n = a r^alpha exp(-b r), r in um, n in cm^-3 um^-1 (modified_gamma_um).
+// The condition grammar's fog:advection and fog:radiation are these.
+enum class FogPreset { advection, radiation };
+struct FogPresetInfo {
+  FogPreset id;
+  std::string name;  // "advection": as the grammar, preset_distribution and Python spell it
+  std::string help;  // "heavy advection fog"
+  double a, alpha, b;
+  std::string citation;
+};
+// Every fog preset, in the order of the enum.
+const std::vector<FogPresetInfo>& fog_presets();
+const FogPresetInfo& info(FogPreset p);
+const FogPresetInfo* find_fog_preset(const std::string& name);  // nullptr for any other name
+std::string to_string(FogPreset p);                              // its name: "advection" | "radiation"
+
+// Every name preset_distribution takes, the fog presets first; a name ending
+// in ":R" takes a rate there.
+struct DistributionPresetInfo {
+  std::string name;  // "advection", "marshall-palmer:R"
+  std::string help;  // "heavy advection fog", "rain, R mm/h"
+  std::string citation;
+};
+const std::vector<DistributionPresetInfo>& distribution_presets();
 
 // Bulk properties.  Water content uses the bulk density given (liquid water
 // 1000 kg/m^3; for ice pass 917).

@@ -2,13 +2,14 @@
 // output format and by --help) and the parameter each condition is set by.
 //
 // Each quantity has a name (the CSV column, the JSON member, the netCDF
-// variable), a kind that fixes its unit, a long name and, where the CF
-// standard-name table has one that fits hydrometeors, a standard name.  A new quantity is one enum
-// value, one registry row (table_quantity.cpp) and one case in table_value
-// (sigma_table.cpp); the writers need nothing more.  A quantity of a new
-// unit (backscatter in 1/(m sr), a lidar ratio in sr) adds a QuantityKind and
-// its cases in the four unit functions below; one on a further axis (Legendre
-// moments, a phase function on angles) adds that dimension to the writers.
+// variable), the name Python's table() takes it by, a kind that fixes its
+// unit, a long name and, where the CF standard-name table has one that fits
+// hydrometeors, a standard name.  A new quantity is one enum value, one
+// registry row (table_quantity.cpp) and one case in table_value
+// (sigma_table.cpp); the writers, --help and Python need nothing more.  A
+// quantity of a new unit adds a QuantityKind and its cases in the four unit
+// functions below; one on a further axis (as the Legendre moments and the
+// phase function on angles are) adds that dimension to the writers.
 #pragma once
 
 #include <optional>
@@ -35,6 +36,9 @@ enum class QuantityKind {
 struct QuantityInfo {
   Quantity id;
   std::string name;           // "sigma_ext"
+  // Python's name (attenuvis.weather.table): the attribute of its Optics
+  // result that holds the value ("scattering", "albedo"), "sigma" for sigma_ext.
+  std::string python_name;
   QuantityKind kind;
   std::string long_name;      // "volume extinction coefficient"
   std::string standard_name;  // CF standard name, "" where CF has none that fits

@@ -1,10 +1,12 @@
 // The densities of the analytic families (size_distribution.hpp), written once
 // for real radii (SizeDistribution::density) and for complex radii (their
-// continuation, which contour_extinction.cpp integrates along).
+// continuation, which contour_extinction.cpp integrates along).  Detail of
+// the library, in a public header only for its tests.
 #pragma once
 
 #include <cmath>
 #include <complex>
+#include <optional>
 
 #include <boost/math/constants/constants.hpp>
 
@@ -27,5 +29,9 @@ Radius log_normal_density(const LogNormal& l, Radius r) {
   const Radius z = (std::log(r) - std::log(l.median_radius_m)) / s;
   return l.number_per_m3 / (std::sqrt(2 * boost::math::constants::pi<double>()) * s * r) * std::exp(-0.5 * z * z);
 }
+
+// The density continued to complex r (m^-4), for the analytic families only
+// (modified gamma, log-normal); nothing for the others.
+std::optional<std::complex<double>> analytic_density(const SizeDistribution& d, std::complex<double> r_m);
 
 }  // namespace attenuvis::weather::detail
