@@ -13,6 +13,7 @@
 #include "attenuvis/mie/spheres.hpp"
 #include "attenuvis/weather/bulk_optics.hpp"
 #include "resonance.hpp"
+#include "two_pass_bulk_optics.hpp"
 
 namespace attenuvis::weather {
 
@@ -80,16 +81,17 @@ EfficiencyFunction mie_efficiencies(std::complex<double> m, const QuadratureSett
   };
 }
 
-BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
-                           const QuadratureSettings& s) {
-  const bool angular = s.legendre_moments >= 0 || !s.angles_deg.empty();
-  if (!angular) return integrate_bulk_optics(d, wavelength_m, mie_efficiency_batch(m), s, m);
+BulkOptics detail::two_pass_bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
+                                        const EfficiencyBatch& cheap_batch,
+                                        const std::function<EfficiencyFunction(const QuadratureSettings&)>& angular,
+                                        const QuadratureSettings& s) {
+  if (s.legendre_moments < 0 && s.angles_deg.empty()) return integrate_bulk_optics(d, wavelength_m, cheap_batch, s, m);
   // Pass A: everything but the angular quantities, with cheap evaluations.
   QuadratureSettings cheap = s;
   cheap.legendre_moments = -1;
   cheap.angles_deg.clear();
   cheap.polarised = false;
-  BulkOptics out = integrate_bulk_optics(d, wavelength_m, mie_efficiency_batch(m), cheap, m);
+  BulkOptics out = integrate_bulk_optics(d, wavelength_m, cheap_batch, cheap, m);
   if (!out.scattering_computed) return out;  // large-x expansion used: no angular quantities either
   // Pass B: the angular quantities; sigma's resonance target was met in pass A,
   // so only theirs drives the refinement of the resonance panels here.
@@ -110,8 +112,7 @@ BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::
   // sigma, g and beta_pi come from pass A at rel_tolerance.
   if (m.imag() < resonance_free_k() && s.estimate_resonances)
     angular_settings.rel_tolerance = std::max(s.rel_tolerance, 1e-2 * s.angular_resonance_tolerance);
-  const BulkOptics b = integrate_bulk_optics(d, wavelength_m, mie_efficiencies(m, angular_settings),
-                                             angular_settings, m);
+  const BulkOptics b = integrate_bulk_optics(d, wavelength_m, angular(angular_settings), angular_settings, m);
   out.moments = b.moments;
   out.moments_error = b.moments_error;
   out.angles_deg = b.angles_deg;
@@ -124,6 +125,12 @@ BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::
                 " evaluations with angular terms, rel. tol " + io::significant(angular_settings.rel_tolerance, 3) +
                 ")";
   return out;
+}
+
+BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
+                           const QuadratureSettings& s) {
+  return detail::two_pass_bulk_optics(d, wavelength_m, m, mie_efficiency_batch(m),
+                                      [m](const QuadratureSettings& q) { return mie_efficiencies(m, q); }, s);
 }
 
 BulkOptics bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
