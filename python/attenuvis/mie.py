@@ -111,6 +111,21 @@ def _size_parameter(x, radius, wavelength, medium_index):
     return 2.0 * np.pi * np.asarray(radius, dtype=np.float64) * n_medium / np.asarray(wavelength, dtype=np.float64)
 
 
+def _checked_arrays(missing_m, x, m, radius, wavelength, medium_index, errors):
+    """x (or radius and wavelength) and m as arrays of a real and a numeric dtype."""
+    if errors not in ("raise", "nan"):
+        raise ValueError(f"errors must be 'raise' or 'nan', not {errors!r}")
+    if m is None:
+        raise TypeError(missing_m)
+    x_in = np.asarray(_size_parameter(x, radius, wavelength, medium_index))
+    m_in = np.asarray(m)
+    if x_in.dtype.kind not in "biuf":
+        raise TypeError(f"x must be real, got dtype {x_in.dtype}")
+    if m_in.dtype.kind not in "biufc":
+        raise TypeError(f"m must be a number, got dtype {m_in.dtype}")
+    return x_in, m_in
+
+
 def efficiencies(x: Optional[ArrayLike] = None, m: Optional[ArrayLike] = None, *,
                  radius: Optional[ArrayLike] = None, wavelength: Optional[ArrayLike] = None,
                  medium_index: Optional[ArrayLike] = None, errors: Literal["raise", "nan"] = "raise",
@@ -198,17 +213,8 @@ def efficiencies(x: Optional[ArrayLike] = None, m: Optional[ArrayLike] = None, *
     >>> print(np.round(mie.efficiencies([1.0, -2.0], 1.33, errors="nan").qext, 5))
     [0.09392     nan]
     """
-    if errors not in ("raise", "nan"):
-        raise ValueError(f"errors must be 'raise' or 'nan', not {errors!r}")
-    if m is None:
-        raise TypeError("efficiencies() needs the refractive index m")
-    x = _size_parameter(x, radius, wavelength, medium_index)
-    x_in = np.asarray(x)
-    m_in = np.asarray(m)
-    if x_in.dtype.kind not in "biuf":
-        raise TypeError(f"x must be real, got dtype {x_in.dtype}")
-    if m_in.dtype.kind not in "biufc":
-        raise TypeError(f"m must be a number, got dtype {m_in.dtype}")
+    x_in, m_in = _checked_arrays("efficiencies() needs the refractive index m", x, m, radius, wavelength,
+                                 medium_index, errors)
     shape = np.broadcast_shapes(x_in.shape, m_in.shape)
     if m_in.ndim == 0:
         # One index for every sphere: no broadcast copy of m.
@@ -309,17 +315,8 @@ def layered_efficiencies(x: Optional[ArrayLike] = None, m: Optional[ArrayLike] =
     >>> print(f"{mie.efficiencies(core, 1.75 + 0.44j).qabs:.4f}")
     1.5123
     """
-    if errors not in ("raise", "nan"):
-        raise ValueError(f"errors must be 'raise' or 'nan', not {errors!r}")
-    if m is None:
-        raise TypeError("layered_efficiencies() needs the refractive indices m")
-    x = _size_parameter(x, radius, wavelength, medium_index)
-    x_in = np.asarray(x)
-    m_in = np.asarray(m)
-    if x_in.dtype.kind not in "biuf":
-        raise TypeError(f"x must be real, got dtype {x_in.dtype}")
-    if m_in.dtype.kind not in "biufc":
-        raise TypeError(f"m must be a number, got dtype {m_in.dtype}")
+    x_in, m_in = _checked_arrays("layered_efficiencies() needs the refractive indices m", x, m, radius,
+                                 wavelength, medium_index, errors)
     if x_in.ndim == 0 or m_in.ndim == 0:
         raise TypeError("x and m need a last axis listing the layers")
     try:

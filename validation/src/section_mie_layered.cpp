@@ -35,36 +35,9 @@ using mie::detail::LayeredCase;
 // ------------------------------------------------------------ referee grid
 struct CaseResult {
   const LayeredCase* c = nullptr;
-  double error = 0;  // max over Qext, Qsca, Qabs, Qback, g of |q − ref| / max(|ref|, 1e-4 Qext_ref)
+  double error = 0;  // layered_case_error()
   std::string quantity;
 };
-
-CaseResult case_error(const LayeredCase& c) {
-  mie::Efficiencies<double> d;
-  mie::Efficiencies<mie::Referee> r;
-  if (c.conducting_core) {
-    d = mie::layered_sphere(mie::PerfectConductor{}, c.x, c.m);
-    r = mie::layered_sphere_referee(mie::PerfectConductor{}, c.x, c.m);
-  } else {
-    d = mie::layered_sphere(c.x, c.m);
-    r = mie::layered_sphere_referee(c.x, c.m);
-  }
-  const double qext = r.qext.convert_to<double>();
-  const struct {
-    const char* name;
-    double got, ref;
-  } qs[] = {{"Qext", d.qext, qext},
-            {"Qsca", d.qsca, r.qsca.convert_to<double>()},
-            {"Qabs", d.qabs, r.qabs.convert_to<double>()},
-            {"Qback", d.qback, r.qback.convert_to<double>()},
-            {"g", d.g, r.g.convert_to<double>()}};
-  CaseResult out{&c, 0, ""};
-  for (const auto& q : qs) {
-    const double e = std::isfinite(q.got) ? std::abs(q.got - q.ref) / std::max(std::abs(q.ref), 1e-4 * qext) : INFINITY;
-    if (!(e <= out.error)) out.error = e, out.quantity = q.name;
-  }
-  return out;
-}
 
 std::string case_label(const LayeredCase& c) {
   std::string t;
@@ -94,7 +67,8 @@ std::vector<CaseResult> run_grid(Context& ctx, std::vector<LayeredCase>& cases) 
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cases[a].x.back() > cases[b].x.back(); });
   tbb::parallel_for(std::size_t{0}, order.size(), [&](std::size_t i) {
-    results[order[i]] = case_error(cases[order[i]]);
+    const auto e = mie::detail::layered_case_error(cases[order[i]]);
+    results[order[i]] = {&cases[order[i]], e.error, e.quantity};
     heartbeat.done(cases[order[i]].x.back());
   });
   return results;

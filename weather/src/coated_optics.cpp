@@ -7,8 +7,6 @@
 
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/mie/layered.hpp"
-#include "attenuvis/mie/legendre_moments.hpp"
-#include "attenuvis/mie/scattering_matrix.hpp"
 #include "two_pass_bulk_optics.hpp"
 
 namespace attenuvis::weather {
@@ -53,22 +51,9 @@ EfficiencyFunction coated_efficiencies(std::complex<double> core_m, const Coatin
   const int L = settings.legendre_moments;
   const bool polarised = settings.polarised && L >= 0;
   return [core_m, coating, s, extras, L, polarised](double x) {
-    const std::vector<double> xs = {x, s * x};
-    const auto sc = mie::layered_scatter(xs, {core_m, coating.shell_m}, extras);
+    const auto sc = mie::layered_scatter({x, s * x}, {core_m, coating.shell_m}, extras);
     Efficiency e = per_core(sc.q, s * s);
-    if (L >= 0) {
-      e.moments = mie::phase_function_moments(sc, static_cast<std::size_t>(L));
-      e.moments.resize(static_cast<std::size_t>(L) + 1, 0.0);  // above 2N they are exact zeros
-    }
-    if (!extras.angles_deg.empty()) e.phase = mie::scattering_matrix(s * x, sc).phase;
-    if (polarised) {
-      const auto ex = mie::scattering_matrix_expansion(sc, static_cast<std::size_t>(L));
-      for (const auto* v : {&ex.alpha1, &ex.alpha2, &ex.alpha3, &ex.alpha4, &ex.beta1, &ex.beta2}) {
-        std::vector<double> part = *v;
-        part.resize(static_cast<std::size_t>(L) + 1, 0.0);
-        e.expansion.insert(e.expansion.end(), part.begin(), part.end());
-      }
-    }
+    detail::add_angular_terms(sc, s * x, L, polarised, e);
     return e;
   };
 }

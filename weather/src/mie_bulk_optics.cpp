@@ -64,21 +64,25 @@ EfficiencyFunction mie_efficiencies(std::complex<double> m, const QuadratureSett
   return [m, options, extras, L, polarised](double x) {
     const auto sc = mie::scatter(x, m, extras, options);
     Efficiency e = from_mie(sc.q);
-    if (L >= 0) {
-      e.moments = mie::phase_function_moments(sc, static_cast<std::size_t>(L));
-      e.moments.resize(static_cast<std::size_t>(L) + 1, 0.0);  // above 2N they are exact zeros
-    }
-    if (!extras.angles_deg.empty()) e.phase = mie::scattering_matrix(x, sc).phase;
-    if (polarised) {
-      const auto ex = mie::scattering_matrix_expansion(sc, static_cast<std::size_t>(L));
-      for (const auto* v : {&ex.alpha1, &ex.alpha2, &ex.alpha3, &ex.alpha4, &ex.beta1, &ex.beta2}) {
-        std::vector<double> part = *v;
-        part.resize(static_cast<std::size_t>(L) + 1, 0.0);
-        e.expansion.insert(e.expansion.end(), part.begin(), part.end());
-      }
-    }
+    detail::add_angular_terms(sc, x, L, polarised, e);
     return e;
   };
+}
+
+void detail::add_angular_terms(const mie::Scattering<double>& sc, double x, int L, bool polarised, Efficiency& e) {
+  if (L >= 0) {
+    e.moments = mie::phase_function_moments(sc, static_cast<std::size_t>(L));
+    e.moments.resize(static_cast<std::size_t>(L) + 1, 0.0);  // above 2N they are exact zeros
+  }
+  if (!sc.angles_deg.empty()) e.phase = mie::scattering_matrix(x, sc).phase;
+  if (polarised) {
+    const auto ex = mie::scattering_matrix_expansion(sc, static_cast<std::size_t>(L));
+    for (const auto* v : {&ex.alpha1, &ex.alpha2, &ex.alpha3, &ex.alpha4, &ex.beta1, &ex.beta2}) {
+      std::vector<double> part = *v;
+      part.resize(static_cast<std::size_t>(L) + 1, 0.0);
+      e.expansion.insert(e.expansion.end(), part.begin(), part.end());
+    }
+  }
 }
 
 BulkOptics detail::two_pass_bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,

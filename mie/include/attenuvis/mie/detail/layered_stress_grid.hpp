@@ -1,7 +1,7 @@
 // The stress grid on which layered_sphere() (attenuvis/mie/layered.hpp) is
-// compared with its 50-digit referee: the tests (tests/mie/
-// test_layered_referee.cpp) run the cheap part, the report's Mie section
-// (validation/src/section_mie_layered.cpp) all of it.
+// compared with its 50-digit referee, and the comparison of one case: the
+// tests (tests/mie/test_layered_referee.cpp) run the cheap part, the report's
+// Mie section (validation/src/section_mie_layered.cpp) all of it.
 //
 //   core x        1e-4, 1e-3, 1e-2, 0.1, 1, 10, 100, 1e3, 1e4
 //   shell         thickness t = (r₁ − r₀)/r₀ in 1e-3, 1e-2, 0.1, 1, 10
@@ -14,9 +14,14 @@
 //                 under one and under two shells, at the same core x.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <complex>
 #include <string>
 #include <vector>
+
+#include "attenuvis/mie/layered.hpp"
+#include "attenuvis/mie/layered_referee.hpp"
 
 namespace attenuvis::mie::detail {
 
@@ -57,6 +62,45 @@ inline std::vector<LayeredCase> layered_stress_cases(double x0) {
   cases.push_back({"conducting core", x0, {x0, 1.3 * x0}, {{1.5, 0}}, true});
   cases.push_back({"conducting core", x0, {x0, 1.1 * x0, 2 * x0}, {{1.33, 1e-8}, {1.75, 0.44}}, true});
   return cases;
+}
+
+// A case against the referee: the largest of |q − q_ref| / max(|q_ref|,
+// 1e-4 Qext_ref) over Qext, Qsca, Qabs, Qback and g (the measure of the
+// homogeneous error map; required <= 1e-10), which quantity it is, and every
+// quantity's values for messages.
+struct LayeredCaseError {
+  double error = 0;
+  std::string quantity;
+  std::string detail;  // "Qext got (ref ref); ..."
+};
+
+inline LayeredCaseError layered_case_error(const LayeredCase& c) {
+  Efficiencies<double> d;
+  Efficiencies<Referee> r;
+  if (c.conducting_core) {
+    d = layered_sphere(PerfectConductor{}, c.x, c.m);
+    r = layered_sphere_referee(PerfectConductor{}, c.x, c.m);
+  } else {
+    d = layered_sphere(c.x, c.m);
+    r = layered_sphere_referee(c.x, c.m);
+  }
+  const double qext = r.qext.convert_to<double>();
+  const struct {
+    const char* name;
+    double got, ref;
+  } qs[] = {{"Qext", d.qext, qext},
+            {"Qsca", d.qsca, r.qsca.convert_to<double>()},
+            {"Qabs", d.qabs, r.qabs.convert_to<double>()},
+            {"Qback", d.qback, r.qback.convert_to<double>()},
+            {"g", d.g, r.g.convert_to<double>()}};
+  LayeredCaseError out;
+  for (const auto& q : qs) {
+    const double e =
+        std::isfinite(q.got) ? std::abs(q.got - q.ref) / std::max(std::abs(q.ref), 1e-4 * std::abs(qext)) : INFINITY;
+    out.detail += std::string(q.name) + " " + std::to_string(q.got) + " (ref " + std::to_string(q.ref) + "); ";
+    if (!(e <= out.error)) out.error = e, out.quantity = q.name;
+  }
+  return out;
 }
 
 }  // namespace attenuvis::mie::detail
