@@ -11,6 +11,7 @@
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/batch.hpp"
+#include "attenuvis/mie/layered.hpp"
 #include "attenuvis/weather/units.hpp"
 #include "commands.hpp"
 #include "mie_output.hpp"
@@ -61,6 +62,7 @@ class ErrorPrefixBuf : public std::streambuf {
 struct MieArgs {
   double x = 0;
   std::string radius, wavelength;  // with units, e.g. 5um and 550nm
+  std::string layers, x_layers;    // "r:m,r:m" (radii, um unless a unit is given) or "x:m,x:m"
   double medium_index = 1.0;
   std::string m = "1.33,0";
   std::string angles, phase;
@@ -94,9 +96,55 @@ void require_affordable(double x, double work_per_term, const std::string& what,
                                 " term evaluations this command computes; " + advice);
 }
 
+// A layer's radius in --layers: micrometres, or a number with its unit.
+double layer_radius(const std::string& text) {
+  const bool has_unit = !text.empty() && std::isalpha(static_cast<unsigned char>(text.back()));
+  return has_unit ? weather::parse_length(text, "--layers radius") : weather::parse_length(text + "um", "--layers radius");
+}
+
+// A layered sphere from --layers (with --wavelength) or --x-layers.
+MieEcho resolve_layers(const MieArgs& a, const CLI::App& cmd) {
+  for (const char* o : {"--x", "--radius", "--m"})
+    if (cmd.count(o)) throw std::invalid_argument(std::string("mie: ") + o + " does not go with --layers/--x-layers");
+  const bool by_radius = cmd.count("--layers") > 0;
+  if (by_radius && cmd.count("--x-layers")) throw std::invalid_argument("mie: give --layers or --x-layers, not both");
+  if (by_radius != (cmd.count("--wavelength") > 0))
+    throw std::invalid_argument(by_radius ? "mie: --layers needs --wavelength" : "mie: --wavelength goes with --layers");
+  if (!by_radius && cmd.count("--medium-index")) throw std::invalid_argument("mie: --medium-index goes with --layers");
+  if (!(std::isfinite(a.medium_index) && a.medium_index >= 1e-3 && a.medium_index <= 1e3))
+    throw std::invalid_argument("mie: --medium-index must be a real index in [0.001, 1000], got " +
+                                io::shortest(a.medium_index));
+  const char* option = by_radius ? "--layers" : "--x-layers";
+  const std::vector<mie::batch::LayerText> layers = mie::batch::parse_layers(by_radius ? a.layers : a.x_layers, option);
+  MieEcho e;
+  e.term_rule = a.terms;
+  e.conducting_core = !layers.front().m;
+  const double lambda = by_radius ? weather::parse_wavelength(a.wavelength) : 0;
+  for (std::size_t l = 0; l < layers.size(); ++l) {
+    double x = 0;
+    if (by_radius) {
+      x = 2 * M_PI * a.medium_index * layer_radius(layers[l].size) / lambda;
+    } else {
+      try {
+        x = io::parse_double(layers[l].size, "size parameter");
+      } catch (const std::exception& err) {
+        throw std::invalid_argument(std::string("mie: --x-layers layer ") + std::to_string(l) + ": " + err.what());
+      }
+    }
+    e.layer_x.push_back(x);
+    if (layers[l].m) e.layer_m.push_back(*layers[l].m / a.medium_index);
+  }
+  e.x = e.layer_x.back();
+  e.m = e.layer_m.empty() ? std::complex<double>(0) : e.layer_m.back();
+  if (by_radius)
+    e.size_text = "radii and wavelength " + a.wavelength + " in vacuum, medium index " + io::shortest(a.medium_index);
+  return e;
+}
+
 // The sphere as the user gave it: --x and --m, or --radius and --wavelength
-// (x = 2 pi n_medium r / lambda, m relative = m / n_medium).
+// (x = 2 pi n_medium r / lambda, m relative = m / n_medium), or its layers.
 MieEcho resolve_sphere(const MieArgs& a, const CLI::App& cmd) {
+  if (cmd.count("--layers") || cmd.count("--x-layers")) return resolve_layers(a, cmd);
   MieEcho e;
   e.term_rule = a.terms;
   const std::complex<double> m = mie::batch::parse_refractive_index(a.m);
@@ -143,8 +191,21 @@ MieResult compute(const MieArgs& a, const CLI::App& cmd, const MieEcho& e) {
   }
   const mie::Options options = make_options(a);
   MieResult r;
-  r.s = mie::scatter(e.x, e.m, extras, options);
-  if (!matrix_angles.empty()) r.matrix = mie::scattering_matrix(e.x, e.m, matrix_angles);
+  if (e.layer_x.empty()) {
+    r.s = mie::scatter(e.x, e.m, extras, options);
+    if (!matrix_angles.empty()) r.matrix = mie::scattering_matrix(e.x, e.m, matrix_angles);
+  } else {
+    const auto layered = [&](const mie::Extras& ex) {
+      return e.conducting_core ? mie::layered_scatter(mie::PerfectConductor{}, e.layer_x, e.layer_m, ex, options)
+                               : mie::layered_scatter(e.layer_x, e.layer_m, ex, options);
+    };
+    r.s = layered(extras);
+    if (!matrix_angles.empty()) {
+      mie::Extras at_matrix;
+      at_matrix.angles_deg = matrix_angles;
+      r.matrix = mie::scattering_matrix(e.x, layered(at_matrix));
+    }
+  }
   if (want_moments) {
     r.moments = mie::phase_function_moments(r.s, a.moments);
     if (a.polarised) r.expansion = mie::scattering_matrix_expansion(r.s, a.moments);
@@ -153,7 +214,8 @@ MieResult compute(const MieArgs& a, const CLI::App& cmd, const MieEcho& e) {
 }
 
 void run(const MieArgs& a, const CLI::App& cmd) {
-  const bool one_sphere = cmd.count("--x") || cmd.count("--radius") || cmd.count("--wavelength");
+  const bool one_sphere = cmd.count("--x") || cmd.count("--radius") || cmd.count("--wavelength") ||
+                          cmd.count("--layers") || cmd.count("--x-layers");
   if (!one_sphere) {
     // Batch mode: stdin -> CSV on stdout, bad lines on stderr, exit 1 if any.
     for (const char* o : {"--angles", "--phase", "--moments", "--polarised", "--json", "--medium-index"})
@@ -176,13 +238,21 @@ void register_mie(CLI::App& app) {
   auto args = std::make_shared<MieArgs>();
   CLI::App* cmd = app.add_subcommand(
       "mie",
-      "Lorenz-Mie efficiencies of a homogeneous sphere (Bohren & Huffman conventions, m = n + ik, k >= 0 "
-      "absorbing). Without --x: batch mode, lines 'x m_re m_im' on stdin -> CSV on stdout.");
+      "Lorenz-Mie efficiencies of a homogeneous or layered sphere (Bohren & Huffman conventions, m = n + ik, k >= 0 "
+      "absorbing). Without a sphere: batch mode, lines 'x m_re m_im' on stdin -> CSV on stdout (a layered sphere "
+      "lists its layers from the core out in each field, separated by ';').");
   cmd->add_option("--x", args->x, "size parameter 2*pi*r/lambda, in [1e-8, 1e6]");
   cmd->add_option("--radius", args->radius, "sphere radius with unit (nm, um, mm, m), e.g. 5um; with --wavelength instead of --x");
   cmd->add_option("--wavelength", args->wavelength, "vacuum wavelength with unit, e.g. 550nm; with --radius");
   cmd->add_option("--medium-index", args->medium_index,
                   "real refractive index of the medium (default 1): x = 2 pi n r / lambda, m relative = m / n");
+  cmd->add_option("--layers", args->layers,
+                  "a layered sphere, core first: outer radius:index of each layer, e.g. 0.5:1.75+0.44i,1.0:1.43+1e-8i "
+                  "(radii in um unless a unit is given; index n+ki, or pec for a perfectly conducting core); with "
+                  "--wavelength (and --medium-index)");
+  cmd->add_option("--x-layers", args->x_layers,
+                  "a layered sphere by size parameters, core first: x:index of each layer's outer radius, e.g. "
+                  "5.71:1.75+0.44i,11.42:1.43+1e-8i");
   cmd->add_option("--m", args->m, "relative refractive index m = n + ik: 'n+ki', 'n,k' or 'n' (e.g. 1.5+0.1i, 1.5,0.1; default 1.33,0)");
   cmd->add_option("--angles", args->angles, "scattering angles in degrees for S1, S2: start:stop:step or a,b,c");
   cmd->add_option("--phase", args->phase,

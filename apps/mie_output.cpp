@@ -53,12 +53,33 @@ nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::js
 
 }  // namespace
 
+// A layered sphere's layers, "x = 5.7119 m = 1.75 + 0.44i; x = ..." (the
+// core "perfect conductor").
+std::string layers_text(const MieEcho& echo) {
+  std::string t;
+  for (std::size_t l = 0; l < echo.layer_x.size(); ++l) {
+    if (l > 0) t += "; ";
+    t += "x = " + io::shortest(echo.layer_x[l]) + " m = ";
+    if (echo.conducting_core && l == 0) {
+      t += "perfect conductor";
+    } else {
+      const std::complex<double> m = echo.layer_m[echo.conducting_core ? l - 1 : l];
+      t += io::shortest(m.real()) + " + " + io::shortest(m.imag()) + "i";
+    }
+  }
+  return t;
+}
+
 void print_mie_text(const MieEcho& echo, const MieResult& r) {
   const auto& q = r.s.q;
   const mie::Lidar lidar = mie::lidar(q);
   // The input echoed as the shortest text that reads back to it.
-  std::cout << "Mie sphere  x = " << io::shortest(echo.x) << "  m = " << io::shortest(echo.m.real()) << " + "
-            << io::shortest(echo.m.imag()) << "i";
+  if (echo.layer_x.empty())
+    std::cout << "Mie sphere  x = " << io::shortest(echo.x) << "  m = " << io::shortest(echo.m.real()) << " + "
+              << io::shortest(echo.m.imag()) << "i";
+  else
+    std::cout << "Mie layered sphere (core first)  " << layers_text(echo)
+              << "\n  efficiencies per cross section of the outer radius (x = " << io::shortest(echo.x) << ")";
   if (!echo.size_text.empty()) std::cout << "  (" << echo.size_text << ")";
   std::cout << "\n"
             << "  Qext  = " << num(q.qext) << "\n"
@@ -84,6 +105,21 @@ void print_mie_json(const MieEcho& echo, const MieResult& r) {
                       {"qpr", q.qpr},        {"g", q.g},                            {"terms", q.terms},
                       {"term_rule", echo.term_rule}};
   if (!echo.size_text.empty()) j["size"] = echo.size_text;
+  if (!echo.layer_x.empty()) {
+    nlohmann::json layers = nlohmann::json::array();
+    for (std::size_t l = 0; l < echo.layer_x.size(); ++l) {
+      nlohmann::json layer = {{"x", echo.layer_x[l]}};
+      if (echo.conducting_core && l == 0) {
+        layer["m"] = "perfect conductor";
+      } else {
+        const std::complex<double> m = echo.layer_m[echo.conducting_core ? l - 1 : l];
+        layer["m"] = {m.real(), m.imag()};
+      }
+      layers.push_back(layer);
+    }
+    j["layers"] = layers;
+    j.erase("m");
+  }
   j["lidar"] = {{"backscatter_per_sr", lidar.backscatter_per_sr},
                 {"lidar_ratio_sr", finite_or_null(lidar.lidar_ratio_sr)},
                 {"linear_depolarisation", lidar.linear_depolarisation}};

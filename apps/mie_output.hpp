@@ -17,9 +17,12 @@ namespace attenuvis::cli {
 
 // What the user asked for, as they wrote it where it is echoed.
 struct MieEcho {
-  double x = 0;
-  std::complex<double> m;          // relative index used (particle / medium)
-  std::string size_text;           // "" for --x, else "radius R, wavelength L, medium n"
+  double x = 0;                    // a layered sphere: its outer x
+  std::complex<double> m;          // relative index used (particle / medium); layered: the outer layer's
+  std::vector<double> layer_x;     // a layered sphere, core first (empty: homogeneous)
+  std::vector<std::complex<double>> layer_m;  // one per layer, or per shell on a conducting core
+  bool conducting_core = false;
+  std::string size_text;           // "" for --x, else how x was formed from radii and the wavelength
   std::string term_rule;           // "converged" | "wiscombe"
 };
 

@@ -7,6 +7,7 @@
 #include "attenuvis/mie/batch.hpp"
 
 #include "attenuvis/io/number_text.hpp"
+#include "attenuvis/mie/layered.hpp"
 #include "attenuvis/mie/spheres.hpp"
 
 #include <algorithm>
@@ -65,6 +66,9 @@ double parse_number(std::string_view token, const char* what) {
   if (r.ec == std::errc() && r.ptr == end && (std::isnormal(v) || (v == 0 && names_zero(token)))) return v;
   return parse_number_strtod(std::string(token), what);
 }
+
+// The most layers one line may list (the domain of attenuvis/mie/layered.hpp).
+constexpr std::size_t kMaxLayerValues = 1000;
 
 // The field separators: commas and the blanks of the C locale (a tab, the
 // carriage return of a DOS line end).
@@ -144,12 +148,52 @@ std::uint64_t bits_of(double v) {
   return b;
 }
 
+// The ';'-separated values of one field of a layered line.
+std::vector<double> layer_values(std::string_view field, const char* what) {
+  std::vector<double> v;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t end = std::min(field.find(';', start), field.size());
+    if (v.size() == kMaxLayerValues)
+      throw std::invalid_argument(std::string(what) + " lists more than " + std::to_string(kMaxLayerValues) +
+                                  " layers");
+    v.push_back(parse_number(field.substr(start, end - start), what));
+    if (end == field.size()) return v;
+    start = end + 1;
+  }
+}
+
+// A layered line: the three fields as lists of the same length, checked
+// layer by layer as a homogeneous line is (the core checks the domain).
+Problem parse_layered(const LineFields& f) {
+  const std::vector<double> x = layer_values(f.field[0], "x"), re = layer_values(f.field[1], "m_re"),
+                            im = layer_values(f.field[2], "m_im");
+  if (re.size() != x.size() || im.size() != x.size())
+    throw std::invalid_argument("a layered line needs as many m_re and m_im as x values, got " +
+                                std::to_string(x.size()) + ", " + std::to_string(re.size()) + " and " +
+                                std::to_string(im.size()));
+  Problem p;
+  for (std::size_t l = 0; l < x.size(); ++l) {
+    const std::string layer = "layer " + std::to_string(l) + ": ";
+    if (!(x[l] > 0)) throw std::invalid_argument(layer + "x must be > 0");
+    if (im[l] < 0) throw std::invalid_argument(layer + "m_im must be >= 0 (k > 0 absorbs)");
+    if (re[l] < 0) throw std::invalid_argument(layer + "m_re must be >= 0");
+    p.layer_x.push_back(x[l]);
+    p.layer_m.emplace_back(re[l], im[l]);
+  }
+  p.x = p.layer_x.back();
+  p.m = p.layer_m.back();
+  return p;
+}
+
 std::optional<Problem> parse_fields(std::string_view line, IndexMemo* memo) {
   const LineFields f = line_fields(line.substr(0, line.find('#')));
   if (f.count == 0) return std::nullopt;
   if (is_header(f)) return std::nullopt;
   if (f.count != 3)
     throw std::invalid_argument("expected 3 fields 'x m_re m_im', got " + std::to_string(f.count));
+  for (int i = 0; i < 3; ++i)
+    if (f.field[i].find(';') != std::string_view::npos) return parse_layered(f);
   Problem p;
   p.x = parse_number(f.field[0], "x");
   double n = 0, k = 0;
@@ -174,7 +218,39 @@ std::optional<Problem> parse_fields(std::string_view line, IndexMemo* memo) {
 // reads back to it (1.33, not 1.3300000000000001); the results at 17
 // significant digits, %.17g by std::to_chars (printf's text without its
 // locale and format-string machinery), which read back exactly.
+void append_results(std::string& out, const Efficiencies<double>& q) {
+  char buf[6 * 25 + 21 + 7];
+  char* at = buf;
+  char* const end = buf + sizeof buf;
+  for (const double v : {q.qext, q.qsca, q.qabs, q.qback, q.qpr, q.g}) {
+    *at++ = ',';
+    at = std::to_chars(at, end, v, std::chars_format::general, 17).ptr;
+  }
+  *at++ = ',';
+  at = std::to_chars(at, end, q.terms).ptr;
+  out.append(buf, at);
+}
+
+// A layered row: the three input lists as read (each value's shortest text),
+// then the results.
+void append_layered_row(std::string& out, const Problem& p, const Efficiencies<double>& q) {
+  const auto list = [&](auto value_of) {
+    for (std::size_t l = 0; l < p.layer_x.size(); ++l) {
+      char buf[25];
+      if (l > 0) out += ';';
+      out.append(buf, std::to_chars(buf, buf + sizeof buf, value_of(l)).ptr);
+    }
+  };
+  list([&](std::size_t l) { return p.layer_x[l]; });
+  out += ',';
+  list([&](std::size_t l) { return p.layer_m[l].real(); });
+  out += ',';
+  list([&](std::size_t l) { return p.layer_m[l].imag(); });
+  append_results(out, q);
+}
+
 void append_row(std::string& out, const Problem& p, const Efficiencies<double>& q, IndexMemo* memo) {
+  if (!p.layer_x.empty()) return append_layered_row(out, p, q);
   // 9 numbers of at most 24 characters ("-2.2250738585072014e-308"), 20
   // digits of the term count, 9 commas.
   char buf[9 * 24 + 20 + 9];
@@ -206,39 +282,63 @@ void append_row(std::string& out, const Problem& p, const Efficiencies<double>& 
 }
 
 // Good lines are collected in chunks and evaluated together by spheres()
-// (several spheres per vector instruction, threads over cores); rows are
-// written in input order.  Messages for lines the core rejects (outside the
-// domain of attenuvis/mie.hpp) are written when their chunk is evaluated.
+// (several spheres per vector instruction, threads over cores), the layered
+// ones by layered_spheres(); rows are written in input order.  Messages for
+// lines the core rejects (outside the domain of attenuvis/mie.hpp or
+// attenuvis/mie/layered.hpp) are written when their chunk is evaluated.
 class ChunkedRows {
  public:
   ChunkedRows(std::ostream& out, std::ostream& err, const Options& options) : out_(out), err_(err) {
     spheres_options_.options = options;
   }
-  void add(const Problem& p, std::size_t line_number) {
-    xs_.push_back(p.x);
-    ms_.push_back(p.m);
+  void add(Problem&& p, std::size_t line_number) {
+    if (p.layer_x.empty()) {
+      order_.push_back({false, xs_.size()});
+      xs_.push_back(p.x);
+      ms_.push_back(p.m);
+    } else {
+      order_.push_back({true, layered_.size()});
+      if (layered_offsets_.empty()) layered_offsets_.push_back(0);
+      layered_x_.insert(layered_x_.end(), p.layer_x.begin(), p.layer_x.end());
+      layered_m_.insert(layered_m_.end(), p.layer_m.begin(), p.layer_m.end());
+      layered_offsets_.push_back(layered_x_.size());
+      layered_.push_back(std::move(p));
+    }
     line_of_.push_back(line_number);
-    if (xs_.size() == kChunk) evaluate();
+    if (order_.size() == kChunk) evaluate();
   }
   // Evaluates the lines collected so far and writes their rows (or messages).
   void evaluate() {
-    const std::size_t n = xs_.size();
-    q_.resize(n);
-    const std::vector<SphereError> errors = spheres(xs_.data(), ms_.data(), n, q_.data(), spheres_options_);
-    std::size_t e = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (e < errors.size() && errors[e].index == i) {
+    q_.resize(xs_.size());
+    layered_q_.resize(layered_.size());
+    std::vector<SphereError> errors = spheres(xs_.data(), ms_.data(), xs_.size(), q_.data(), spheres_options_);
+    std::vector<SphereError> layered_errors;
+    if (!layered_.empty())
+      layered_errors = layered_spheres(layered_offsets_.data(), layered_x_.data(), layered_m_.data(),
+                                       layered_.size(), layered_q_.data(), spheres_options_);
+    std::size_t e = 0, le = 0;
+    for (std::size_t k = 0; k < order_.size(); ++k) {
+      const auto [layered, i] = order_[k];
+      std::vector<SphereError>& errs = layered ? layered_errors : errors;
+      std::size_t& next = layered ? le : e;
+      if (next < errs.size() && errs[next].index == i) {
         ++bad_;
-        err_ << "line " << line_of_[i] << ": " << errors[e++].message << '\n';
+        err_ << "line " << line_of_[k] << ": " << errs[next++].message << '\n';
         continue;
       }
-      append_row(text_, Problem{xs_[i], ms_[i]}, q_[i], &index_memo_);
+      if (layered) append_row(text_, layered_[i], layered_q_[i], nullptr);
+      else append_row(text_, Problem{xs_[i], ms_[i], {}, {}}, q_[i], &index_memo_);
       text_ += '\n';
     }
     out_ << text_;
     text_.clear();
     xs_.clear();
     ms_.clear();
+    layered_.clear();
+    layered_x_.clear();
+    layered_m_.clear();
+    layered_offsets_.clear();
+    order_.clear();
     line_of_.clear();
   }
   std::size_t bad() const { return bad_; }
@@ -251,10 +351,16 @@ class ChunkedRows {
   std::ostream& err_;
   SpheresOptions spheres_options_;
   IndexMemo index_memo_;
+  std::vector<std::pair<bool, std::size_t>> order_;  // (layered, index in its list), by line
   std::vector<std::size_t> line_of_;
   std::vector<double> xs_;
   std::vector<std::complex<double>> ms_;
   std::vector<Efficiencies<double>> q_;
+  std::vector<Problem> layered_;
+  std::vector<std::size_t> layered_offsets_;
+  std::vector<double> layered_x_;
+  std::vector<std::complex<double>> layered_m_;
+  std::vector<Efficiencies<double>> layered_q_;
   std::string text_;
   std::size_t bad_ = 0;
 };
@@ -327,8 +433,8 @@ std::size_t run(std::istream& in, std::ostream& out, std::ostream& err, const Op
   for (std::string_view line; reader.next(line);) {
     ++line_number;
     try {
-      const std::optional<Problem> p = parse_fields(line, &rows.index_memo());
-      if (p) rows.add(*p, line_number);
+      std::optional<Problem> p = parse_fields(line, &rows.index_memo());
+      if (p) rows.add(std::move(*p), line_number);
     } catch (const std::exception& e) {
       ++unparsed;
       err << "line " << line_number << ": " << e.what() << '\n';
@@ -344,6 +450,40 @@ std::complex<double> parse_refractive_index(const std::string& text) {
   const double k = parse_number(parts.imag, "k");
   if (n < 0 || k < 0) throw std::invalid_argument("refractive index needs n >= 0 and k >= 0, got '" + text + "'");
   return {n, k};
+}
+
+std::vector<LayerText> parse_layers(const std::string& text, const char* option) {
+  std::vector<LayerText> layers;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, end - start);
+    const std::string where = std::string(option) + " layer " + std::to_string(layers.size()) + " '" + item + "': ";
+    const std::size_t colon = item.find(':');
+    if (colon == std::string::npos || colon == 0 || colon + 1 == item.size())
+      throw std::invalid_argument(where + "expected size:index, e.g. 0.5:1.75+0.44i");
+    if (layers.size() == kMaxLayerValues)
+      throw std::invalid_argument(std::string(option) + " lists more than " + std::to_string(kMaxLayerValues) +
+                                  " layers");
+    LayerText layer;
+    layer.size = item.substr(0, colon);
+    const std::string index = item.substr(colon + 1);
+    if (index == "pec") {
+      if (!layers.empty())
+        throw std::invalid_argument(where + "only the core (the first layer) may be a perfect conductor");
+    } else {
+      if (index.find(',') != std::string::npos)
+        throw std::invalid_argument(where + "write the index as n+ki");
+      try {
+        layer.m = parse_refractive_index(index);
+      } catch (const std::exception& e) {
+        throw std::invalid_argument(where + e.what());
+      }
+    }
+    layers.push_back(std::move(layer));
+    if (end == text.size()) return layers;
+    start = end + 1;
+  }
 }
 
 std::vector<double> parse_angles(const std::string& text) {

@@ -2,15 +2,13 @@
 #include "attenuvis/mie/spheres.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <exception>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
-#include <thread>
 
+#include "shared_items.hpp"
 #include "sphere_checks.hpp"
 #include "sphere_lanes.hpp"
 
@@ -131,34 +129,15 @@ std::vector<SphereError> run(const double* x, const IndexOf& m_of, std::size_t c
   // close).
   const std::size_t singles = plan.single.size();
   const std::size_t items = pairs + singles;
-  unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-  threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(1, items / 4)));
-  std::atomic<std::size_t> next{0};
-  std::exception_ptr failure;
-  std::atomic<bool> failed{false};
-  auto worker = [&] {
-    try {
-      for (std::size_t k; (k = next.fetch_add(1)) < items;) {
-        if (k >= singles) {
-          const std::size_t pair = pairs - 1 - (k - singles);
-          evaluate_groups(plan, 2 * pair, 2 * pair + 1 < groups ? 2 : 1, x, m_of, options.options, out);
-        } else {
-          const std::size_t i = plan.single[k];
-          out[i] = sphere(x[i], m_of(i), options.options);
-        }
-      }
-    } catch (...) {
-      if (!failed.exchange(true)) failure = std::current_exception();
+  detail::share_items(items, options.threads, [&](std::size_t k) {
+    if (k >= singles) {
+      const std::size_t pair = pairs - 1 - (k - singles);
+      evaluate_groups(plan, 2 * pair, 2 * pair + 1 < groups ? 2 : 1, x, m_of, options.options, out);
+    } else {
+      const std::size_t i = plan.single[k];
+      out[i] = sphere(x[i], m_of(i), options.options);
     }
-  };
-  if (threads <= 1) {
-    worker();
-  } else {
-    std::vector<std::thread> pool;
-    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
-    for (auto& t : pool) t.join();
-  }
-  if (failure) std::rethrow_exception(failure);
+  });
   return errors;
 }
 

@@ -1,4 +1,4 @@
-"""Lorenz-Mie scattering by a homogeneous sphere (attenuvis::mie).
+"""Lorenz-Mie scattering by a homogeneous or layered sphere (attenuvis::mie).
 
 Conventions (Bohren & Huffman 1983, ch. 4, "B&H"):
 
@@ -46,6 +46,7 @@ _core = _attenuvis.mie
 __all__ = [
     "Efficiencies",
     "efficiencies",
+    "layered_efficiencies",
     "coefficients",
     "amplitudes",
     "ScatteringMatrix",
@@ -108,6 +109,21 @@ def _size_parameter(x, radius, wavelength, medium_index):
     n_medium = 1.0 if medium_index is None else np.asarray(medium_index, dtype=np.float64)
     # x = 2 pi r n_medium / lambda_vacuum: lambda in the medium is lambda / n_medium.
     return 2.0 * np.pi * np.asarray(radius, dtype=np.float64) * n_medium / np.asarray(wavelength, dtype=np.float64)
+
+
+def _checked_arrays(missing_m, x, m, radius, wavelength, medium_index, errors):
+    """x (or radius and wavelength) and m as arrays of a real and a numeric dtype."""
+    if errors not in ("raise", "nan"):
+        raise ValueError(f"errors must be 'raise' or 'nan', not {errors!r}")
+    if m is None:
+        raise TypeError(missing_m)
+    x_in = np.asarray(_size_parameter(x, radius, wavelength, medium_index))
+    m_in = np.asarray(m)
+    if x_in.dtype.kind not in "biuf":
+        raise TypeError(f"x must be real, got dtype {x_in.dtype}")
+    if m_in.dtype.kind not in "biufc":
+        raise TypeError(f"m must be a number, got dtype {m_in.dtype}")
+    return x_in, m_in
 
 
 def efficiencies(x: Optional[ArrayLike] = None, m: Optional[ArrayLike] = None, *,
@@ -197,17 +213,8 @@ def efficiencies(x: Optional[ArrayLike] = None, m: Optional[ArrayLike] = None, *
     >>> print(np.round(mie.efficiencies([1.0, -2.0], 1.33, errors="nan").qext, 5))
     [0.09392     nan]
     """
-    if errors not in ("raise", "nan"):
-        raise ValueError(f"errors must be 'raise' or 'nan', not {errors!r}")
-    if m is None:
-        raise TypeError("efficiencies() needs the refractive index m")
-    x = _size_parameter(x, radius, wavelength, medium_index)
-    x_in = np.asarray(x)
-    m_in = np.asarray(m)
-    if x_in.dtype.kind not in "biuf":
-        raise TypeError(f"x must be real, got dtype {x_in.dtype}")
-    if m_in.dtype.kind not in "biufc":
-        raise TypeError(f"m must be a number, got dtype {m_in.dtype}")
+    x_in, m_in = _checked_arrays("efficiencies() needs the refractive index m", x, m, radius, wavelength,
+                                 medium_index, errors)
     shape = np.broadcast_shapes(x_in.shape, m_in.shape)
     if m_in.ndim == 0:
         # One index for every sphere: no broadcast copy of m.
@@ -219,13 +226,112 @@ def efficiencies(x: Optional[ArrayLike] = None, m: Optional[ArrayLike] = None, *
         m_arg = np.ascontiguousarray(mb, dtype=np.complex128).reshape(-1)
     qext, qsca, qabs, qback, qpr, g, terms, bad = _core.efficiencies(x_flat, m_arg, int(threads))
     if bad and errors == "raise":
-        index, reason = bad[0]
-        where = f"element {index}"
-        if len(shape) > 1:
-            where += f" (index {tuple(int(i) for i in np.unravel_index(index, shape))})"
-        more = f" (and {len(bad) - 1} more bad elements)" if len(bad) > 1 else ""
-        raise ValueError(f"{where}: {reason}{more}")
+        _raise_first_bad(bad, shape)
     # NumPy's rule: scalars in, scalars (0-d, np.float64) out.
+    return Efficiencies(*(a.reshape(shape)[()] for a in (qext, qsca, qabs, qback, qpr, g, terms)))
+
+
+def _raise_first_bad(bad, shape):
+    index, reason = bad[0]
+    where = f"element {index}"
+    if len(shape) > 1:
+        where += f" (index {tuple(int(i) for i in np.unravel_index(index, shape))})"
+    more = f" (and {len(bad) - 1} more bad elements)" if len(bad) > 1 else ""
+    raise ValueError(f"{where}: {reason}{more}")
+
+
+def layered_efficiencies(x: Optional[ArrayLike] = None, m: Optional[ArrayLike] = None, *,
+                         radius: Optional[ArrayLike] = None, wavelength: Optional[ArrayLike] = None,
+                         medium_index: Optional[ArrayLike] = None, errors: Literal["raise", "nan"] = "raise",
+                         threads: int = 0) -> Efficiencies:
+    """Efficiencies and asymmetry parameter of layered (core-shell) spheres.
+
+    The last axis of ``x`` and ``m`` lists the layers of one particle from
+    the core out; the leading axes broadcast as in :func:`efficiencies`.
+
+    Parameters
+    ----------
+    x : array_like of float, shape (..., L), optional
+        Size parameter 2 pi r_l / lambda of the *outer* radius of each layer,
+        non-decreasing from the core out (lambda in the medium).  Or give
+        ``radius`` and ``wavelength`` instead.
+    m : array_like of complex, shape (..., L)
+        Refractive index of each layer relative to the medium, ``n + ik``
+        (k >= 0 absorbs).  Required.
+    radius, wavelength : array_like of float, optional
+        Outer radius of each layer (shape (..., L)) and the vacuum wavelength,
+        in the same length unit, given together instead of ``x``.
+    medium_index : array_like of float, optional
+        Real refractive index of the medium (default 1), only with
+        ``radius`` and ``wavelength``.
+    errors : {"raise", "nan"}, default "raise"
+        As for :func:`efficiencies`: a bad particle raises ValueError, or
+        becomes NaN with "nan".
+    threads : int, default 0
+        Worker threads (0 = every core).  Results do not depend on it.
+
+    Returns
+    -------
+    Efficiencies
+        Named tuple of arrays of the broadcast shape without the layer axis;
+        efficiencies refer to the cross section of the outer radius.
+
+    Raises
+    ------
+    ValueError
+        With ``errors="raise"``, for the first bad particle (its index and
+        the reason, which names the layer); for mismatched layer axes.
+    TypeError
+        As for :func:`efficiencies`, and when x or m has no layer axis.
+
+    Notes
+    -----
+    One layer is exactly :func:`efficiencies` (the same bits).  Accuracy:
+    within 1e-10 of a 50-digit referee of the same equations on the stress
+    grid of the C++ tests (core x 1e-4 ... 1e4, shells of 1e-3 ... 10 core
+    radii, indices 1.0001 ... 10+10i).
+
+    Examples
+    --------
+    Soot (r = 0.5 um) coated with sulphate (outer r = 1 um) at 550 nm:
+
+    >>> import numpy as np
+    >>> from attenuvis import mie
+    >>> q = mie.layered_efficiencies(m=[1.75 + 0.44j, 1.43 + 1e-8j], radius=[0.5e-6, 1.0e-6],
+    ...                              wavelength=0.55e-6)
+    >>> print(f"{q.qext:.6f} {q.qabs:.6f} {q.g:.6f}")
+    1.864976 0.607507 0.584558
+
+    The coating grown from nothing to twice the core radius, one particle
+    per row of x:
+
+    >>> core = 2.0
+    >>> x = np.stack([np.full(3, core), core * np.array([1.0, 1.5, 2.0])], axis=-1)
+    >>> print(np.round(mie.layered_efficiencies(x, [1.75 + 0.44j, 1.43 + 1e-8j]).qabs, 4))
+    [1.5123 1.0073 0.592 ]
+
+    The first row has a shell of zero thickness: it is the bare core.
+
+    >>> print(f"{mie.efficiencies(core, 1.75 + 0.44j).qabs:.4f}")
+    1.5123
+    """
+    x_in, m_in = _checked_arrays("layered_efficiencies() needs the refractive indices m", x, m, radius,
+                                 wavelength, medium_index, errors)
+    if x_in.ndim == 0 or m_in.ndim == 0:
+        raise TypeError("x and m need a last axis listing the layers")
+    try:
+        full = np.broadcast_shapes(x_in.shape, m_in.shape)
+    except ValueError as e:
+        raise ValueError(f"x {x_in.shape} and m {m_in.shape} do not broadcast: {e}") from None
+    layers = full[-1]
+    shape = full[:-1]
+    xb, mb = np.broadcast_arrays(x_in, m_in)
+    x_flat = np.ascontiguousarray(xb, dtype=np.float64).reshape(-1)
+    m_flat = np.ascontiguousarray(mb, dtype=np.complex128).reshape(-1)
+    qext, qsca, qabs, qback, qpr, g, terms, bad = _core.layered_efficiencies(x_flat, m_flat, int(layers),
+                                                                            int(threads))
+    if bad and errors == "raise":
+        _raise_first_bad(bad, shape)
     return Efficiencies(*(a.reshape(shape)[()] for a in (qext, qsca, qabs, qback, qpr, g, terms)))
 
 

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "attenuvis/mie.hpp"
+#include "attenuvis/mie/layered.hpp"
 #include "attenuvis/mie/legendre_moments.hpp"
 #include "attenuvis/mie/scattering_matrix.hpp"
 #include "attenuvis/mie/spheres.hpp"
@@ -52,6 +53,28 @@ std::size_t chunk_end(const double* x, std::size_t begin, std::size_t count) {
   return end;
 }
 
+// The output arrays of efficiencies() and layered_efficiencies().
+struct EfficiencyArrays {
+  explicit EfficiencyArrays(std::size_t count)
+      : qext(count), qsca(count), qabs(count), qback(count), qpr(count), g(count), terms(count) {
+    p[0] = qext.mutable_data(), p[1] = qsca.mutable_data(), p[2] = qabs.mutable_data();
+    p[3] = qback.mutable_data(), p[4] = qpr.mutable_data(), p[5] = g.mutable_data();
+    pterms = terms.mutable_data();
+  }
+  // Element i from q (no Python object touched: callable without the GIL).
+  void set(std::size_t i, const mie::Efficiencies<double>& q) {
+    p[0][i] = q.qext, p[1][i] = q.qsca, p[2][i] = q.qabs, p[3][i] = q.qback, p[4][i] = q.qpr, p[5][i] = q.g;
+    pterms[i] = static_cast<std::int64_t>(q.terms);
+  }
+  py::tuple tuple(const py::list& errors) const {
+    return py::make_tuple(qext, qsca, qabs, qback, qpr, g, terms, errors);
+  }
+  Doubles qext, qsca, qabs, qback, qpr, g;
+  py::array_t<std::int64_t> terms;
+  double* p[6];
+  std::int64_t* pterms;
+};
+
 py::tuple efficiencies(Doubles x, py::object m_object, unsigned threads) {
   const std::size_t count = static_cast<std::size_t>(x.size());
   const double* xs = x.data();
@@ -67,12 +90,7 @@ py::tuple efficiencies(Doubles x, py::object m_object, unsigned threads) {
   } else {
     m_scalar = m_object.cast<std::complex<double>>();
   }
-  Doubles qext(count), qsca(count), qabs(count), qback(count), qpr(count), g(count);
-  py::array_t<std::int64_t> terms(count);
-  double *pext = qext.mutable_data(), *psca = qsca.mutable_data(), *pabs = qabs.mutable_data(),
-         *pback = qback.mutable_data(), *ppr = qpr.mutable_data(), *pg = g.mutable_data();
-  std::int64_t* pterms = terms.mutable_data();
-
+  EfficiencyArrays out(count);
   mie::SpheresOptions options;
   options.threads = threads;
   py::list errors;
@@ -85,21 +103,49 @@ py::tuple efficiencies(Doubles x, py::object m_object, unsigned threads) {
       py::gil_scoped_release release;
       bad = ms ? mie::spheres(xs + begin, ms + begin, n, buffer.data(), options)
                : mie::spheres(xs + begin, m_scalar, n, buffer.data(), options);
-      for (std::size_t i = 0; i < n; ++i) {
-        const auto& q = buffer[i];
-        pext[begin + i] = q.qext;
-        psca[begin + i] = q.qsca;
-        pabs[begin + i] = q.qabs;
-        pback[begin + i] = q.qback;
-        ppr[begin + i] = q.qpr;
-        pg[begin + i] = q.g;
-        pterms[begin + i] = static_cast<std::int64_t>(q.terms);
-      }
+      for (std::size_t i = 0; i < n; ++i) out.set(begin + i, buffer[i]);
     }
     for (const auto& e : bad) errors.append(py::make_tuple(begin + e.index, e.message));
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
   }
-  return py::make_tuple(qext, qsca, qabs, qback, qpr, g, terms, errors);
+  return out.tuple(errors);
+}
+
+// Layered spheres of `layers` layers each: x and m hold count × layers
+// values, particle by particle, core first.  Chunks of ~1e6 series terms
+// (outer x times layers) between checks for Ctrl-C, as efficiencies().
+py::tuple layered_efficiencies(Doubles x, Complexes m, std::size_t layers, unsigned threads) {
+  if (layers == 0 || static_cast<std::size_t>(x.size()) % layers != 0 || m.size() != x.size())
+    throw std::invalid_argument("x and m must hold the same whole number of particles of `layers` layers");
+  const std::size_t count = static_cast<std::size_t>(x.size()) / layers;
+  const double* xs = x.data();
+  const std::complex<double>* ms = m.data();
+  EfficiencyArrays out(count);
+  mie::SpheresOptions options;
+  options.threads = threads;
+  py::list errors;
+  std::vector<mie::Efficiencies<double>> buffer;
+  std::vector<std::size_t> offsets;
+  for (std::size_t begin = 0, end = 0; begin < count; begin = end) {
+    double terms = 0;
+    for (end = begin; end < count && (end == begin || terms < chunk_terms) && end - begin < chunk_size; ++end) {
+      const double xo = xs[end * layers + layers - 1];
+      terms += ((xo > 0 && xo < 1e7) ? xo + 4.05 * std::cbrt(xo) + 2 : 2) * static_cast<double>(layers);
+    }
+    const std::size_t n = end - begin;
+    offsets.resize(n + 1);
+    for (std::size_t i = 0; i <= n; ++i) offsets[i] = i * layers;
+    buffer.resize(n);
+    std::vector<mie::SphereError> bad;
+    {
+      py::gil_scoped_release release;
+      bad = mie::layered_spheres(offsets.data(), xs + begin * layers, ms + begin * layers, n, buffer.data(), options);
+      for (std::size_t i = 0; i < n; ++i) out.set(begin + i, buffer[i]);
+    }
+    for (const auto& e : bad) errors.append(py::make_tuple(begin + e.index, e.message));
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
+  return out.tuple(errors);
 }
 
 py::tuple amplitudes(double x, std::complex<double> m, Doubles angles) {
@@ -186,6 +232,10 @@ void bind_mie(py::module_ module) {
   module.def("efficiencies", &efficiencies, py::arg("x"), py::arg("m"), py::arg("threads") = 0,
              "spheres() over contiguous float64 x and complex128 m (array of the same size or "
              "scalar); returns (qext, qsca, qabs, qback, qpr, g, terms, [(index, reason), ...]).");
+  module.def("layered_efficiencies", &layered_efficiencies, py::arg("x"), py::arg("m"), py::arg("layers"),
+             py::arg("threads") = 0,
+             "layered_spheres() over contiguous float64 x and complex128 m holding `layers` values per particle, "
+             "core first; returns (qext, qsca, qabs, qback, qpr, g, terms, [(index, reason), ...]).");
   module.def("amplitudes", &amplitudes, py::arg("x"), py::arg("m"), py::arg("angles_deg"));
   module.def("coefficients", &coefficients, py::arg("x"), py::arg("m"));
   module.def("scattering_matrix", &scattering_matrix, py::arg("x"), py::arg("m"), py::arg("angles_deg"));

@@ -167,7 +167,7 @@ void bind_mie_condition(py::module_& m) {
       .def_readwrite("path", &w::DistributionFile::path);
   // Parametric drops (drops:FAMILY:...) travel as an opaque value; Python reads them as Fog.
   py::class_<w::ParametricDrops>(m, "ParametricDrops").def("__repr__", [](const w::ParametricDrops& d) {
-    return w::to_text(w::MieCondition{d, w::SettingsWaterTable{}, w::AsGiven{}});
+    return w::to_text(w::MieCondition{d, w::SettingsWaterTable{}, w::AsGiven{}, std::nullopt});
   });
   py::class_<w::SettingsWaterTable>(m, "SettingsWaterTable").def(py::init<>());
   py::class_<w::ConstantIndex>(m, "ConstantIndex")
@@ -184,7 +184,7 @@ void bind_mie_condition(py::module_& m) {
       .def(py::init([](double g) { return w::LiquidWaterContent{g}; }), py::arg("g_per_m3"))
       .def_readwrite("g_per_m3", &w::LiquidWaterContent::g_per_m3);
   py::class_<w::MieCondition>(m, "MieCondition")
-      .def(py::init([](w::Drops d, w::IndexSource i, w::Rescaling r) { return w::MieCondition{d, i, r}; }),
+      .def(py::init([](w::Drops d, w::IndexSource i, w::Rescaling r) { return w::MieCondition{d, i, r, std::nullopt}; }),
            py::arg("drops"), py::arg("index"), py::arg("rescaling"))
       .def_readwrite("drops", &w::MieCondition::drops)
       .def_readwrite("index", &w::MieCondition::index)

@@ -3,6 +3,7 @@ command line, and its NumPy handling (broadcasting, dtypes, strides, empty
 arrays, bad elements)."""
 
 import csv
+import json
 import math
 import subprocess
 
@@ -229,3 +230,38 @@ def test_ctrl_c_interrupts_a_long_call(interrupted_child):
         """, "mie.efficiencies(x, 1.33 + 1e-8j)", timeout=300)
     assert run.returncode == 0, run.stdout + run.stderr
     assert float(run.stdout.split()[2]) < 1.0, run.stdout
+
+
+def test_layered_one_layer_is_efficiencies_and_layers_broadcast():
+    # One layer is the homogeneous sphere, bit for bit (the C++ dispatch).
+    x = np.array([0.1, 1.0, 30.0])
+    one = mie.layered_efficiencies(x[:, None], [1.5 + 0.01j])
+    ref = mie.efficiencies(x, 1.5 + 0.01j)
+    assert np.array_equal(one.qext, ref.qext) and np.array_equal(one.g, ref.g)
+    # Leading axes broadcast; the layer axis lists core and shell.
+    xs = np.stack([x, 2 * x], axis=-1)
+    q = mie.layered_efficiencies(xs, [1.75 + 0.44j, 1.43 + 1e-8j])
+    assert q.qext.shape == (3,)
+    grid = mie.layered_efficiencies(xs[:, None, :], np.array([[1.75 + 0.44j, 1.43 + 1e-8j], [1.5, 1.33]])[None, :, :])
+    assert grid.qext.shape == (3, 2)
+    assert grid.qext[1, 0] == q.qext[1]
+
+
+def test_layered_same_as_command_line(cli):
+    # The same particle through the CLI's --x-layers: the same digits.
+    out = subprocess.run([cli, "mie", "--x-layers", "5.71:1.75+0.44i,11.42:1.43+1e-8i", "--json"],
+                         capture_output=True, text=True, check=True).stdout
+    j = json.loads(out)
+    q = mie.layered_efficiencies([5.71, 11.42], [1.75 + 0.44j, 1.43 + 1e-8j])
+    assert j["qext"] == q.qext and j["qback"] == q.qback and j["g"] == q.g
+
+
+def test_layered_bad_particles():
+    with pytest.raises(ValueError, match="element 1: mie: layer 1: size parameters must not decrease"):
+        mie.layered_efficiencies([[1.0, 2.0], [2.0, 1.0]], [1.5, 1.33])
+    q = mie.layered_efficiencies([[1.0, 2.0], [2.0, 1.0]], [1.5, 1.33], errors="nan")
+    assert np.isnan(q.qext[1]) and not np.isnan(q.qext[0])
+    with pytest.raises(TypeError, match="last axis listing the layers"):
+        mie.layered_efficiencies(1.0, 1.5)
+    with pytest.raises(ValueError, match="do not broadcast"):
+        mie.layered_efficiencies([1.0, 2.0, 3.0], [1.5, 1.33])

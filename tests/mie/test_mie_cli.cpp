@@ -4,6 +4,7 @@
 // arguments, formats, 17-digit round trip, batch error handling, exit status.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -18,7 +19,9 @@
 #include <nlohmann/json.hpp>
 
 #include "attenuvis/mie.hpp"
+#include "attenuvis/io/number_text.hpp"
 #include "attenuvis/mie/batch.hpp"
+#include "attenuvis/mie/layered.hpp"
 #include "attenuvis/mie/legendre_moments.hpp"
 #include "attenuvis/mie/scattering_matrix.hpp"
 
@@ -300,4 +303,75 @@ TEST_CASE("mie --phase, --moments, --polarised print what the library computes",
   const Run batch = run_cli("mie --moments 4", "1 1.33 0\n");
   CHECK(batch.status != 0);
   CHECK_THAT(batch.err, Catch::Contains("--moments needs one sphere"));
+}
+
+TEST_CASE("mie --layers and --x-layers: a layered sphere, its layers echoed", "[mie][cli][layered]") {
+  // Soot (r = 0.5 um) under sulphate (r = 1 um) at 550 nm in air.
+  const Run r = run_cli("mie --layers 0.5:1.75+0.44i,1.0:1.43+1e-8i --wavelength 550nm --json");
+  REQUIRE(r.status == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  const double x0 = 2 * M_PI * 0.5e-6 / 550e-9, x1 = 2 * M_PI * 1e-6 / 550e-9;
+  REQUIRE(j["layers"].size() == 2);
+  CHECK(j["layers"][0]["x"].get<double>() == x0);
+  CHECK(j["layers"][1]["m"][1].get<double>() == 1e-8);
+  const auto q = mie::layered_sphere({x0, x1}, {{1.75, 0.44}, {1.43, 1e-8}});
+  CHECK(j["qext"].get<double>() == q.qext);
+  CHECK(j["qback"].get<double>() == q.qback);
+  CHECK(j["g"].get<double>() == q.g);
+  // The same particle by size parameters, and a radius with its unit.
+  const Run by_x = run_cli("mie --x-layers " + attenuvis::io::shortest(x0) + ":1.75+0.44i," +
+                           attenuvis::io::shortest(x1) + ":1.43+1e-8i --json");
+  REQUIRE(by_x.status == 0);
+  CHECK(nlohmann::json::parse(by_x.out)["qext"].get<double>() == q.qext);
+  const Run with_unit = run_cli("mie --layers 500nm:1.75+0.44i,1um:1.43+1e-8i --wavelength 550nm --json");
+  REQUIRE(with_unit.status == 0);
+  CHECK(nlohmann::json::parse(with_unit.out)["qext"].get<double>() == q.qext);
+  // Text output with the phase function and moments from the layered coefficients.
+  const Run text = run_cli("mie --x-layers 2:pec,3:1.5 --phase 0:180:90 --moments 2");
+  REQUIRE(text.status == 0);
+  CHECK_THAT(text.out, Catch::Contains("perfect conductor"));
+  CHECK_THAT(text.out, Catch::Contains("Legendre moments"));
+}
+
+TEST_CASE("mie --layers: bad layers give an error naming the layer", "[mie][cli][layered]") {
+  for (const char* args : {"mie --layers 0.5:1.75+0.44i,1.0 --wavelength 550nm",
+                           "mie --layers 0.5:1.75,0.44 --wavelength 550nm",
+                           "mie --layers 0.5:1.75+0.44i,0.4:1.5 --wavelength 550nm",
+                           "mie --layers 0.5:1.75+0.44i,1:pec --wavelength 550nm",
+                           "mie --layers 0.5:1.75+0.44i",
+                           "mie --x-layers 1:1.5,2:1.33 --m 1.5",
+                           "mie --x-layers 1:1.5,abc:1.33"}) {
+    INFO(args);
+    const Run r = run_cli(args);
+    CHECK(r.status != 0);
+    CHECK_THAT(r.err, Catch::StartsWith("attenuvis: error: "));
+    CHECK(r.out.empty());
+  }
+  CHECK_THAT(run_cli("mie --layers 0.5:1.75+0.44i,0.4:1.5 --wavelength 550nm").err, Catch::Contains("layer 1"));
+}
+
+TEST_CASE("mie batch: layered lines among homogeneous ones, in order, bad ones reported", "[mie][cli][layered]") {
+  const std::string input =
+      "1 1.5 0\n"
+      "5.71;11.42 1.75;1.43 0.44;1e-8   # soot under sulphate\n"
+      "1;2;3 1.5;1.33;2 0.1;0;0.001\n"
+      "1;2 1.5;1.33 0.1\n"
+      "2;1 1.5;1.5 0;0\n"
+      "1;2 1.5; 0;0\n"
+      "2 1.33 0\n";
+  const Run r = run_cli("mie", input);
+  CHECK(r.status != 0);
+  const auto out = lines(r.out);
+  REQUIRE(out.size() == 5);
+  CHECK(out[2].rfind("5.71;11.42,1.75;1.43,0.44;1e-08,", 0) == 0);
+  std::istringstream row(out[2]);
+  std::vector<std::string> f;
+  for (std::string s; std::getline(row, s, ',');) f.push_back(s);
+  REQUIRE(f.size() == 10);
+  CHECK(std::stod(f[3]) == mie::layered_sphere({5.71, 11.42}, {{1.75, 0.44}, {1.43, 1e-8}}).qext);
+  CHECK(std::stod(f[8]) == mie::layered_sphere({5.71, 11.42}, {{1.75, 0.44}, {1.43, 1e-8}}).g);
+  CHECK(out[3].rfind("1;2;3,", 0) == 0);
+  CHECK(csv_numbers(out[4])[0] == 2);
+  for (const char* where : {"line 4:", "line 5: mie: layer 1", "line 6:"}) CHECK_THAT(r.err, Catch::Contains(where));
+  CHECK(lines(r.err).size() == 3);
 }

@@ -153,7 +153,7 @@ TEST_CASE("to_text writes a condition that parses back to the same one", "[weath
   }
   // Built in code, written as the grammar spells it.
   CHECK(to_text(RainPowerLaw{8.0, RainLaw::seed}) == "rain:8:seed");
-  CHECK(to_text(MieCondition{FogPreset::advection, ConstantIndex{{1.33, 0.0}}, AsGiven{}}) == "fog:advection:m=1.33+0i");
+  CHECK(to_text(MieCondition{FogPreset::advection, ConstantIndex{{1.33, 0.0}}, AsGiven{}, std::nullopt}) == "fog:advection:m=1.33+0i");
   CHECK(to_text(Snow{SnowType::dry, 0.1}) == "snow:dry:0.1");
 }
 

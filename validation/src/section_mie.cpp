@@ -427,6 +427,7 @@ void section_mie(Context& ctx, Section& s) {
   error_map(ctx, s);
   error_vs_time(ctx, s);
   section_mie_speed(ctx, s);
+  section_mie_layered(ctx, s);
 }
 
 }  // namespace attenuvis::validation::detail

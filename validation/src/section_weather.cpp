@@ -30,7 +30,7 @@ const wx::Settings kSeed = with_convention(wx::Convention::seed);
 
 // Mie over a fog preset with the given refractive-index source.
 wx::Condition mie_fog(wx::FogPreset preset, wx::IndexSource index = wx::SettingsWaterTable{}) {
-  return wx::MieCondition{preset, index, wx::AsGiven{}};
+  return wx::MieCondition{preset, index, wx::AsGiven{}, std::nullopt};
 }
 
 double dbkm(double per_m) { return wx::per_m_to_dB_per_km(per_m); }
@@ -279,7 +279,7 @@ void rain_rate_chart(Context& ctx, Section& s) {
     mie.per_m = mie.error_per_m = nan;
     if (do_mie) {
       ctx.step("weather", "rain " + format_number(r, 4) + " mm/h, Mie over Marshall-Palmer");
-      mie = wx::sigma(wx::MieCondition{wx::MarshallPalmerRain{r}, wx::SettingsWaterTable{}, wx::AsGiven{}}, 550e-9,
+      mie = wx::sigma(wx::MieCondition{wx::MarshallPalmerRain{r}, wx::SettingsWaterTable{}, wx::AsGiven{}, std::nullopt}, 550e-9,
                       kItu);
     }
     const double seed_reading = dbkm(wx::sigma(wx::RainPowerLaw{r, wx::RainLaw::seed}, 550e-9, kSeed).per_m);

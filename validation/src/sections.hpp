@@ -152,6 +152,9 @@ void section_mie(Context& ctx, Section& s);
 // The Mie section's speed tables against an earlier core (ctx.mie_baseline),
 // or the sentence saying how to get them (section_mie_speed.cpp).
 void section_mie_speed(Context& ctx, Section& s);
+// The Mie section's layered spheres: referee grid, published checks, time
+// per call (section_mie_layered.cpp).
+void section_mie_layered(Context& ctx, Section& s);
 void section_weather(Context& ctx, Section& s, SeedConditions& seed);
 void section_optics(Context& ctx, Section& s);  // section_optics.cpp
 void section_layouts(Context& ctx, Section& s, const SeedConditions& seed);

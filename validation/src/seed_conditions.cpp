@@ -12,7 +12,7 @@ namespace attenuvis::validation::detail {
 namespace {
 // Mie over a fog preset, water index from the settings (Hale & Querry by default).
 weather::Condition fog(weather::FogPreset preset) {
-  return weather::MieCondition{preset, weather::SettingsWaterTable{}, weather::AsGiven{}};
+  return weather::MieCondition{preset, weather::SettingsWaterTable{}, weather::AsGiven{}, std::nullopt};
 }
 }  // namespace
 

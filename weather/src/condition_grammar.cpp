@@ -57,6 +57,13 @@ void set_rescaling(MieCondition& c, Rescaling r, const Fields& f) {
   c.rescaling = r;
 }
 
+// The condition's coating, created unset (NaN) by whichever of coat= and
+// shell= comes first; with_options() checks that both came.
+Coating& coating_of(MieCondition& c) {
+  if (!c.coating) c.coating = Coating{NAN, {NAN, NAN}};
+  return *c.coating;
+}
+
 // "a|b|c": the names of a registry as the grammar lines write alternatives.
 template <class Rows>
 std::string alternatives(const Rows& rows) {
@@ -83,6 +90,14 @@ const std::vector<MieOption>& mie_options() {
          if (v.empty()) f.fail("index= needs a path");
          c.index = IndexFile{v};
        }},
+      {"coat=", ":coat=F:shell=N+Ki",
+       "core-shell particles: the drops are cores (index m=/water=) under a shell of index shell= that is the "
+       "fraction F of each particle's volume (layered-sphere Mie, real-axis quadrature)",
+       [](MieCondition& c, const std::string& v, const Fields& f) {
+         coating_of(c).shell_volume_fraction = f.in(domain::shell_volume_fraction, v);
+       }},
+      {"shell=", ":shell=N+Ki", "the shell's refractive index of :coat=",
+       [](MieCondition& c, const std::string& v, const Fields& f) { coating_of(c).shell_m = parse_index(v, f); }},
       {"N=", ":N=PER_CM3", "rescale the drops to this many particles per cm^3",
        [](MieCondition& c, const std::string& v, const Fields& f) {
          set_rescaling(c, NumberDensity{f.in(domain::number_density, v)}, f);
@@ -104,7 +119,7 @@ const MieOption* find_option(const std::string& field) {
 }  // namespace
 
 MieCondition detail::with_options(Drops drops, const Fields& f, std::size_t from) {
-  MieCondition c{std::move(drops), SettingsWaterTable{}, AsGiven{}};
+  MieCondition c{std::move(drops), SettingsWaterTable{}, AsGiven{}, std::nullopt};
   for (std::size_t i = from; i < f.size(); ++i) {
     const MieOption* o = find_option(f[i]);
     if (!o) f.fail("unexpected field '" + f[i] + "'");
@@ -114,6 +129,8 @@ MieCondition detail::with_options(Drops drops, const Fields& f, std::size_t from
       while (i + 1 < f.size() && !find_option(f[i + 1])) value += ":" + f[++i];
     o->apply(c, value, f);
   }
+  if (c.coating && std::isnan(c.coating->shell_volume_fraction)) f.fail("shell= needs coat=F (the shell's volume fraction)");
+  if (c.coating && std::isnan(c.coating->shell_m.real())) f.fail("coat= needs shell=N+Ki (the shell's index)");
   return c;
 }
 
@@ -279,7 +296,8 @@ std::string generate_grammar() {
       << range_text(domain::snow_rate) << ", DIST " << range_text(domain::visibility) << ",\n"
       << "    sigma VALUE " << range_text(domain::sigma) << " (in any unit), N= " << range_text(domain::number_density)
       << ", lwc= " << range_text(domain::water_content) << ",\n"
-      << "    m= n " << range_text(domain::index_real) << " and k " << range_text(domain::index_imag) << ",\n"
+      << "    m= and shell= n " << range_text(domain::index_real) << " and k " << range_text(domain::index_imag)
+      << ", coat= " << range_text(domain::shell_volume_fraction) << ",\n"
       << "    rh= " << range_text(domain::relative_humidity) << ", mass= " << range_text(domain::aerosol_mass)
       << ", an aerosol's N " << range_text(domain::number_density);
   return out.str();
@@ -423,6 +441,9 @@ std::string to_text(const Condition& condition) {
       if (const auto* file = std::get_if<IndexFile>(&c.index)) out += ":index=" + file->path;
       if (const auto* n = std::get_if<NumberDensity>(&c.rescaling)) out += ":N=" + shortest(n->per_cm3);
       if (const auto* w = std::get_if<LiquidWaterContent>(&c.rescaling)) out += ":lwc=" + shortest(w->g_per_m3);
+      if (c.coating)
+        out += ":coat=" + shortest(c.coating->shell_volume_fraction) + ":shell=" +
+               shortest(c.coating->shell_m.real()) + "+" + shortest(c.coating->shell_m.imag()) + "i";
       return out;
     }
     std::string operator()(const AerosolCondition& c) const { return detail::aerosol_text(c); }

@@ -6,6 +6,7 @@
 
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/weather/aerosol_optics.hpp"
+#include "attenuvis/weather/coated_optics.hpp"
 #include "attenuvis/weather/condition_grammar.hpp"
 #include "attenuvis/weather/sigma.hpp"
 #include "real_axis_settings.hpp"
@@ -36,7 +37,7 @@ ConditionOptics condition_optics(const MieCondition& c, double wavelength_m, con
   q.legendre_moments = request.legendre_moments;
   q.angles_deg = request.angles_deg;
   q.polarised = request.polarised;
-  out.bulk = mie_bulk_optics(d, wavelength_m, m, q);
+  out.bulk = c.coating ? coated_bulk_optics(d, wavelength_m, m, *c.coating, q) : mie_bulk_optics(d, wavelength_m, m, q);
   return out;
 }
 

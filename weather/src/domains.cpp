@@ -30,7 +30,7 @@ const std::vector<const Domain*>& all_domains() {
   static const std::vector<const Domain*> list = {
       &domain::wavelength,     &domain::visibility,    &domain::sigma,
       &domain::rain_rate,      &domain::snow_rate,     &domain::number_density,
-      &domain::water_content,  &domain::index_real,    &domain::index_imag,
+      &domain::water_content,  &domain::index_real,    &domain::index_imag, &domain::shell_volume_fraction,
       &domain::tolerance,      &domain::contrast_threshold, &domain::bulk_density,
       &domain::relative_humidity, &domain::aerosol_mass,
       &domain::drop_radius,    &domain::density_per_radius, &domain::number_per_volume};

@@ -13,6 +13,7 @@
 #include "attenuvis/mie/spheres.hpp"
 #include "attenuvis/weather/bulk_optics.hpp"
 #include "resonance.hpp"
+#include "two_pass_bulk_optics.hpp"
 
 namespace attenuvis::weather {
 
@@ -63,33 +64,38 @@ EfficiencyFunction mie_efficiencies(std::complex<double> m, const QuadratureSett
   return [m, options, extras, L, polarised](double x) {
     const auto sc = mie::scatter(x, m, extras, options);
     Efficiency e = from_mie(sc.q);
-    if (L >= 0) {
-      e.moments = mie::phase_function_moments(sc, static_cast<std::size_t>(L));
-      e.moments.resize(static_cast<std::size_t>(L) + 1, 0.0);  // above 2N they are exact zeros
-    }
-    if (!extras.angles_deg.empty()) e.phase = mie::scattering_matrix(x, sc).phase;
-    if (polarised) {
-      const auto ex = mie::scattering_matrix_expansion(sc, static_cast<std::size_t>(L));
-      for (const auto* v : {&ex.alpha1, &ex.alpha2, &ex.alpha3, &ex.alpha4, &ex.beta1, &ex.beta2}) {
-        std::vector<double> part = *v;
-        part.resize(static_cast<std::size_t>(L) + 1, 0.0);
-        e.expansion.insert(e.expansion.end(), part.begin(), part.end());
-      }
-    }
+    detail::add_angular_terms(sc, x, L, polarised, e);
     return e;
   };
 }
 
-BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
-                           const QuadratureSettings& s) {
-  const bool angular = s.legendre_moments >= 0 || !s.angles_deg.empty();
-  if (!angular) return integrate_bulk_optics(d, wavelength_m, mie_efficiency_batch(m), s, m);
+void detail::add_angular_terms(const mie::Scattering<double>& sc, double x, int L, bool polarised, Efficiency& e) {
+  if (L >= 0) {
+    e.moments = mie::phase_function_moments(sc, static_cast<std::size_t>(L));
+    e.moments.resize(static_cast<std::size_t>(L) + 1, 0.0);  // above 2N they are exact zeros
+  }
+  if (!sc.angles_deg.empty()) e.phase = mie::scattering_matrix(x, sc).phase;
+  if (polarised) {
+    const auto ex = mie::scattering_matrix_expansion(sc, static_cast<std::size_t>(L));
+    for (const auto* v : {&ex.alpha1, &ex.alpha2, &ex.alpha3, &ex.alpha4, &ex.beta1, &ex.beta2}) {
+      std::vector<double> part = *v;
+      part.resize(static_cast<std::size_t>(L) + 1, 0.0);
+      e.expansion.insert(e.expansion.end(), part.begin(), part.end());
+    }
+  }
+}
+
+BulkOptics detail::two_pass_bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
+                                        const EfficiencyBatch& cheap_batch,
+                                        const std::function<EfficiencyFunction(const QuadratureSettings&)>& angular,
+                                        const QuadratureSettings& s) {
+  if (s.legendre_moments < 0 && s.angles_deg.empty()) return integrate_bulk_optics(d, wavelength_m, cheap_batch, s, m);
   // Pass A: everything but the angular quantities, with cheap evaluations.
   QuadratureSettings cheap = s;
   cheap.legendre_moments = -1;
   cheap.angles_deg.clear();
   cheap.polarised = false;
-  BulkOptics out = integrate_bulk_optics(d, wavelength_m, mie_efficiency_batch(m), cheap, m);
+  BulkOptics out = integrate_bulk_optics(d, wavelength_m, cheap_batch, cheap, m);
   if (!out.scattering_computed) return out;  // large-x expansion used: no angular quantities either
   // Pass B: the angular quantities; sigma's resonance target was met in pass A,
   // so only theirs drives the refinement of the resonance panels here.
@@ -110,8 +116,7 @@ BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::
   // sigma, g and beta_pi come from pass A at rel_tolerance.
   if (m.imag() < resonance_free_k() && s.estimate_resonances)
     angular_settings.rel_tolerance = std::max(s.rel_tolerance, 1e-2 * s.angular_resonance_tolerance);
-  const BulkOptics b = integrate_bulk_optics(d, wavelength_m, mie_efficiencies(m, angular_settings),
-                                             angular_settings, m);
+  const BulkOptics b = integrate_bulk_optics(d, wavelength_m, angular(angular_settings), angular_settings, m);
   out.moments = b.moments;
   out.moments_error = b.moments_error;
   out.angles_deg = b.angles_deg;
@@ -124,6 +129,12 @@ BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::
                 " evaluations with angular terms, rel. tol " + io::significant(angular_settings.rel_tolerance, 3) +
                 ")";
   return out;
+}
+
+BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
+                           const QuadratureSettings& s) {
+  return detail::two_pass_bulk_optics(d, wavelength_m, m, mie_efficiency_batch(m),
+                                      [m](const QuadratureSettings& q) { return mie_efficiencies(m, q); }, s);
 }
 
 BulkOptics bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,

@@ -11,6 +11,7 @@
 
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/weather/aerosol_optics.hpp"
+#include "attenuvis/weather/coated_optics.hpp"
 #include "attenuvis/weather/condition_grammar.hpp"
 #include "attenuvis/weather/contour_extinction.hpp"
 #include "attenuvis/weather/distribution_file.hpp"
@@ -31,6 +32,7 @@ bool is_rain(const MieCondition& c) { return std::holds_alternative<MarshallPalm
 // the caller already has (sigma() needs them for the contour first).
 BulkOptics real_axis_optics(const MieCondition& c, double wavelength_m, const Settings& s, const SizeDistribution& d,
                             std::complex<double> m) {
+  if (c.coating) return coated_bulk_optics(d, wavelength_m, m, *c.coating, detail::real_axis_settings(c, s));
   return integrate_bulk_optics(d, wavelength_m, mie_efficiency_batch(m), detail::real_axis_settings(c, s), m);
 }
 
@@ -38,7 +40,7 @@ BulkOptics real_axis_optics(const MieCondition& c, double wavelength_m, const Se
 // the settings that enter the integral.  Conditions read from a file have no
 // key (the file may change between calls).
 using MieKey = std::tuple<std::size_t, double, std::size_t, std::size_t, double, double, std::string, std::size_t,
-                          double, double, double, std::string, double>;
+                          double, double, double, std::string, double, double, double, double>;
 std::optional<MieKey> cache_key(const MieCondition& c, double wavelength_m, const Settings& s) {
   // Files may change between calls; parametric drops are keyed by no preset
   // (their sigma comes from the contour rule in milliseconds).
@@ -55,8 +57,11 @@ std::optional<MieKey> cache_key(const MieCondition& c, double wavelength_m, cons
   double scale = 0;
   if (const auto* v = std::get_if<NumberDensity>(&c.rescaling)) scale = v->per_cm3;
   if (const auto* v = std::get_if<LiquidWaterContent>(&c.rescaling)) scale = v->g_per_m3;
+  // A coating: its volume fraction and index (-1: none).
+  const double coat = c.coating ? c.coating->shell_volume_fraction : -1.0;
+  const double shell_n = c.coating ? c.coating->shell_m.real() : 0.0, shell_k = c.coating ? c.coating->shell_m.imag() : 0.0;
   return MieKey{c.drops.index(), rate, preset, c.index.index(), n, k, table, c.rescaling.index(), scale,
-                wavelength_m, s.rel_tolerance, s.water_table, s.rain_asymptotic_x};
+                wavelength_m, s.rel_tolerance, s.water_table, s.rain_asymptotic_x, coat, shell_n, shell_k};
 }
 
 // Mie integrals of near-lossless drops take seconds; a process asking for
@@ -100,7 +105,7 @@ Sigma mie_sigma(const MieCondition& c, double wavelength_m, const Settings& s) {
   std::string index_source;
   const std::complex<double> m = condition_refractive_index(c, wavelength_m, s, &index_source);
   const SizeDistribution d = condition_distribution(c);
-  out.model = "Mie over " + d.describe();
+  out.model = std::string(c.coating ? "layered-sphere Mie over core-shell particles, cores " : "Mie over ") + d.describe();
   std::ostringstream note;
   note.precision(3);
   // Analytic distributions within reach: integrate above the real axis,
@@ -116,8 +121,11 @@ Sigma mie_sigma(const MieCondition& c, double wavelength_m, const Settings& s) {
   SegmentedContourSettings ss;
   ss.rel_tolerance = s.rel_tolerance;
   ss.cancel = s.cancel;
-  std::optional<ContourExtinction> ce = contour_extinction(d, wavelength_m, m, cs);
-  if (!ce) ce = segmented_contour_extinction(d, wavelength_m, m, ss);
+  // Core-shell particles: the real axis (the contour needs the homogeneous
+  // sphere's continuation; coated_optics.hpp).
+  std::optional<ContourExtinction> ce;
+  if (!c.coating) ce = contour_extinction(d, wavelength_m, m, cs);
+  if (!ce && !c.coating) ce = segmented_contour_extinction(d, wavelength_m, m, ss);
   if (ce) {
     out.per_m = ce->extinction.value;
     out.error_per_m = ce->extinction.error();

@@ -13,6 +13,7 @@
 #include "attenuvis/weather/cancel.hpp"
 #include "attenuvis/weather/condition.hpp"
 #include "attenuvis/weather/condition_grammar.hpp"
+#include "attenuvis/weather/coated_optics.hpp"
 #include "attenuvis/weather/condition_optics.hpp"
 #include "attenuvis/weather/contour_extinction.hpp"
 #include "attenuvis/weather/distribution_file.hpp"

@@ -4,7 +4,7 @@
 // that needs a condition builds it directly:
 //
 //   Condition rain = RainPowerLaw{8.0, RainLaw::seed};
-//   Condition fog  = MieCondition{FogPreset::advection, ConstantIndex{{1.33, 0.0}}, {}};
+//   Condition fog  = MieCondition{FogPreset::advection, ConstantIndex{{1.33, 0.0}}, {}, {}};
 //   Condition haze = AerosolCondition{AerosolMixture::urban, info(AerosolMixture::urban).amounts, 80.0};
 //
 // sigma.hpp computes the extinction coefficient of any of them.
@@ -111,10 +111,19 @@ struct LiquidWaterContent {
 };
 using Rescaling = std::variant<AsGiven, NumberDensity, LiquidWaterContent>;
 
+// Core–shell particles (coated_optics.hpp): the drops' radii are the cores'
+// (their index `index` above), each under a shell of this index that makes up
+// this fraction of the particle's volume (outer radius r (1 − f)^(−1/3)).
+struct Coating {
+  double shell_volume_fraction = 0;  // in [0, 0.999]
+  std::complex<double> shell_m;      // n + i k, k >= 0
+};
+
 struct MieCondition {
   Drops drops;
   IndexSource index;
   Rescaling rescaling;
+  std::optional<Coating> coating = std::nullopt;  // homogeneous drops when empty
 };
 
 // ---- Aerosols (aerosol.hpp) ---------------------------------------------------

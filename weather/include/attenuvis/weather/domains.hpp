@@ -34,6 +34,7 @@ inline constexpr Domain number_density{"number density N", "cm^-3", 1e6, 1e-6, 1
 inline constexpr Domain water_content{"liquid water content lwc", "g/m^3", 1e-3, 1e-9, 50};
 inline constexpr Domain index_real{"refractive index real part n", "", 1, 0.01, 10};
 inline constexpr Domain index_imag{"refractive index imaginary part k", "", 1, 0, 10};
+inline constexpr Domain shell_volume_fraction{"shell volume fraction", "", 1, 0, 0.999};
 inline constexpr Domain tolerance{"Mie tolerance", "", 1, 1e-13, 1e-2};
 inline constexpr Domain contrast_threshold{"contrast threshold", "", 1, 1e-6, 0.5};
 inline constexpr Domain bulk_density{"bulk density", "kg/m^3", 1, 1, 2e4};
