@@ -83,6 +83,7 @@ struct ParametricDrops {
 // True for the families that need N= or lwc= to fix their amount.
 bool needs_amount(const ParametricDrops& d);
 
+// The drops of a Mie condition: one of the kinds above.
 using Drops = std::variant<MarshallPalmerRain, FogPreset, DistributionFile, ParametricDrops>;
 
 // The refractive index: Settings::water_table, a named table (WaterTable,
@@ -104,12 +105,14 @@ struct LiquidWaterContent {
 };
 using Rescaling = std::variant<AsGiven, NumberDensity, LiquidWaterContent>;
 
+// A condition whose sigma is Mie scattering over a size distribution of drops.
 struct MieCondition {
   Drops drops;
   IndexSource index;
   Rescaling rescaling;
 };
 
+// A weather condition, as the grammar (condition_grammar.hpp) reads it.
 using Condition = std::variant<ClearAir, Visibility, GivenSigma, RainPowerLaw, Snow, FogFromVisibility, MieCondition>;
 
 // A condition with the text it was written as (CSV columns and labels echo it).
@@ -118,6 +121,7 @@ struct LabelledCondition {
   Condition condition;
 };
 
+// True for Mie conditions (a size distribution of drops).
 bool needs_mie(const Condition& c);
 // True for the power laws, whose sigma depends on Settings::convention.
 bool depends_on_convention(const Condition& c);
