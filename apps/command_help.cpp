@@ -86,13 +86,57 @@ std::string page_location(const std::string& page) {
   return "file://" + root + "/" + page + ".html";
 }
 
-// CLI11's layout with one blank line between option groups, not two.
+// Help lines no wider than a terminal and a man page hold.
+constexpr std::size_t kHelpWidth = 90;
+
+// `text` broken at spaces into lines of at most `width` characters (a word
+// longer than that stands alone); its own line breaks are kept.
+std::string wrapped(const std::string& text, std::size_t width) {
+  std::string out, line, word;
+  const auto end_word = [&] {
+    if (word.empty()) return;
+    if (!line.empty() && line.size() + 1 + word.size() > width) {
+      out += line + "\n";
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+    word.clear();
+  };
+  for (char c : text) {
+    if (c == ' ') {
+      end_word();
+    } else if (c == '\n') {
+      end_word();
+      out += line + "\n";
+      line.clear();
+    } else {
+      word += c;
+    }
+  }
+  end_word();
+  return out + line;
+}
+
+// CLI11's layout with one blank line between option groups, not two, and
+// descriptions wrapped to kHelpWidth.
 class GroupedFormatter : public CLI::Formatter {
  public:
   std::string make_group(std::string group, bool is_positional, std::vector<const CLI::Option*> opts) const override {
     const std::string text = CLI::Formatter::make_group(group, is_positional, opts);
     const bool first = is_positional || group == "Options";
     return first ? text : text.substr(1);
+  }
+  std::string make_option_desc(const CLI::Option* option) const override {
+    return wrapped(CLI::Formatter::make_option_desc(option), kHelpWidth - get_column_width());
+  }
+  std::string make_subcommand(const CLI::App* sub) const override {
+    std::stringstream out;
+    CLI::detail::format_help(out, sub->get_display_name(true), wrapped(sub->get_description(), kHelpWidth - get_column_width()),
+                             get_column_width());
+    return out.str();
+  }
+  std::string make_description(const CLI::App* app) const override {
+    return wrapped(CLI::Formatter::make_description(app), kHelpWidth);
   }
 };
 
