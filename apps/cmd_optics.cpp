@@ -167,8 +167,7 @@ void run_optics(const std::vector<std::string>& conditions, const OpticsOptions&
 
 void register_optics(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "optics", "bulk single-scattering optics of drop size distributions, each quantity with its error "
-                "(sigma_ext, sigma_sca, sigma_abs, albedo, g, backscatter, lidar ratio, moments, phase function)");
+      "optics", "bulk single-scattering optics of drop size distributions, each quantity with its error");
   auto conditions = std::make_shared<std::vector<std::string>>();
   auto opts = std::make_shared<OpticsOptions>();
   cmd->add_option("conditions", *conditions, "Mie conditions, e.g. fog:advection fog:radiation")->required();

@@ -439,8 +439,8 @@ void run_vg(const VgArguments& given) {
 
 void register_visgraph(CLI::App& app) {
   auto args = std::make_shared<VgArguments>();
-  CLI::App* vgc = app.add_subcommand("vg", "visibility graph of a scene, each line of sight weighted by its contrast ratio "
-                                           "C = exp(-sigma d) in every condition");
+  CLI::App* vgc = app.add_subcommand("vg", "visibility graph of a scene, weighted by the contrast C = exp(-sigma d) in each "
+                                           "condition");
   vgc->add_option("scene", args->scene,
                   "scene file (CityJSON .json/.city.json/.jsonl, glTF .gltf/.glb, OBJ; recognised by content; "
                   "a regular file <= 2 GiB, |coordinates| <= 1e7 m, faces <= 10000 vertices), "

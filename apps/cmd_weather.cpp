@@ -257,7 +257,7 @@ std::string preset_names() {
 void register_weather(CLI::App& app) {
   {
     auto* cmd = app.add_subcommand(
-        "sigma", "extinction coefficient and Koschmieder visibility of weather conditions (attenuvis help conditions)");
+        "sigma", "extinction coefficient and Koschmieder visibility of weather conditions");
     auto conditions = std::make_shared<std::vector<std::string>>();
     auto opts = std::make_shared<CommonOptions>();
     auto json = std::make_shared<bool>(false);
@@ -267,8 +267,8 @@ void register_weather(CLI::App& app) {
     cmd->callback([=] { run_sigma(*conditions, *opts, *json); });
   }
   {
-    auto* cmd = app.add_subcommand("table", "optical quantities over wavelengths x conditions into a CSV (+ .meta.json "
-                                            "sidecar), JSON or netCDF-4 (CF-1.8) file");
+    auto* cmd =
+        app.add_subcommand("table", "optical quantities over wavelengths x conditions into a CSV, JSON or netCDF-4 file");
     auto t = std::make_shared<TableOptions>();
     auto opts = std::make_shared<CommonOptions>();
     cmd->add_option("--conditions", t->conditions, "comma-separated conditions; sweeps like rain:1..100")->required();
@@ -293,13 +293,13 @@ void register_weather(CLI::App& app) {
     cmd->callback([=] { run_table(*t, *opts); });
   }
   {
-    auto* cmd = app.add_subcommand("distribution", "moments and checks of a size distribution: a preset (" +
-                                                       preset_names() +
-                                                       ") or a CSV file (attenuvis help distribution-files)");
+    auto* cmd = app.add_subcommand("distribution", "moments and checks of a size distribution (a preset or a CSV file)");
     auto what = std::make_shared<std::string>();
     auto density = std::make_shared<std::string>("1000");
     auto json = std::make_shared<bool>(false);
-    cmd->add_option("distribution", *what, "preset name or CSV path")->required();
+    cmd->add_option("distribution", *what,
+                    "a preset (" + preset_names() + ") or a CSV file (format: attenuvis help distribution-files)")
+        ->required();
     cmd->add_option("--bulk-density", *density,
                     "kg/m^3 for the water content (ice: 917); " + w::range_text(w::domain::bulk_density))
         ->capture_default_str();
