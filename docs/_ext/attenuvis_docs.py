@@ -54,8 +54,9 @@ def program(env):
     return path
 
 
-# Paths that --help prints for the machine it runs on ("Guide: file:///usr/local/
-# share/doc/attenuvis/html/guide/mie.html") are shown as the page's name.
+# Paths that --help prints for the tree it runs from (the build tree's HTML, or
+# the Markdown sources) are shown as the installed program prints them with
+# the default prefix: file:///usr/local/share/doc/attenuvis/html/PAGE.html.
 DOCS_PATH = re.compile(r"(?:file://)?/\S*/(?:html|docs)/(\S+?)\.(?:html|md)\b")
 
 
@@ -64,7 +65,7 @@ def run_program(env, args):
                             timeout=60, env={**os.environ, "COLUMNS": "100"})
     if result.returncode != 0:
         raise ExtensionError(f"attenuvis {' '.join(args)} failed ({result.returncode}): {result.stderr.strip()}")
-    return DOCS_PATH.sub(r"\1", result.stdout).rstrip() + "\n"
+    return DOCS_PATH.sub(r"file:///usr/local/share/doc/attenuvis/html/\1.html", result.stdout).rstrip() + "\n"
 
 
 def literal(text, language="text"):
