@@ -238,9 +238,7 @@ void register_mie(CLI::App& app) {
   auto args = std::make_shared<MieArgs>();
   CLI::App* cmd = app.add_subcommand(
       "mie",
-      "Lorenz-Mie efficiencies of a homogeneous or layered sphere (Bohren & Huffman conventions, m = n + ik, k >= 0 "
-      "absorbing). Without a sphere: batch mode, lines 'x m_re m_im' on stdin -> CSV on stdout (a layered sphere "
-      "lists its layers from the core out in each field, separated by ';').");
+      "Lorenz-Mie efficiencies, amplitudes and moments of homogeneous or layered spheres");
   cmd->add_option("--x", args->x, "size parameter 2*pi*r/lambda, in [1e-8, 1e6]");
   cmd->add_option("--radius", args->radius, "sphere radius with unit (nm, um, mm, m), e.g. 5um; with --wavelength instead of --x");
   cmd->add_option("--wavelength", args->wavelength, "vacuum wavelength with unit, e.g. 550nm; with --radius");

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "attenuvis/weather.hpp"
+#include "command_help.hpp"
 #include "commands.hpp"
 #include "weather_options.hpp"
 
@@ -165,18 +166,15 @@ void run_optics(const std::vector<std::string>& conditions, const OpticsOptions&
 
 void register_optics(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "optics", std::string("bulk single-scattering optics of drop size distributions and aerosols: sigma_ext, "
-                            "sigma_sca, sigma_abs, single-scattering albedo, g, backscatter coefficient, lidar ratio, "
-                            "Legendre moments and phase function, each with its error\n") +
-                    w::condition_grammar());
+      "optics", "bulk single-scattering optics of drops and aerosols, each quantity with its error");
   auto conditions = std::make_shared<std::vector<std::string>>();
   auto opts = std::make_shared<OpticsOptions>();
   cmd->add_option("conditions", *conditions, "Mie conditions or aerosols, e.g. fog:advection haze:urban:rh=80")
       ->required();
   add_weather_options(cmd, opts->weather, {});
   cmd->add_option("--moments", opts->moments,
-                  "Legendre moments chi_0..chi_L of the phase function (costs O(x^2) per drop); [0, 100000]")
-      ->check(CLI::Range(0, 100000));
+                  "Legendre moments chi_0..chi_L of the phase function (costs O(x^2) per drop)")
+      ->check(in_range(0, 100000));
   cmd->add_option("--angles", opts->angles, "phase function at START:STOP:STEP or a list A,B,... (degrees)");
   cmd->add_flag("--polarised", opts->polarised,
                 "with --moments: alpha1..alpha4, beta1, beta2 of the bulk scattering matrix");

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "attenuvis/validation/reproduce.hpp"
+#include "command_help.hpp"
 #include "commands.hpp"
 
 namespace attenuvis::cli {
@@ -16,7 +17,7 @@ void register_reproduce(CLI::App& app) {
   cmd->add_option("--out", options->out_dir, "Output directory (created if missing)")->capture_default_str();
   cmd->add_flag("--quick", options->quick, "Small version: coarse grids, small city, few Mie points (for tests)");
   cmd->add_option("--threads", options->threads, "Threads to use (0 = all cores)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(at_least(0))
       ->capture_default_str();
   // The last one given wins, so that `scripts/main.sh --mie-baseline OTHER`
   // overrides the library main.sh builds.

@@ -107,7 +107,7 @@ void run_scene(const SceneArgs& a) {
 void register_scene_command(CLI::App& app) {
   auto args = std::make_shared<SceneArgs>();
   CLI::App* scene = app.add_subcommand(
-      "scene", "Write a shipped scene (layout:0..4, city, city:SEED) to OBJ, or describe a scene file (info FILE)");
+      "scene", "write a shipped scene (layout:0..4, city) as OBJ, or describe a scene file (info FILE)");
   scene->add_option("scene", args->what, "layout:N (N = 0..4), city, city:SEED, or info")->required();
   scene->add_option("file", args->file, "with info: the scene file to describe (CityJSON, glTF, OBJ)");
   scene->add_flag("--groups", args->all_groups, "list every group, sorted by name, with triangles and classes");

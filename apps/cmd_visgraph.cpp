@@ -526,7 +526,8 @@ void run_vg(const VgArguments& given) {
 
 void register_visgraph(CLI::App& app) {
   auto args = std::make_shared<VgArguments>();
-  CLI::App* vgc = app.add_subcommand("vg", "Visibility graph weighted by contrast ratio C = exp(-sigma d)");
+  CLI::App* vgc = app.add_subcommand("vg", "visibility graph of a scene, weighted by the contrast C = exp(-sigma d) in each "
+                                           "condition");
   vgc->add_option("scene", args->scene,
                   "scene file (CityJSON .json/.city.json/.jsonl, glTF .gltf/.glb, OBJ; recognised by content; "
                   "or footprints with --height-field; "

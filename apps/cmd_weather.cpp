@@ -9,6 +9,7 @@
 
 #include "attenuvis/weather.hpp"
 #include "build_info.hpp"
+#include "command_help.hpp"
 #include "commands.hpp"
 #include "path_clashes.hpp"
 #include "weather_options.hpp"
@@ -246,14 +247,6 @@ void run_distribution(const std::string& what, const std::string& density_text, 
   }
 }
 
-// The valid ranges of the distribution command's numbers (weather/domains.hpp).
-std::string distribution_ranges() {
-  using namespace w::domain;
-  return "valid ranges: marshall-palmer R " + w::range_text(rain_rate) + ", gunn-marshall R " +
-         w::range_text(snow_rate) + ";\n  file values in SI: radius " + w::range_text(drop_radius) + ", dN/dr " +
-         w::range_text(density_per_radius) + ", dN/dln r and counts " + w::range_text(number_per_volume);
-}
-
 // "advection, radiation, marshall-palmer:R, gunn-marshall:R" (size_distribution.hpp).
 std::string preset_names() {
   std::string out;
@@ -265,8 +258,8 @@ std::string preset_names() {
 
 void register_weather(CLI::App& app) {
   {
-    auto* cmd = app.add_subcommand("sigma", std::string("extinction coefficient of weather conditions\n") +
-                                                w::condition_grammar());
+    auto* cmd = app.add_subcommand(
+        "sigma", "extinction coefficient and Koschmieder visibility of weather conditions");
     auto conditions = std::make_shared<std::vector<std::string>>();
     auto opts = std::make_shared<CommonOptions>();
     auto json = std::make_shared<bool>(false);
@@ -276,8 +269,8 @@ void register_weather(CLI::App& app) {
     cmd->callback([=] { run_sigma(*conditions, *opts, *json); });
   }
   {
-    auto* cmd = app.add_subcommand("table", "optical quantities over wavelengths x conditions, written atomically "
-                                            "as CSV (+ .meta.json sidecar), JSON or netCDF-4 (CF-1.8)");
+    auto* cmd =
+        app.add_subcommand("table", "optical quantities over wavelengths x conditions into a CSV, JSON or netCDF-4 file");
     auto t = std::make_shared<TableOptions>();
     auto opts = std::make_shared<CommonOptions>();
     cmd->add_option("--conditions", t->conditions, "comma-separated conditions; sweeps like rain:1..100")->required();
@@ -295,20 +288,20 @@ void register_weather(CLI::App& app) {
                         kDefaultTableAngles + "; only with phase in --quantities)");
     cmd->add_option("--format", t->format, "csv, json or netcdf")->capture_default_str();
     cmd->add_option("--out", t->out, "output file")->required();
-    cmd->add_option("--threads", t->threads, "worker threads (0: all cores); [0, 1024]")
-        ->check(CLI::Range(0, 1024))
+    cmd->add_option("--threads", t->threads, "worker threads (0: all cores)")
+        ->check(in_range(0, 1024))
         ->capture_default_str();
     add_common(cmd, *opts, {/*wavelength=*/false, /*tolerance=*/true});
     cmd->callback([=] { run_table(*t, *opts); });
   }
   {
-    auto* cmd = app.add_subcommand("distribution", "moments and checks of a size distribution: a preset (" +
-                                                       preset_names() + ") or a CSV file\n" +
-                                                       w::distribution_file_format() + "\n" + distribution_ranges());
+    auto* cmd = app.add_subcommand("distribution", "moments and checks of a size distribution (a preset or a CSV file)");
     auto what = std::make_shared<std::string>();
     auto density = std::make_shared<std::string>("1000");
     auto json = std::make_shared<bool>(false);
-    cmd->add_option("distribution", *what, "preset name or CSV path")->required();
+    cmd->add_option("distribution", *what,
+                    "a preset (" + preset_names() + ") or a CSV file (format: attenuvis help distribution-files)")
+        ->required();
     cmd->add_option("--bulk-density", *density,
                     "kg/m^3 for the water content (ice: 917); " + w::range_text(w::domain::bulk_density))
         ->capture_default_str();

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "build_info.hpp"
+#include "command_help.hpp"
 #include "commands.hpp"
 #include "process_group.hpp"
 
@@ -86,6 +87,8 @@ int attenuvis::cli::run_program(int argc, char** argv) {
   attenuvis::cli::register_scene_command(app);
   attenuvis::cli::register_reproduce(app);
   attenuvis::cli::register_optics(app);
+  attenuvis::cli::register_help(app);
+  attenuvis::cli::apply_help_layout(app);
   // Only `vg` shares its work; any other command on several processes would
   // do the same work on each and write the same files.
   if (attenuvis::cli::process_count() > 1 && (argc < 2 || std::string(argv[1]) != "vg"))

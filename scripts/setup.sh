@@ -18,6 +18,8 @@ packages=(
   python3-xarray python3-netcdf4           # optional there; its tests and examples use them
   python3-networkx                         # the space-syntax measures' independent reference (tests, benchmark)
   libopenmpi-dev openmpi-bin               # optional: `mpirun -np N attenuvis vg` (ATTENUVIS_MPI)
+  python3-sphinx python3-myst-parser python3-breathe doxygen  # the documentation (docs/): HTML and attenuvis(1)
+  man-db                                   # `man attenuvis` (the installed page)
 )
 # Callers add what only they need (scripts/test.sh: clang and its libFuzzer runtime).
 read -r -a extra <<<"${ATTENUVIS_EXTRA_PACKAGES:-}"

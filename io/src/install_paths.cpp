@@ -45,6 +45,14 @@ const std::string& installed_share_directory() {
   return dir;
 }
 
+std::string installed_documentation_directory() {
+  const std::string& share = installed_share_directory();
+  if (share.empty()) return {};
+  std::error_code ec;
+  const fs::path html = fs::path(share).parent_path() / "doc" / "attenuvis" / "html";
+  return fs::exists(html / "index.html", ec) ? html.string() : std::string();
+}
+
 std::string installed_or_source(const std::string& relative, const std::string& source_path) {
   const std::string& share = installed_share_directory();
   if (!share.empty()) {

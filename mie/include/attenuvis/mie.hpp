@@ -57,9 +57,11 @@ template <class Real>
 struct ComplexOf {
   using type = std::complex<Real>;
 };
+// The complex type of a real type: std::complex<double>, or the referee's.
 template <class Real>
 using Complex = typename ComplexOf<Real>::type;
 
+// Efficiencies of one sphere (cross sections over πr², see above) and the term count.
 template <class Real>
 struct Efficiencies {
   Real qext{}, qsca{}, qabs{}, qback{}, qpr{}, g{};
@@ -110,6 +112,8 @@ struct Extras {
   std::vector<double> angles_deg;
 };
 
+// What scatter() returns: the efficiencies and, as asked in Extras, the
+// coefficients aₙ, bₙ and the amplitudes S1, S2 at the requested angles.
 template <class Real>
 struct Scattering {
   Efficiencies<Real> q;

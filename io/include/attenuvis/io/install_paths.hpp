@@ -15,6 +15,11 @@ namespace attenuvis::io {
 // Found once and remembered.
 const std::string& installed_share_directory();
 
+// <prefix>/share/doc/attenuvis/html beside that share directory (where
+// `cmake --install` puts the HTML documentation) when it holds an index.html;
+// "" otherwise.
+std::string installed_documentation_directory();
+
 // installed_share_directory()/relative when that exists, else source_path.
 std::string installed_or_source(const std::string& relative, const std::string& source_path);
 

@@ -17,6 +17,7 @@
 
 namespace attenuvis::io {
 
+// A netCDF-4 dataset being written; it appears at its destination on commit().
 class NetcdfFile {
  public:
   static constexpr int global = -1;  // NC_GLOBAL: the variable id of the global attributes

@@ -20,6 +20,7 @@
 
 namespace attenuvis::io {
 
+// One output file, written under a temporary name and renamed into place by commit().
 class StagedFile {
  public:
   // Throws std::runtime_error naming `path` when it cannot be staged.

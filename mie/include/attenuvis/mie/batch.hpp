@@ -26,6 +26,7 @@
 
 namespace attenuvis::mie::batch {
 
+// One sphere of the batch input: size parameter and relative index.
 struct Problem {
   double x = 0;  // the sphere's (a layered one's outer) size parameter
   std::complex<double> m;
@@ -39,6 +40,8 @@ struct Problem {
 // std::invalid_argument (message without the line number) for a bad one.
 std::optional<Problem> parse_line(const std::string& line);
 
+// The output's header line and one sphere's row: its input as the shortest text
+// that reads back to it, the efficiencies with 17 significant digits.
 const char* csv_header();  // "x,m_re,m_im,qext,qsca,qabs,qback,qpr,g,terms"
 std::string csv_row(const Problem& p, const Efficiencies<double>& q);
 

@@ -46,6 +46,7 @@
 
 namespace attenuvis::mie {
 
+// S(0) at one (complex) size parameter, with what bounds its rounding error.
 struct ForwardAmplitude {
   std::complex<double> s0;  // S(0) = ½ Σ (2n+1)(aₙ + bₙ)
   double magnitude = 0;     // ½ Σ (2n+1)(|aₙ| + |bₙ|): the scale of the rounding error

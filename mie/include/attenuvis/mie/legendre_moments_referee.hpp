@@ -14,9 +14,10 @@
 
 namespace attenuvis::mie {
 
+// phase_function_moments() and scattering_matrix_expansion() at 50 digits, from
+// the referee's coefficients (the tests' reference for the double versions).
 std::vector<Referee> phase_function_moments_referee(const Scattering<Referee>& s,
                                                     std::size_t max_order = all_orders);
-
 ScatteringMatrixExpansion<Referee> scattering_matrix_expansion_referee(const Scattering<Referee>& s,
                                                                        std::size_t max_order = all_orders);
 

@@ -5,6 +5,7 @@
 
 namespace attenuvis::mie {
 
+// Working precision of the recurrences (Options::precision in attenuvis/mie.hpp).
 enum class Precision {
   double_precision,  // IEEE double throughout (fast; the error grows with x)
   extended,          // x87 extended (long double, 64-bit significand) where errors accumulate

@@ -18,13 +18,17 @@
 
 namespace attenuvis::mie {
 
+// The referee's real type: 50 decimal digits (Boost.Multiprecision).
 using Referee = boost::multiprecision::cpp_bin_float_50;
 
+// Its complex type: 50-digit complex numbers.
 template <>
 struct ComplexOf<Referee> {
   using type = boost::multiprecision::cpp_complex_50;
 };
 
+// scatter() at 50 digits: the same equations and recurrences as the double
+// core, the reference every accuracy test compares with.
 Scattering<Referee> scatter_referee(const Referee& x, const Complex<Referee>& m, const Extras& extras = {},
                                     const Options& options = {});
 Scattering<Referee> scatter_referee(const Referee& x, PerfectConductor, const Extras& extras = {},

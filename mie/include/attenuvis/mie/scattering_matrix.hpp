@@ -38,6 +38,7 @@
 
 namespace attenuvis::mie {
 
+// The scattering matrix at the requested angles and the phase function it gives.
 struct ScatteringMatrix {
   std::vector<double> angles_deg;        // scattering angles θ (degrees), as requested
   std::vector<double> s11, s12, s33, s34;  // B&H 4.77, unnormalised
@@ -53,12 +54,15 @@ ScatteringMatrix scattering_matrix(double x, const Scattering<double>& s);
 // The same, computing the amplitudes itself.
 ScatteringMatrix scattering_matrix(double x, std::complex<double> m, const std::vector<double>& angles_deg);
 
+// What a lidar sees of one sphere.
 struct Lidar {
   double backscatter_per_sr = 0;       // Qback/(4π)
   double lidar_ratio_sr = 0;           // 4π Qext/Qback (infinite when Qback = 0)
   double linear_depolarisation = 0;    // always 0 for a sphere, see above
 };
 
+// The lidar quantities of a sphere from its efficiencies: Qback/4π, 4πQext/Qback
+// and a linear depolarisation of 0 (S22 = S11 for every sphere).
 Lidar lidar(const Efficiencies<double>& q);
 
 }  // namespace attenuvis::mie

@@ -26,6 +26,7 @@
 
 namespace attenuvis::mie {
 
+// How spheres() evaluates: the options of sphere() and the threads to use.
 struct SpheresOptions {
   Options options;       // term rule and precision, as for sphere()
   unsigned threads = 0;  // 0: std::thread::hardware_concurrency(); 1: the calling thread only
@@ -39,6 +40,7 @@ struct SpheresOptions {
 // "avx512" (x86-64-v4), "avx2" (x86-64-v3), "generic" (any CPU).
 std::vector<std::string> spheres_instruction_sets();
 
+// A sphere spheres() could not evaluate, and why.
 struct SphereError {
   std::size_t index;    // position in the input arrays
   std::string message;  // what is wrong with it (as sphere() would throw)

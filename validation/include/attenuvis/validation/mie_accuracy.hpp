@@ -69,6 +69,7 @@ struct ErrorTimeOptions {
 /// Same table, stopping at x = 1e4 with 3 samples: a few seconds in total.
 ErrorTimeOptions quick_error_time_options();
 
+// One sphere of the error-against-time table: each term rule's error and time.
 struct ErrorTimeRow {
   double x = 0;
   std::complex<double> m;

@@ -22,6 +22,8 @@
 
 namespace attenuvis::validation {
 
+// The Mie core of an earlier commit, loaded from its shared library to be timed
+// beside the current one.
 class MieBaseline {
  public:
   /// Loads the library; throws std::runtime_error naming the path and the
@@ -36,6 +38,7 @@ class MieBaseline {
   SharedLibrary library_;
 };
 
+// The grid of size parameters and indices, and the timing blocks, of a speed table.
 struct SpeedOptions {
   std::vector<double> xs = {0.1, 1, 10, 100, 1e3, 1e4, 1e5, 1e6};
   std::vector<std::complex<double>> ms = {{1.0001, 0.0}, {1.33, 1e-8}, {1.5, 0.1}, {10.0, 10.0}};
@@ -45,6 +48,7 @@ struct SpeedOptions {
   double max_referee_x = 1e4;
 };
 
+// One cell of a speed table: ns per call of each core, and their errors.
 struct SpeedCell {
   double x = 0;
   std::complex<double> m;
@@ -58,6 +62,8 @@ struct SpeedCell {
 /// measured (negative, as SpeedCell's and Miev0Cell's -1).
 std::string measured_error_text(double err);
 
+// Times sphere() against the earlier core on every cell of `options`, in
+// alternating blocks of thread CPU time.
 std::vector<SpeedCell> mie_speed_vs_baseline(const MieBaseline& baseline, const SpeedOptions& options = {});
 
 /// Throughput over many spheres (x uniform in [x_min, x_max], one index):

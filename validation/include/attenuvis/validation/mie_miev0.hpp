@@ -18,6 +18,8 @@
 
 namespace attenuvis::validation {
 
+// Wiscombe's MIEV0, compiled by the user into a shared library
+// (validation/bench/miev0/build_miev0.sh) and loaded to be timed.
 class Miev0Library {
  public:
   /// Loads the library; throws std::runtime_error naming the path and the
@@ -45,6 +47,7 @@ struct Miev0Cell {
   /// attenuvis default time / MIEV0 time (below 1: attenuvis is faster).
   double ratio() const { return ns_default / ns_miev0; }
 };
+// Times sphere() against MIEV0 on every cell of `options`, and the table of it.
 std::vector<Miev0Cell> mie_speed_vs_miev0(const Miev0Library& miev0, const SpeedOptions& options = {});
 std::string format_speed_vs_miev0(const std::vector<Miev0Cell>& cells);
 

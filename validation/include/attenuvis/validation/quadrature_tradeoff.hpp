@@ -9,6 +9,7 @@
 
 namespace attenuvis::validation {
 
+// One run of the quadrature trade-off: a tolerance, its cost and its error.
 struct QuadratureTradeoffRow {
   std::string case_name;      // e.g. "fog:advection @ 550 nm"
   double rel_tolerance = 0;

@@ -84,8 +84,10 @@ inline Paragraph verdict(std::string kind, std::string claim, std::string ours, 
   return p;
 }
 
+// One block of a section's body.
 using Block = std::variant<Paragraph, Table, Figure>;
 
+// One numbered section of the report: its blocks and its summary lines.
 struct Section {
   std::string id;
   std::string title;
@@ -112,6 +114,7 @@ struct Section {
   void figure(Figure f) { blocks.push_back(std::move(f)); }
 };
 
+// The whole report: its sections, in order, and how the run was made.
 struct Report {
   std::string title;
   std::string preamble;                    // how the run was made (machine, options, time)

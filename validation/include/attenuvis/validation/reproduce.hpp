@@ -21,6 +21,7 @@
 
 namespace attenuvis::validation {
 
+// What `attenuvis reproduce` is asked for.
 struct ReproduceOptions {
   std::string out_dir = "out";
   bool quick = false;          // small version for tests: coarse grids, small city, few Mie points
@@ -35,6 +36,7 @@ struct ReproduceOptions {
   std::string mie_baseline;
 };
 
+// What a reproduction wrote and found.
 struct ReproduceResult {
   std::string report_path;                 // out_dir/report.html ("" when figures/report skipped)
   std::map<std::string, double> key;       // named key numbers (see key.json)

@@ -7,6 +7,7 @@
 
 namespace attenuvis::validation {
 
+// A shared library opened with dlopen and one symbol of it, closed on destruction.
 class SharedLibrary {
  public:
   /// Opens `path` and finds `symbol`; throws std::runtime_error

@@ -39,6 +39,8 @@ struct ThroughputOptions {
   bool brute_force = false;  // also time the engine with culling off (every pair cast)
 };
 
+// Pairs per second of the visibility pass against raw Embree occlusion rays on
+// the same pairs, measured in one run.
 struct Throughput {
   std::size_t nodes = 0;
   std::uint64_t pairs = 0;  // unordered pairs, N (N-1) / 2
@@ -59,6 +61,7 @@ struct Throughput {
   bool visible_agree() const;  // every method found the same number of visible pairs
 };
 
+// Measures the pass and raw Embree on `eyes` as `options` says.
 Throughput measure_throughput(const visgraph::Scene& scene, const std::vector<Eigen::Vector3d>& eyes,
                               const ThroughputOptions& options);
 
@@ -135,6 +138,7 @@ struct AllocationCounter {
   std::int64_t (*peak_bytes)() = nullptr;
 };
 
+// Measures the memory one pass allocates (through `counter`) against its estimate.
 MemoryUse measure_memory(const visgraph::Scene& scene, const std::vector<Eigen::Vector3d>& eyes,
                          const std::vector<double>& sigmas, int threads, const AllocationCounter& counter = {});
 
@@ -151,6 +155,7 @@ struct PruningPoint {
   std::size_t bound_violations = 0;
 };
 
+// Times a pruned pass and measures its error against the exact `reference`.
 PruningPoint measure_pruning(const visgraph::Scene& scene, const std::vector<Eigen::Vector3d>& eyes, double sigma,
                              double prune_below, const std::vector<double>& reference, int threads, int repeats);
 

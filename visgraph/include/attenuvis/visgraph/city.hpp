@@ -73,6 +73,7 @@ struct HeightField {
   double operator()(double x, double y) const;
 };
 
+// One hexagonal block of the synthetic city: its sidewalk ring and its lot.
 struct CityBlock {
   Eigen::Vector2d centre;
   double outer_apothem;       // m, block edge (outer edge of the sidewalk), centre to side
@@ -86,6 +87,7 @@ struct CityIntersection {
   int degree;
 };
 
+// A crossing of a street between two blocks' sidewalks.
 struct CityCrosswalk {
   Eigen::Vector3d centre;     // on the terrain, middle of the crossing
   Eigen::Vector2d across;     // unit, from one sidewalk to the other
@@ -104,12 +106,14 @@ struct CitySidewalkCorner {
   int intersection;           // index of the junction the corner faces
 };
 
+// A box building on a block's lot, set into the terrain.
 struct CityBuilding {
   std::array<Eigen::Vector2d, 4> footprint;  // convex, counter-clockwise
   double base_z, top_z;
   int block;
 };
 
+// The synthetic city: its mesh and the parts it was built from.
 struct City {
   Mesh mesh;
   HeightField terrain;

@@ -17,12 +17,14 @@
 
 namespace attenuvis::visgraph {
 
+// How a CityJSON file is read.
 struct CityJsonOptions {
   // Level of detail to read, as the file writes it ("2", "2.2"); empty:
   // each city object's highest LoD.
   std::string lod;
 };
 
+// What a CityJSON file held and what reading it skipped.
 struct CityJsonReport {
   std::string version;              // "1.0", "1.1", "2.0"
   std::size_t city_objects = 0;     // in the file

@@ -30,6 +30,7 @@ std::string geojson_text(const ScoreTable& table, const std::string& crs);
 // spelling; other names unchanged.
 std::string geojson_crs_name(const std::string& crs);
 
+// The points of a GeoJSON node file, with the file's CRS.
 struct GeoJsonPoints {
   std::vector<Eigen::Vector3d> points;
   std::string crs;  // the file's crs member, empty if none

@@ -27,6 +27,7 @@ constexpr double kMaxEyeHeight = 1e3;           // m
 constexpr std::size_t kMaxSceneFileBytes = std::size_t{2} << 30;  // 2 GiB
 constexpr std::size_t kMaxNodeFileBytes = std::size_t{512} << 20;  // 512 MiB
 constexpr std::size_t kMaxLineBytes = std::size_t{1} << 20;       // 1 MiB
+// The most vertices of one OBJ face or CityJSON surface: ear clipping is quadratic.
 constexpr std::size_t kMaxPolygonVertices = 10000;
 
 // Throws std::invalid_argument "WHERE: coordinate VALUE is outside

@@ -14,6 +14,8 @@
 
 namespace attenuvis::visgraph {
 
+// A triangle mesh with a group (and optionally a class) per triangle, and the CRS
+// of its coordinates.
 struct Mesh {
   std::vector<Eigen::Vector3d> vertices;
   std::vector<std::array<std::uint32_t, 3>> triangles;
@@ -58,6 +60,7 @@ void add_ground_plane_at(Mesh& mesh, double z, double margin = 1.0);
 std::string preview_names(const std::vector<std::string>& names, std::size_t shown = 5,
                           const std::string& more_hint = "");
 
+// Triangles and projected area per group and per class, largest first.
 struct MeshStats {
   struct Group {
     std::string name;
@@ -70,6 +73,7 @@ struct MeshStats {
   std::vector<Group> groups;
   std::vector<Group> classes;     // empty when the mesh has no classes
 };
+// The statistics `scene info` prints.
 MeshStats mesh_stats(const Mesh& mesh);
 
 }  // namespace attenuvis::visgraph

@@ -33,8 +33,10 @@
 
 namespace attenuvis::visgraph {
 
+// The most grid cells a node grid may have without --allow-large.
 constexpr double kDefaultMaxGridCells = 1e7;
 
+// Where node_grid() places eye points.
 struct NodeGridOptions {
   double spacing = 1.0;     // m, grid pitch (cell centres at min + (i + 1/2) spacing)
   double eye_height = 1.7;  // m above the walkable surface
@@ -69,6 +71,7 @@ struct SurfaceCount {
   std::size_t nodes = 0;
 };
 
+// The eye points of a grid, and where they stand.
 struct NodeSet {
   std::vector<Eigen::Vector3d> eyes;  // world frame
   double spacing = 0;                 // m, the grid's spacing

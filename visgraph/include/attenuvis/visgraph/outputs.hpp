@@ -45,6 +45,7 @@ std::vector<std::string> score_columns(const ScoreTable& table);
 // the available columns otherwise.
 std::vector<double> score_values(const ScoreTable& table, const std::string& column);
 
+// The score table as CSV x,y,z,degree,sum:COND,avg:COND,... (a file is staged).
 void write_csv(const std::string& path, const ScoreTable& table);
 void write_csv(std::ostream& out, const ScoreTable& table);
 
@@ -85,6 +86,7 @@ struct ConditionInfo {
   std::string model, convention, note;
 };
 
+// How a run was made, for the JSON summary.
 struct RunInfo {
   std::string scene;              // file or generator spec
   std::string scene_report;       // describe(scene)

@@ -24,6 +24,7 @@ namespace detail {
 struct SceneAccess;  // the library's own kernels reach Embree through it (src/scene_access.hpp)
 }
 
+// An axis-aligned box.
 struct BoundingBox {
   Eigen::Vector3d min, max;
   Eigen::Vector3d centre() const { return 0.5 * (min + max); }
@@ -36,6 +37,7 @@ struct GroupInfo {
   std::size_t triangles = 0;
 };
 
+// A mesh made ready for Embree's ray queries, in a frame centred on it.
 class Scene {
  public:
   // Builds the BVH (robust, high quality) on the process's one Embree device.

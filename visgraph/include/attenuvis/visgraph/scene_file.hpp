@@ -17,11 +17,13 @@ enum class UpAxis { z, y };
 // Parses "z" or "y"; throws std::invalid_argument otherwise.
 UpAxis parse_up_axis(const std::string& text);
 
+// How a scene file is read.
 struct SceneFileOptions {
   UpAxis obj_up_axis = UpAxis::z;
   std::string lod;  // CityJSON level of detail (cityjson.hpp)
 };
 
+// A scene file read: its mesh, what it was and what the reader warned about.
 struct SceneFile {
   Mesh mesh;                          // z up
   std::string format;                 // "CityJSON 2.0", "CityJSONSeq 2.0", "glTF", "OBJ"

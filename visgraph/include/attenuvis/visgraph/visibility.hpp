@@ -68,6 +68,7 @@
 
 namespace attenuvis::visgraph {
 
+// One visible pair and its distance.
 struct Edge {
   std::uint32_t i, j;  // node indices (targets mode: j indexes the targets)
   double distance;     // m
@@ -104,6 +105,7 @@ struct PassShare {
   std::function<void(std::vector<std::int64_t>& sums, std::vector<double>& maxima)> combine;
 };
 
+// What a visibility pass computes, and how.
 struct VisibilityOptions {
   std::vector<double> sigmas;            // extinction coefficients, 1/m, each finite and >= 0
   bool distance_stats = false;           // mean and max visible distance
@@ -149,6 +151,7 @@ struct Cancelled : std::runtime_error {
   Cancelled() : std::runtime_error("visibility pass cancelled") {}
 };
 
+// The scores of every node for every sigma, and what the pass did.
 struct VisibilityResult {
   std::size_t nodes = 0;
   bool degree_exact = true;                 // false: degree/distances withheld (pruning)

@@ -16,6 +16,7 @@ namespace attenuvis::visgraph {
 // it): at the ~10^7 pairs/s of a few cores that is minutes of work.
 constexpr double kDefaultMaxPairs = 2e9;
 
+// The work a pass would do: nodes, pairs and bytes of accumulators.
 struct WorkEstimate {
   std::size_t nodes = 0;
   std::size_t targets = 0;        // 0 for all-to-all

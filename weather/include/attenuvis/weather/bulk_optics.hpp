@@ -83,6 +83,7 @@ using EfficiencyFunction = std::function<Efficiency(double x)>;
 // several spheres per instruction (mie::spheres) pays off.
 using EfficiencyBatch = std::function<void(const double* x, std::size_t n, Efficiency* out)>;
 
+// How the bulk integrals are computed, and which quantities they compute.
 struct QuadratureSettings {
   double rel_tolerance = 1e-9;     // on every integral, relative to sigma_ext
   int kronrod_points = 31;         // Boost.Math gauss_kronrod order: 15, 21, 31, 41, 51 or 61
@@ -109,6 +110,7 @@ struct QuadratureSettings {
   const std::atomic<bool>* cancel = nullptr;  // checked once per panel: Cancelled when set (cancel.hpp)
 };
 
+// An integral and the parts of its error bound.
 struct IntegralEstimate {
   double value = 0;
   double quadrature_error = 0, tail_error = 0, asymptotic_error = 0, resonance_error = 0;
@@ -116,6 +118,7 @@ struct IntegralEstimate {
   double error() const { return quadrature_error + tail_error + asymptotic_error + resonance_error + rounding_error; }
 };
 
+// The bulk single-scattering optics of a size distribution, each with its error.
 struct BulkOptics {
   IntegralEstimate extinction, scattering, absorption;  // 1/m
   double albedo = 0, albedo_error = 0;

@@ -86,6 +86,7 @@ struct ParametricDrops {
 // True for the families that need N= or lwc= to fix their amount.
 bool needs_amount(const ParametricDrops& d);
 
+// The drops of a Mie condition: one of the kinds above.
 using Drops = std::variant<MarshallPalmerRain, FogPreset, DistributionFile, ParametricDrops>;
 
 // The refractive index: Settings::water_table, a named table (WaterTable,
@@ -119,6 +120,7 @@ struct Coating {
   std::complex<double> shell_m;      // n + i k, k >= 0
 };
 
+// A condition whose sigma is Mie scattering over a size distribution of drops.
 struct MieCondition {
   Drops drops;
   IndexSource index;
@@ -147,6 +149,7 @@ struct AerosolCondition {
   AerosolScaling scaling = AsGiven{};
 };
 
+// A weather condition, as the grammar (condition_grammar.hpp) reads it.
 using Condition = std::variant<ClearAir, Visibility, GivenSigma, RainPowerLaw, Snow, FogFromVisibility, MieCondition,
                                AerosolCondition>;
 

@@ -13,6 +13,7 @@
 
 namespace attenuvis::weather {
 
+// Which bulk quantities condition_optics() computes beyond sigma_ext ... g.
 struct OpticsRequest {
   bool backscatter = true;
   int legendre_moments = -1;       // L >= 0: chi_0..chi_L
@@ -20,6 +21,7 @@ struct OpticsRequest {
   bool polarised = false;          // with legendre_moments >= 0: the whole matrix's expansion
 };
 
+// The bulk optics of a Mie condition at one wavelength, with how they were computed.
 struct ConditionOptics {
   BulkOptics bulk;
   double wavelength_m = 0;

@@ -43,6 +43,7 @@
 
 namespace attenuvis::weather {
 
+// The path and the tolerance of the contour integral.
 struct ContourSettings {
   double rel_tolerance = 1e-9;  // quadrature part, relative to sigma_ext
   double height = 4.0;          // H: the path's height in x above the real axis
@@ -60,6 +61,7 @@ struct ContourSettings {
   double effective_tail_fraction() const { return tail_fraction > 0 ? tail_fraction : 2e-2 * rel_tolerance; }
 };
 
+// sigma_ext from the contour, with its error and what it cost.
 struct ContourExtinction {
   IntegralEstimate extinction;  // 1/m, with quadrature, tail and rounding errors
   std::size_t evaluations = 0;

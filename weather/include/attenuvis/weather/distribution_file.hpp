@@ -27,6 +27,7 @@
 
 namespace attenuvis::weather {
 
+// Reads a size-distribution CSV (format above); errors name the file and line.
 SizeDistribution read_distribution_csv(const std::string& path);
 // `source` names the stream in error messages.
 SizeDistribution read_distribution_csv(std::istream& in, const std::string& source);

@@ -16,6 +16,7 @@
 
 namespace attenuvis::weather {
 
+// The valid range of one input quantity, in the unit it is written in.
 struct Domain {
   std::string_view quantity;  // "rain rate"
   std::string_view unit;      // "mm/h"; "" for a pure number
@@ -25,6 +26,7 @@ struct Domain {
 };
 
 namespace domain {
+// The valid range of every input quantity (the guide's table of valid ranges).
 inline constexpr Domain wavelength{"wavelength", "um", 1e-6, 0.2, 200};
 inline constexpr Domain visibility{"visibility", "m", 1, 1, 1e6};
 inline constexpr Domain sigma{"sigma", "1/m", 1, 1e-12, 1e3, true};
@@ -56,6 +58,7 @@ std::string range_text(const Domain& d);
 // "  rain rate  [0.01, 500] mm/h" lines for every domain (help texts).
 std::string domains_help();
 
+// True when the value lies in the domain.
 bool in_domain(const Domain& d, double value_in_unit);
 
 // Return the value, or throw std::invalid_argument

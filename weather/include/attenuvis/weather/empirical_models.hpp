@@ -71,6 +71,7 @@ const VisibilityFogModelInfo& info(VisibilityFogModel m);
 const VisibilityFogModelInfo* find_visibility_fog_model(const std::string& name);  // nullptr for any other name
 std::string to_string(VisibilityFogModel m);  // its name
 
+// sigma of an empirical model and the formula it came from.
 struct EmpiricalResult {
   double sigma_per_m = 0;
   std::string model;    // formula and source

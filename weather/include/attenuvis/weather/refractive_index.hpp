@@ -48,6 +48,7 @@ std::string to_string(WaterTable t);  // its name: "hale-querry" | "segelstein" 
 // The names for messages: "hale-querry, segelstein or ice".
 std::string water_table_names();
 
+// A refractive-index table over wavelength, interpolated in ln(wavelength).
 class RefractiveIndexTable {
  public:
   // Reads a "wavelength_um,n,k" CSV whose '#' lines hold the citation.

@@ -22,6 +22,7 @@
 
 namespace attenuvis::weather {
 
+// One name of a registry, with its units, help and source.
 struct RegistryEntry {
   std::string name;      // as the grammar, the command line and Python spell it
   std::string units;     // of what it names ("dB/km", "1/m"); "" where none is meaningful

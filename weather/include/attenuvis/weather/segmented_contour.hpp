@@ -60,6 +60,7 @@
 
 namespace attenuvis::weather {
 
+// The path and the tolerance of the segmented contour.
 struct SegmentedContourSettings {
   double rel_tolerance = 1e-9;  // quadrature + near-axis + rounding, relative to sigma_ext
   double height = 4.0;          // H: the path's height in x above the real axis

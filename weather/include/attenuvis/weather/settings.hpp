@@ -9,6 +9,7 @@
 
 namespace attenuvis::weather {
 
+// The settings every sigma depends on besides the condition and the wavelength.
 struct Settings {
   Convention convention = Convention::itu;  // how P.1817 power laws are read (units.hpp)
   double contrast_threshold = 0.02;         // Koschmieder epsilon: 0.02 (3.912) or 0.05 (2.996)

@@ -18,6 +18,7 @@ struct ErrorTerm {
   double per_m = 0;
 };
 
+// The extinction coefficient of a condition, with its error, model and method.
 struct Sigma {
   double per_m = 0;        // extinction coefficient, 1/m (neper)
   double error_per_m = 0;  // estimated bound on |per_m - true|; 0 for closed-form models (exact by definition)

@@ -31,6 +31,7 @@
 
 namespace attenuvis::weather {
 
+// One wavelength x condition of a table.
 struct TableCell {
   Sigma sigma;                       // always
   std::optional<BulkOptics> optics;  // Mie conditions, when a quantity needs it
@@ -42,6 +43,7 @@ struct QuantityValue {
   double value, error;
 };
 
+// A table of quantities over wavelengths x conditions.
 struct SigmaTable {
   std::vector<double> wavelengths_m;
   std::vector<LabelledCondition> conditions;  // labels: the "condition" column
@@ -53,6 +55,7 @@ struct SigmaTable {
   const TableCell& at(std::size_t w, std::size_t c) const { return cells[w * conditions.size() + c]; }
 };
 
+// The value and error of one quantity in a cell, or missing.
 QuantityValue table_value(const TableCell& cell, Quantity q);
 // The labels of the conditions with a missing value of some asked-for
 // quantity at some wavelength, in table order.
@@ -93,6 +96,7 @@ std::string phase_function_normalisation();
 // "phase_0.5deg" (the angle as the shortest text that reads back to it).
 std::string phase_column_name(double angle_deg);
 
+// The file formats of a table, and their names.
 enum class TableFormat { csv, json, netcdf };
 TableFormat parse_table_format(const std::string& text);  // "csv" | "json" | "netcdf"
 

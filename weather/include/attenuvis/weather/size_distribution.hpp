@@ -48,6 +48,7 @@ struct Support {
   double total_moment = 0;    // integral of r^p n(r) over all r, SI
 };
 
+// A size distribution n(r) (m^-4) in one of the forms above, with its support.
 class SizeDistribution {
  public:
   using Form = std::variant<ModifiedGamma, LogNormal, PowerLaw, Tabulated>;
@@ -134,6 +135,7 @@ struct Moments {
 };
 Moments moments(const SizeDistribution& d, double bulk_density_kg_m3 = 1000.0);
 
+// The distribution scaled to a number density or to a water content.
 SizeDistribution normalised_to_number(const SizeDistribution& d, double number_per_m3);
 SizeDistribution normalised_to_water_content(const SizeDistribution& d, double kg_per_m3,
                                              double bulk_density_kg_m3 = 1000.0);

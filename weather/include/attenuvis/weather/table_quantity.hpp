@@ -21,8 +21,10 @@
 
 namespace attenuvis::weather {
 
+// The quantities a table can hold (moments and the phase function aside).
 enum class Quantity { sigma_ext, sigma_sca, sigma_abs, ssa, g, backscatter, lidar_ratio };
 
+// What unit a quantity takes in a table.
 enum class QuantityKind {
   coefficient,    // an attenuation coefficient: 1/m, 1/km or dB/km as the table's unit says
   dimensionless,  // a ratio (single-scattering albedo, asymmetry parameter): unit 1
@@ -33,6 +35,7 @@ enum class QuantityKind {
   steradian,      // the lidar (extinction-to-backscatter) ratio: sr
 };
 
+// A quantity's names, kind and descriptions, as every output writes them.
 struct QuantityInfo {
   Quantity id;
   std::string name;           // "sigma_ext"
@@ -91,6 +94,7 @@ struct ConditionParameter {
 };
 std::optional<ConditionParameter> condition_parameter(const Condition& c);
 
+// The names and units of a condition parameter's column or variable.
 struct ParameterInfo {
   ParameterKind kind;
   std::string name;           // base of the column / variable name: "rate", "visibility", "given_sigma"
@@ -100,6 +104,7 @@ struct ParameterInfo {
   std::string udunits;        // "mm h-1", "m"; empty for given_sigma
   std::string column_suffix;  // of the CSV column: "mm_h", "m", "percent"; empty for given_sigma
 };
+// The registry entry of a parameter kind.
 const ParameterInfo& info(ParameterKind k);
 
 }  // namespace attenuvis::weather

@@ -20,19 +20,23 @@ namespace attenuvis::weather {
 // 10 log10(e): decibels per neper of power attenuation.
 inline constexpr double kDecibelPerNeper = 4.342944819032518;
 
+// How ITU-R P.1817-1's rain and snow power laws are read.
 enum class Convention {
   itu,   // P.1817 power laws are dB/km (as the Recommendation states); default
   seed,  // P.1817 power laws read as 1/km, as the seed paper does
 };
 
+// The convention's name, and the convention of a name.
 std::string to_string(Convention c);
 Convention parse_convention(const std::string& text);  // "itu" | "seed"
 
+// The units sigma is written in.
 enum class SigmaUnit { per_m, per_km, dB_per_km };
 
 std::string to_string(SigmaUnit u);                    // "1/m", "1/km", "dB/km"
 SigmaUnit parse_sigma_unit(const std::string& text);   // "m", "1/m", "km", "1/km", "dB/km"
 
+// Conversions of sigma between 1/m, 1/km and dB/km (kDecibelPerNeper).
 inline double per_m_to_per_km(double s) { return s * 1e3; }
 inline double per_km_to_per_m(double s) { return s * 1e-3; }
 inline double per_m_to_dB_per_km(double s) { return s * 1e3 * kDecibelPerNeper; }

@@ -11,6 +11,7 @@
 
 namespace attenuvis::weather {
 
+// Koschmieder's visibility V = -ln(threshold)/sigma, in metres.
 inline double koschmieder_visibility_m(double sigma_per_m, double threshold = 0.02) {
   if (!(threshold > 0 && threshold < 1)) throw std::invalid_argument("contrast threshold must lie in (0, 1)");
   if (!(sigma_per_m > 0)) throw std::invalid_argument("visibility needs sigma > 0");
@@ -24,6 +25,7 @@ inline double sigma_from_visibility_per_m(double visibility_m, double threshold 
   return -std::log(threshold) / visibility_m;
 }
 
+// The contrast left after a distance: C = exp(-sigma d).
 inline double contrast_ratio(double sigma_per_m, double distance_m) { return std::exp(-sigma_per_m * distance_m); }
 
 }  // namespace attenuvis::weather
