@@ -81,7 +81,7 @@ TEST_CASE("building bases come from GroundSurfaces, or else from the feet of ver
   CHECK(lowest.points[0] == Vector3d(0, 0, 3));
 }
 
-TEST_CASE("a flat model keeps its plane at the lowest z; a plane under floating bases is refused or counted", "[visgraph][ground]") {
+TEST_CASE("a flat model keeps its plane at the lowest z, and a plane under floating bases is refused or counted", "[visgraph][ground]") {
   // solid_lods_hole_v1.1: one house, base at z = 0.
   const std::string house = std::string(ATTENUVIS_TEST_DATA_DIR) + "/visgraph/cityjson/solid_lods_hole_v1.1.city.json";
   Mesh m = vg::load_cityjson(house);

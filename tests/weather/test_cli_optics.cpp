@@ -60,7 +60,7 @@ TEST_CASE("optics text names every quantity and the method", "[weather][cli][opt
 TEST_CASE("optics rejects bad input with a message naming it", "[weather][cli][optics]") {
   auto r = run("optics rain:8 --wavelength 1.55um");
   CHECK(r.status != 0);
-  CHECK_THAT(r.output, Contains("condition 1") && Contains("not a size distribution"));
+  CHECK_THAT(r.output, Contains("condition 1") && Contains("has no particles"));
   r = run("optics fog:radiation --angles 0:200:10");
   CHECK(r.status != 0);
   CHECK_THAT(r.output, Contains("--angles '0:200:10'") && Contains("[0, 180]"));

@@ -85,7 +85,7 @@ TEST_CASE("index file: the nine formulas of refractiveindex.info", "[weather][in
   CHECK(silica.at(0.5875618e-6).real() == Approx(1.45846).margin(5e-6));  // Malitson's printed digits
 }
 
-TEST_CASE("index file: a formula for n with tabulated k; the range is the common one", "[weather][index]") {
+TEST_CASE("index file: a formula for n with tabulated k, over the range both cover", "[weather][index]") {
   const std::string text =
       "DATA:\n- type: formula 5\n  wavelength_range: 0.4 1.0\n  coefficients: 1.5 0.01 -2\n"
       "- type: tabulated k\n  data: |\n      0.3 1e-3\n      0.6 1e-4\n      0.9 1e-5\n";

@@ -3,7 +3,7 @@
 // run, on an open plane (every pair in sight), the Delfshaven CityJSON (real
 // LoD2 buildings) and the five layouts (visgraph_benchmark.hpp,
 // compare_with_floors; the benchmark visgraph_throughput prints the same
-// figures, docs/validation/visgraph-performance.md says how to rerun them).
+// figures, docs/validation/benchmarks.md says how to rerun them).
 #include <filesystem>
 #include <memory>
 #include <string>

@@ -66,7 +66,7 @@ Throughput measure_throughput(const visgraph::Scene& scene, const std::vector<Ei
                               const ThroughputOptions& options);
 
 // The two floors an all-to-all pass is measured against, on the same eye
-// points in the same run (docs/validation/visgraph-performance.md):
+// points in the same run (docs/validation/benchmarks.md):
 //  - rays: raw Embree casting every unordered pair (raw_visible_pairs,
 //    16-wide packets), no scoring;
 //  - scoring: raw_scoring_loop, every pair taken as in sight and scored as
@@ -78,6 +78,7 @@ double raw_scoring_loop(const std::vector<Eigen::Vector3d>& eyes, const std::vec
 // CPU seconds (user + system, every thread) of this process so far.
 double process_cpu_seconds();
 
+// The conditions, threads, repeats and floors of compare_with_floors.
 struct FloorOptions {
   std::vector<double> sigmas = seed_benchmark_sigmas();
   int threads = 1;
@@ -109,6 +110,8 @@ struct FloorComparison {
   double over_scoring() const { return scoring_cpu.best_s > 0 ? engine_cpu.best_s / scoring_cpu.best_s : 0.0; }
 };
 
+// The engine against raw Embree casting every pair and a raw vectorised
+// scoring loop, on the same eye points, in the same run.
 FloorComparison compare_with_floors(const visgraph::Scene& scene, const std::vector<Eigen::Vector3d>& eyes,
                                     const FloorOptions& options);
 

@@ -25,18 +25,21 @@
 
 namespace attenuvis::visgraph {
 
+// One polygon of a footprint: its outline and holes.
 struct FootprintPolygon {
   // rings[0] the outline, rings[1..] holes; each ring open (its first vertex
   // not repeated at the end) or closed, either orientation.
   std::vector<std::vector<Eigen::Vector3d>> rings;
 };
 
+// A building as a footprint (one or more polygons) and a height.
 struct BuildingFootprint {
   std::string id;  // the feature's id, for messages and as the prism's group
   std::vector<FootprintPolygon> polygons;
   double height = 0;  // m, > 0
 };
 
+// What the extruded prisms stand on.
 struct FootprintGround {
   const HeightGrid* terrain = nullptr;  // stand on it (takes precedence)
   bool vertex_z = false;                // stand on the vertices' own z

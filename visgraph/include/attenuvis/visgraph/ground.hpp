@@ -27,6 +27,7 @@
 
 namespace attenuvis::visgraph {
 
+// The group and CityGML-like class of the inferred ground's triangles.
 inline constexpr const char* kInferredGroundGroup = "inferred-ground";
 inline constexpr const char* kInferredGroundClass = "InferredGround";
 // Base points within this height of the lowest z (m) count as one flat
@@ -34,6 +35,7 @@ inline constexpr const char* kInferredGroundClass = "InferredGround";
 // within centimetres of it, well under an eye height.
 inline constexpr double kFlatBaseTolerance = 0.5;
 
+// The base points of a model's buildings, from which the ground is inferred.
 struct BuildingBases {
   // One point per distinct footprint position (xy to 1 mm), at the lowest
   // base height any building gives there.
@@ -56,18 +58,21 @@ BuildingBases building_bases(const Mesh& mesh);
 // an area (fewer than three, or all on one line).
 std::size_t add_inferred_ground(Mesh& mesh, const BuildingBases& bases);
 
+// Where a buildings-only model's ground comes from.
 enum class GroundRule {
   automatic,     // a plane at the lowest z when the bases are flat, else the inferred TIN
   lowest_plane,  // a plane at the lowest z; refused when bases stand above the eye
   plane_at,      // a plane at GroundRequest::plane_z, as asked
 };
 
+// The ground asked for: a rule and its parameters.
 struct GroundRequest {
   GroundRule rule = GroundRule::automatic;
   double plane_z = 0;       // m, for plane_at
   double eye_height = 1.7;  // m: a base higher than this above a plane leaves eyes under it
 };
 
+// The ground that was made, in numbers, for the run's report.
 struct GroundMade {
   bool inferred = false;       // a TIN; otherwise a plane at plane_z
   double plane_z = 0;

@@ -23,6 +23,7 @@
 
 namespace attenuvis::visgraph {
 
+// The generated hillside town: its slope, size, blocks and buildings.
 struct HillsideOptions {
   std::uint64_t seed = 20;          // the slope in per cent
   double size = 200.0;              // m, the town's side along x and y

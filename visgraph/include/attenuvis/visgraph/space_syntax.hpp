@@ -158,6 +158,7 @@ enum class Measure : unsigned {
 };
 constexpr unsigned kMeasureCount = 12;
 
+// A set of measures, one bit each.
 class MeasureSet {
  public:
   bool has(Measure m) const { return bits_ >> static_cast<unsigned>(m) & 1u; }
@@ -199,6 +200,8 @@ enum class GraphStorage { automatic, bit_rows, csr };
 // "auto", "bit-rows" or "csr"; false (and `storage` unchanged) otherwise.
 bool parse_graph_storage(const std::string& text, GraphStorage& storage);
 
+// What space_syntax computes: the conditions' graphs G_k, the measures,
+// their radius and how the lines of sight are held.
 struct SpaceSyntaxOptions {
   std::vector<double> sigmas;                       // one G_k each (1/m, finite, >= 0)
   GraphStorage storage = GraphStorage::automatic;
@@ -272,6 +275,7 @@ struct SpaceSyntaxColumn {
   std::vector<double> values;  // one per node, in the caller's order
 };
 
+// The measures as node columns, with each condition's graph in numbers.
 struct SpaceSyntaxResult {
   std::vector<SpaceSyntaxColumn> columns;
   std::vector<std::uint64_t> edges;       // per condition: lines of sight in G_k

@@ -20,6 +20,7 @@
 
 namespace attenuvis::visgraph {
 
+// The group and class of a DEM's triangles.
 inline constexpr const char* kTerrainGroup = "dem-terrain";
 inline constexpr const char* kTerrainClass = "DEMTerrain";
 

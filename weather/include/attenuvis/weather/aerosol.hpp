@@ -21,7 +21,9 @@
 
 namespace attenuvis::weather {
 
+// OPAC's ten components (Hess et al. 1998, Table 1), in OPAC's numbering.
 enum class AerosolComponent { inso, waso, soot, ssam, sscm, minm, miam, micm, mitr, suso };
+// A component's row of the registry: its name, OPAC number, help and growth.
 struct AerosolComponentInfo {
   AerosolComponent id;
   std::string name;       // "waso": as OPAC, the grammar and Python spell it
@@ -46,6 +48,7 @@ struct AerosolAmount {
   double per_cm3 = 0;
 };
 
+// OPAC's ten aerosol types (Hess et al. 1998, Table 4).
 enum class AerosolMixture {
   continental_clean,
   continental_average,
@@ -58,12 +61,15 @@ enum class AerosolMixture {
   arctic,
   antarctic
 };
+// A type's row of the registry: its name, help and components' amounts.
 struct AerosolMixtureInfo {
   AerosolMixture id;
   std::string name;                   // "continental-average": haze:continental-average
   std::string help;                   // "continental, average"
   std::vector<AerosolAmount> amounts;  // Hess et al. 1998, Table 4
 };
+// Every type in the order of the enum; the row of one; the row of a name
+// (nullptr for any other); its name; the names for messages.
 const std::vector<AerosolMixtureInfo>& aerosol_mixtures();
 const AerosolMixtureInfo& info(AerosolMixture m);
 const AerosolMixtureInfo* find_aerosol_mixture(const std::string& name);

@@ -59,6 +59,8 @@ SizeDistribution population_distribution(const AerosolPopulation& p, double per_
 // sum N_i rho_i 4/3 pi <r^3>_i of each component at 0 % RH within its cut-offs.
 double aerosol_dry_mass_ug_m3(const AerosolCondition& c);
 
+// The bulk optics of an aerosol condition (an external mixture) and how
+// they were scaled.
 struct AerosolOptics {
   BulkOptics bulk;             // the mixture, scaled
   double number_scale = 1;     // the visibility or mass scaling applied to every N_i (1: as given)

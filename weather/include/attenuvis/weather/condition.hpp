@@ -141,6 +141,8 @@ struct ScaledToDryMass {
 };
 using AerosolScaling = std::variant<AsGiven, ScaledToVisibility, ScaledToDryMass>;
 
+// An aerosol condition: the amounts of its components, the humidity, the
+// growth rule and the scaling.
 struct AerosolCondition {
   std::optional<AerosolMixture> mixture;  // the OPAC type the amounts are; none: the user's own
   std::vector<AerosolAmount> amounts;     // each component once

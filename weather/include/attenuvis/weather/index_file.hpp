@@ -36,12 +36,15 @@
 
 namespace attenuvis::weather {
 
+// How the sign of k in a three-column file is read.
 enum class ImaginarySign {
   detect,      // from the file's `# sign:` line, else from the signs of its k column
   n_plus_ik,   // k >= 0 in the file (Bohren & Huffman; refractiveindex.info)
   n_minus_ik,  // k <= 0 in the file (OPAC, Wiscombe's MIEV0)
 };
 
+// A material's refractive index m(lambda) = n + ik read from a file, over
+// the wavelengths the file covers.
 class MaterialIndex {
  public:
   // m = n + ik (k >= 0) at a vacuum wavelength in metres.  Throws
