@@ -202,7 +202,7 @@ def space_syntax_of_graph(eyes: ArrayLike, i: ArrayLike, j: ArrayLike, sigmas: A
     """The space-syntax measures of any graph given by its edges.
 
     The graph of nodes ``eyes`` with an edge (i[k], j[k]) for each k (each
-    pair once, i != j); distances are |eyes[i] - eyes[j]|.  Otherwise as
+    pair once, i != j); distances are ``|eyes[i] - eyes[j]|``.  Otherwise as
     :func:`space_syntax`, e.g. for an edge list written by ``attenuvis vg
     --edges`` or a graph from another program.
 
