@@ -1005,7 +1005,7 @@ class Optics:
     scattering_computed : bool
         False where Q_ext's large-x expansion was used (rain at short
         wavelengths): then only the extinction holds.
-    evaluations, floor_panels, max_size_parameter, method
+    evaluations, resonances_located, resonances_resolved, max_size_parameter, method
         How the integral was computed.
     m : complex
         The refractive index used.

@@ -70,7 +70,8 @@ class Optics:
     albedo: Tuple[float, float]
     asymmetry: Tuple[float, float]
     evaluations: int
-    floor_panels: int
+    resonances_located: int
+    resonances_resolved: int
     max_size_parameter: float
     scattering_computed: bool
     method: str

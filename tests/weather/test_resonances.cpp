@@ -84,9 +84,9 @@ TEST_CASE("resonance floor applies only to nearly non-absorbing spheres", "[weat
   auto d = SizeDistribution::log_normal(1e8, 3e-6, 1.03);
   auto lossy = bulk_optics(d, 550e-9, {1.333, 0.01});
   CHECK(lossy.extinction.resonance_error == 0);
-  CHECK(lossy.floor_panels == 0);
+  CHECK(lossy.resonances_located == 0);
   auto clear = bulk_optics(d, 550e-9, {1.333, 1.96e-9});
-  CHECK(clear.floor_panels > 0);
+  CHECK(clear.resonances_located > 0);
 }
 
 TEST_CASE("panels split in parallel give the same result on any number of threads", "[weather][resonance]") {
