@@ -159,9 +159,29 @@ class Refinement {
   }
 
   double scale(int c) const { return layout_.scale(c, value_); }
+
+  // The error of the quantity component c is reported as, relative to its
+  // tolerance times its scale: sigma_ext, sigma_sca and sigma_abs each get
+  // 0.45 of rel_tolerance x sigma_ext (so that the albedo, (err_sca + w
+  // err_ext) / sigma_ext, stays within it too); the ratios to sigma_sca (g,
+  // chi_l, p(theta), the expansion) carry (err_c + |v| err_sca) / sigma_sca
+  // as fill_optional reports them; beta_pi carries its own relative error
+  // plus sigma_ext's, so that the lidar ratio stays within its tolerance.
+  // 0.9 of each leaves room for the tails (1e-3 of the tolerance).
+  double share(int c) const {
+    const double tol = component_tolerance(layout_, c, s_);
+    const auto err = [&](int i) { return error_[i] + unresolved_[i]; };
+    const double ext = std::max(std::abs(value_[kExt]), 1e-300), sca = std::max(std::abs(value_[kSca]), 1e-300);
+    if (c == kExt || c == kSca || c == kAbs) return err(c) / (0.45 * tol * ext);
+    if (c == kBack) return (err(c) / std::max(std::abs(value_[c]), 1e-300) + err(kExt) / ext) / (0.9 * tol);
+    const double v = value_[c] / sca;
+    const double e = (err(c) + std::abs(v) * err(kSca)) / sca;
+    const bool relative = c >= layout_.angle(0) && c < layout_.expansion_at(0);  // p(theta)
+    return e / (0.9 * tol * (relative ? std::max(std::abs(v), 1e-300) : 1.0));
+  }
   bool met() const {
     for (int c : checked_)
-      if (error_[c] + unresolved_[c] > component_tolerance(layout_, c, s_) * scale(c)) return false;
+      if (share(c) > 1) return false;
     return true;
   }
 
@@ -205,15 +225,13 @@ class Refinement {
     if (met()) return;
     int worst = kExt;
     double ratio = 0;
-    for (int c : checked_) {
-      const double r = (error_[c] + unresolved_[c]) / (component_tolerance(layout_, c, s_) * scale(c));
-      if (r > ratio) ratio = r, worst = c;
-    }
+    for (int c : checked_)
+      if (share(c) > ratio) ratio = share(c), worst = c;
     const double tol = component_tolerance(layout_, worst, s_);
     throw std::runtime_error(component_name(worst) + " integral over " + d.describe() + ": relative tolerance " +
                              significant(tol, 3) + " not met after " + std::to_string(evaluations_) +
-                             " efficiency evaluations (estimated error " + significant(ratio * tol, 3) +
-                             " relative); the integrand is too rough or too wide for the evaluation budget "
+                             " efficiency evaluations (estimated error " + significant(ratio, 3) +
+                             " times that); the integrand is too rough or too wide for the evaluation budget "
                              "(raise max_evaluations or the tolerance)");
   }
 
@@ -427,7 +445,9 @@ detail::ResonancePlan resonance_plan(const Integrator& integ, const std::vector<
   Vec value(static_cast<std::size_t>(layout.size()), 0.0), allowed(value.size(), 0.0);
   for (const auto& p : first)
     for (std::size_t c = 0; c < value.size(); ++c) value[c] += p.kronrod[c];
-  for (int c : layout.checked()) allowed[c] = component_tolerance(layout, c, s) * layout.scale(c, value);
+  // Resonances may take up to half of this (resonance_plan.hpp), a fifth of
+  // what Refinement::share allows each quantity.
+  for (int c : layout.checked()) allowed[c] = 0.4 * component_tolerance(layout, c, s) * layout.scale(c, value);
   const double k = integ.wavenumber();
   std::vector<double> breakpoints_x;
   for (double r : support.breakpoints_m) breakpoints_x.push_back(k * r);

@@ -99,6 +99,9 @@ BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::
   angular_settings.backscatter = false;
   angular_settings.rel_tolerance = detail::angular_tolerance(s);
   angular_settings.angular_tolerance = detail::angular_tolerance(s);
+  // The tails as pass A cuts them: p(0) Q_sca grows like x^2, so the bound on
+  // the omitted drops (sampled maximum x omitted moment) needs the finer cut.
+  if (s.tail_fraction <= 0) angular_settings.tail_fraction = 1e-3 * s.rel_tolerance;
   const BulkOptics b = integrate_bulk_optics(d, wavelength_m, mie_efficiencies(m, angular_settings),
                                              angular_settings, m);
   out.moments = b.moments;
