@@ -7,7 +7,9 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
+#include "attenuvis/mie/detail/complex_ops.hpp"
 #include "attenuvis/mie/detail/lentz.hpp"
 
 namespace attenuvis::mie {
@@ -17,9 +19,15 @@ using Complex = std::complex<double>;
 
 // Dₙ(z) = ψₙ'(z)/ψₙ(z) from Lentz's continued fraction for ψ_{n−1}/ψₙ = Dₙ + n/z.
 template <class T>
+T reciprocal(const T& z) {
+  if constexpr (std::is_same_v<T, double>) return 1 / z;
+  else return detail::recip(z);  // one real division, not the library's complex one
+}
+template <class T>
 T log_derivative_at(int n, T z) {
-  const auto k_over_z = [z](double k) { return T(k) / z; };
-  return detail::riccati_psi_ratio<T, double>(static_cast<std::size_t>(n), k_over_z) - T(n) / z;
+  const T inv_z = reciprocal(z);
+  const auto k_over_z = [inv_z](double k) { return k * inv_z; };
+  return detail::riccati_psi_ratio<T, double>(static_cast<std::size_t>(n), k_over_z) - double(n) * inv_z;
 }
 
 // The real functions of one order at a real x (lossless index n_r): F_r of
@@ -98,7 +106,32 @@ std::vector<RealOrder> orders_at(double x, double index, int top) {
   return out;
 }
 
-RealOrder order_at(double x, double index, int n) { return orders_at(x, index, n)[static_cast<std::size_t>(n)]; }
+// One order at one real x, for the zero search: what orders_at gives for
+// order n, without the tunnelling factor and without tables.
+RealOrder order_at(double x, double index, int n) {
+  RealOrder o;
+  const double z = index * x;
+  double d = log_derivative_at<double>(n, z);
+  o.d_inner = d;
+  int sign = 1;
+  for (int k = n; k >= 1; --k) {
+    const double ratio = d + k / z;  // ψ_{k−1}/ψ_k at z
+    if (ratio < 0) sign = -sign;
+    d = k / z - 1 / ratio;
+  }
+  o.psi_sign = std::sin(z) >= 0 ? sign : -sign;
+  double chi_prev = std::cos(x), chi = std::cos(x) / x + std::sin(x);
+  for (int k = 2; k <= n; ++k) {
+    const double next = (2 * k - 1) / x * chi - chi_prev;
+    chi_prev = chi;
+    chi = next;
+    if (std::abs(chi) > 1e200) chi /= 1e200, chi_prev /= 1e200;
+  }
+  o.c = chi_prev / chi - n / x;
+  o.dc = riccati_slope(n, x, o.c);
+  o.dd_inner = riccati_slope(n, z, o.d_inner);
+  return o;
+}
 
 std::string describe(const ResonanceBracket& b) {
   std::ostringstream os;
@@ -140,9 +173,11 @@ struct ComplexOrder {
   Complex g, d_inner, d_outer;
 };
 ComplexOrder complex_order_at(Complex x, Complex m, int n) {
-  Complex ratio = Complex(1.0, 0.0) / x - Complex(0.0, 1.0);  // ξ₁/ξ₀, ξ₀ = −i e^{ix}
-  for (int k = 1; k < n; ++k) ratio = (2.0 * k + 1.0) / x - 1.0 / ratio;
-  return {1.0 / ratio - double(n) / x, log_derivative_at<Complex>(n, m * x), log_derivative_at<Complex>(n, x)};
+  const Complex inv_x = detail::recip(x);
+  Complex ratio = inv_x - Complex(0.0, 1.0);  // ξ₁/ξ₀, ξ₀ = −i e^{ix}
+  for (int k = 1; k < n; ++k) ratio = (2.0 * k + 1.0) * inv_x - detail::recip(ratio);
+  return {detail::recip(ratio) - double(n) * inv_x, log_derivative_at<Complex>(n, m * x),
+          log_derivative_at<Complex>(n, x)};
 }
 Complex f_complex(const ComplexOrder& o, ResonanceMode mode, Complex m) {
   return mode == ResonanceMode::electric ? m * o.g - o.d_inner : o.g - m * o.d_inner;
@@ -158,16 +193,17 @@ Complex f_complex_slope(const ComplexOrder& o, ResonanceMode mode, Complex m, Co
 // from ψ₀/ξ₀ = i sin(x) e^{−ix}; Dₖ(x) downward from Lentz's start at n.
 Complex psi_over_xi(Complex x, int n) {
   std::vector<Complex> psi_ratio(static_cast<std::size_t>(n) + 1);  // ψₖ/ψₖ₋₁
+  const Complex inv_x = detail::recip(x);
   Complex d = log_derivative_at<Complex>(n, x);
   for (int k = n; k >= 1; --k) {
-    psi_ratio[k] = 1.0 / (d + double(k) / x);
-    d = double(k) / x - 1.0 / (d + double(k) / x);
+    psi_ratio[k] = detail::recip(d + double(k) * inv_x);
+    d = double(k) * inv_x - psi_ratio[k];
   }
   Complex product = Complex(0.0, 1.0) * std::sin(x) * std::exp(Complex(0.0, -1.0) * x);
-  Complex xi_ratio = Complex(1.0, 0.0) / x - Complex(0.0, 1.0);
+  Complex xi_ratio = inv_x - Complex(0.0, 1.0);
   for (int k = 1; k <= n; ++k) {
-    if (k > 1) xi_ratio = (2.0 * k - 1.0) / x - 1.0 / xi_ratio;
-    product *= psi_ratio[k] / xi_ratio;
+    if (k > 1) xi_ratio = (2.0 * k - 1.0) * inv_x - detail::recip(xi_ratio);
+    product *= psi_ratio[k] * detail::recip(xi_ratio);
   }
   return product;
 }

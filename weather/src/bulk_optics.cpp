@@ -133,8 +133,12 @@ double component_tolerance(const Layout& layout, int c, const QuadratureSettings
 // tolerance times its scale (Layout::scale).
 class Refinement {
  public:
-  Refinement(const Integrator& integ, std::vector<Panel> panels, const QuadratureSettings& s, Vec unresolved)
-      : integ_(integ), s_(s), layout_(integ.layout()), checked_(layout_.checked()), panels_(std::move(panels)),
+  // extinction_only: the large-x expansion was used, so sigma_ext alone is
+  // reported (BulkOptics::scattering_computed) and alone governs the refinement.
+  Refinement(const Integrator& integ, std::vector<Panel> panels, const QuadratureSettings& s, Vec unresolved,
+             bool extinction_only)
+      : integ_(integ), s_(s), layout_(integ.layout()),
+        checked_(extinction_only ? std::vector<int>{kExt} : layout_.checked()), panels_(std::move(panels)),
         unresolved_(std::move(unresolved)) {
     const std::size_t n = static_cast<std::size_t>(layout_.size());
     if (unresolved_.empty()) unresolved_.assign(n, 0.0);
@@ -439,7 +443,8 @@ detail::NearbySamples nearby(const std::vector<Panel>& panels, const SizeDistrib
 // from the first pass's panels: each component may carry its tolerance
 // times its first estimate.
 detail::ResonancePlan resonance_plan(const Integrator& integ, const std::vector<Panel>& first, const Support& support,
-                                     const SizeDistribution& d, const QuadratureSettings& s, std::complex<double> m) {
+                                     const SizeDistribution& d, const QuadratureSettings& s, std::complex<double> m,
+                                     bool extinction_only) {
   if (!s.estimate_resonances) return {};
   const Layout& layout = integ.layout();
   Vec value(static_cast<std::size_t>(layout.size()), 0.0), allowed(value.size(), 0.0);
@@ -447,7 +452,8 @@ detail::ResonancePlan resonance_plan(const Integrator& integ, const std::vector<
     for (std::size_t c = 0; c < value.size(); ++c) value[c] += p.kronrod[c];
   // Resonances may take up to half of this (resonance_plan.hpp), a fifth of
   // what Refinement::share allows each quantity.
-  for (int c : layout.checked()) allowed[c] = 0.4 * component_tolerance(layout, c, s) * layout.scale(c, value);
+  for (int c : layout.checked())
+    if (!extinction_only || c == kExt) allowed[c] = 0.4 * component_tolerance(layout, c, s) * layout.scale(c, value);
   const double k = integ.wavenumber();
   std::vector<double> breakpoints_x;
   for (double r : support.breakpoints_m) breakpoints_x.push_back(k * r);
@@ -461,6 +467,25 @@ detail::ResonancePlan resonance_plan(const Integrator& integ, const std::vector<
       [&](double x0) { return nearby(first, d, k, x0); }, s.max_evaluations / detail::kPoleRulePoints);
 }
 
+// Where the large-x expansion of Q_ext replaces Mie (rain at optical
+// wavelengths), sigma_ext alone is computed and its error is at least the
+// expansion's bound; resolving resonances far below that would buy nothing.
+// The tolerances are then raised to half that bound (relative), as the first
+// panels estimate it: the result's error stays within ~1.5 times the bound.
+QuadratureSettings settings_beside_expansion(const std::vector<Panel>& first, const QuadratureSettings& s) {
+  double bound = 0, ext = 0;
+  for (const auto& p : first) {
+    bound += p.kronrod[kAsym];
+    ext += p.kronrod[kExt];
+  }
+  QuadratureSettings t = s;
+  if (!(bound > 0) || !(ext > 0)) return t;
+  const double floor = std::min(0.5 * bound / ext, 1e-2);
+  t.rel_tolerance = std::max(s.rel_tolerance, floor);
+  t.angular_tolerance = std::max(detail::angular_tolerance(s), floor);
+  return t;
+}
+
 BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double wavelength, const EfficiencyBatch& q,
                                       const QuadratureSettings& s, std::complex<double> m) {
   if (!(wavelength > 0)) throw std::invalid_argument("wavelength must be > 0");
@@ -470,18 +495,28 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   const Integrator integ(d, wavelength, q, s, m);
   const double k = 2 * kPi / wavelength;
   const std::vector<double> cuts = initial_cuts(support, s, k);
+  // A table of many rows has a panel per row at least: refuse before the work.
+  const double floor_evaluations = static_cast<double>(cuts.size()) * s.kronrod_points;
+  if (floor_evaluations > static_cast<double>(s.max_evaluations))
+    throw std::runtime_error("integral over " + d.describe() + ": its " + std::to_string(cuts.size()) +
+                             " pieces need at least " + significant(floor_evaluations, 3) +
+                             " efficiency evaluations, beyond the budget of " + std::to_string(s.max_evaluations) +
+                             "; merge rows or bins of the table");
   std::vector<Panel> panels = evaluate_tasks(integ, plain_tasks(cuts));
-  const detail::ResonancePlan plan = resonance_plan(integ, panels, support, d, s, m);
+  const QuadratureSettings t = settings_beside_expansion(panels, s);
+  bool extinction_only = false;
+  for (const auto& p : panels) extinction_only = extinction_only || p.used_asymptotic;
+  const detail::ResonancePlan plan = resonance_plan(integ, panels, support, d, t, m, extinction_only);
   std::size_t probe = 0;
   if (!plan.resolved.empty()) {
     for (const auto& p : panels) probe += p.evaluations;
     panels = evaluate_tasks(integ, tasks_with_resonances(cuts, plan, k));
   }
-  Refinement r(integ, std::move(panels), s, plan.unresolved_bound);
+  Refinement r(integ, std::move(panels), t, plan.unresolved_bound, extinction_only);
   r.refine();
   r.totals();
   r.require_met(d);
-  BulkOptics out = bulk_optics_result(r, support, s, tail_fraction, plan);
+  BulkOptics out = bulk_optics_result(r, support, t, tail_fraction, plan);
   out.evaluations += probe;
   return out;
 }

@@ -126,7 +126,9 @@ class Integrator {
     // takes on the panel; the range is estimated from the rule's nodes (which
     // fall at unrelated phases of the ripple) and widened by half.  Panels
     // that matter are split until resolved; the rest keep this bound.
-    if (p.x_span > resolved_x_span_)
+    // Beyond asymptotic_x the expansion of Q_ext is smooth: nothing to alias.
+    const bool expansion_only = s_.asymptotic_x > 0 && k_ * std::exp(a) >= s_.asymptotic_x;
+    if (p.x_span > resolved_x_span_ && !expansion_only)
       for (int c : layout_.checked()) {
         const double range = std::isfinite(p.q_hi[c] - p.q_lo[c]) ? p.q_hi[c] - p.q_lo[c] : 0.0;
         p.error[c] += 1.5 * range * std::abs(p.kronrod[kWeight]);

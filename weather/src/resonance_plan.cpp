@@ -38,6 +38,11 @@ void add(Vec& total, const Vec& v, double sign = 1) {
   for (std::size_t c = 0; c < total.size(); ++c) total[c] += sign * v[c];
 }
 
+// Half-width from which the Gauss-Kronrod panels (no wider than 2 in x where
+// resonances are, 31 nodes: spacing <= 0.1) sample a peak with two nodes or
+// more, so that |K - G| sees it: such a pole needs neither a panel nor a bound.
+constexpr double kSampledHalfWidth = 0.1;
+
 // Narrowest half-width a rule can resolve at x: the pole is located to about
 // n eps x and the sampled values near it carry eps x / gamma relative errors.
 double narrowest_resolvable(double x) { return 1e5 * std::numeric_limits<double>::epsilon() * std::max(x, 1.0); }
@@ -143,6 +148,7 @@ ResonancePlan plan_resonances(std::complex<double> m, double x_lo, double x_hi, 
     Candidate& c = candidates[i];
     const double x0 = c.pole.pole.real();
     if (x0 < x_lo || x0 > x_hi) continue;
+    if (c.pole.half_width() >= kSampledHalfWidth) continue;  // the panels' own nodes resolve it
     c.bound = resonance_bound(layout, c.pole.order, x0, std::abs(c.pole.residue), c.pole.half_width(), near(x0));
     c.share = worst_share(c.bound, allowed);
     add(unresolved, c.bound);

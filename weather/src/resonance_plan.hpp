@@ -36,6 +36,10 @@
 // with |R| replaced by their width estimate (>= |R|, resonances.hpp) and
 // |R|/gamma by 1.
 //
+// A located pole of half-width >= 0.1 needs neither: the Gauss-Kronrod
+// panels, no wider than 2 in x where resonances are (bulk_optics.hpp), sample
+// its peak with two nodes or more.
+//
 // The plan: brackets are located in the order of their estimated bound
 // relative to the allowed error, until the estimates of the rest sum to a
 // quarter of it; located poles are resolved (a product-rule panel each,
