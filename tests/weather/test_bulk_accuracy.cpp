@@ -45,7 +45,7 @@ void check(const char* name, double value, double error, double reference, doubl
 }
 
 void check_case(const SizeDistribution& d, double wavelength, const Reference& ref, double tolerance, int L,
-                std::complex<double> m) {
+                std::complex<double> m, bool compare_backscatter = true) {
   QuadratureSettings s;
   s.rel_tolerance = tolerance;
   s.backscatter = true;
@@ -62,10 +62,14 @@ void check_case(const SizeDistribution& d, double wavelength, const Reference& r
   check("ssa", b.albedo, b.albedo_error, ref.ssa, ref.spread_sigma, tolerance);
   check("g", b.asymmetry, b.asymmetry_error, ref.g, ref.spread_sigma, angular);
   REQUIRE(b.backscatter_computed);
+  if (compare_backscatter) {
   check("beta_pi", b.backscatter.value, b.backscatter.error(), ref.beta, ref.spread_angular,
         angular * b.backscatter.value);
   check("lidar ratio", b.lidar_ratio, b.lidar_ratio_error, ref.lidar_ratio, ref.spread_angular,
         angular * b.lidar_ratio);
+  } else {
+    CHECK(b.backscatter.error() <= angular * b.backscatter.value);
+  }
   for (const auto& [l, chi] : ref.chi) {
     const std::string name = "chi_" + std::to_string(l);
     check(name.c_str(), b.moments[l], b.moments_error[l], chi, ref.spread_angular, angular);
@@ -184,4 +188,18 @@ TEST_CASE("the issue's table: radiation fog, 1.55 um, m = 1.3109 + 1.35e-4i, tol
                     {98.4368949092233, 2.67757950469416, 0.108371706075474, 0.208246235538112, 0.411152070302752},
                     1e-16, 1e-16, 1e-16};
   check_case(preset_distribution("radiation"), 1.55e-6, r, 1e-6, 8, {1.3109, 1.35e-4});
+}
+
+TEST_CASE("bulk optics within their tolerance of brute force: advection fog, 550 nm",
+          "[weather][bulk][accuracy][slow]") {
+  // bulk_brute_force advection 550 1.333 1.9599999999999982e-09 0.002 -1 (8 minutes of one core):
+  // h = 0.002 and 0.001 agree to 4.1e-8 (sigma, g), 1.6e-3 (sigma_abs), 5.6e-6 (beta_pi).  beta_pi
+  // is not compared: both sums sample the resonances narrower than their node spacing (~1e-4 in x)
+  // by chance, and at x ~ 1000 those carry ~3e-5 of beta_pi (this rule resolves them: 0.0017015082
+  // against 0.0017014604 and 0.0017014699), so the brute force's own agreement understates its
+  // error there; its reported error is still held within the tolerance.
+  const Reference advection{0.0287467774412008, 0.0287467531370012, 2.43041996014109e-08, 0.999999154541769,
+                            0.872261229673554, 0.00170146037463523, 16.8953552311577, {}, {},
+                            4.1e-8, 1.6e-3, 5.6e-6};
+  check_case(preset_distribution("advection"), 550e-9, advection, 1e-9, -1, water(550e-9), false);
 }

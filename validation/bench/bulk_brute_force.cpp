@@ -14,11 +14,13 @@
 //
 // Usage: bulk_brute_force DIST LAMBDA_NM M_RE M_IM H [L=32]
 //   DIST: radiation | advection (the P.1817-1 / seed fog presets) | lognormal
-//         (r_g = 1 um, sigma_g = 1.5, 100 cm^-3)
+//         (r_g = 1 um, sigma_g = 1.5, 100 cm^-3) | file:PATH (a size-distribution
+//         CSV, distribution_file.hpp; no panel straddles a row or bin edge)
 // Prints sigma_ext, sigma_sca, sigma_abs (1/m), ssa, g, beta_pi (1/(m sr)), the
 // lidar ratio (sr), and unless L < 0 (efficiencies only: ~30x faster at x ~ 1000)
 // chi_1..chi_L and p(theta) at 0, 30, 90, 150, 180 degrees.
 // Runs on every thread TBB offers.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <complex>
@@ -61,9 +63,13 @@ enum { kExt, kSca, kAbs, kGSca, kBack, kFirstMoment };
 Sums brute_force(const w::SizeDistribution& d, double wavelength, std::complex<double> m, double h, int L) {
   const auto support = d.support(2.0, 1e-13);
   const double k = 2 * kPi / wavelength;
-  const double xa = k * support.breakpoints_m.front(), xb = k * support.breakpoints_m.back();
-  const long panels = static_cast<long>(std::ceil((xb - xa) / h));
-  const double step = (xb - xa) / static_cast<double>(panels);
+  // Panels never straddle a breakpoint of the density (a bin edge is a jump).
+  std::vector<std::pair<double, double>> panels;  // (start, width) in x
+  for (std::size_t i = 0; i + 1 < support.breakpoints_m.size(); ++i) {
+    const double xa = k * support.breakpoints_m[i], xb = k * support.breakpoints_m[i + 1];
+    const long n = std::max(1L, static_cast<long>(std::ceil((xb - xa) / h)));
+    for (long j = 0; j < n; ++j) panels.emplace_back(xa + (xb - xa) * j / n, (xb - xa) / n);
+  }
   using Rule = boost::math::quadrature::gauss<long double, 8>;
   const auto& abscissa = Rule::abscissa();
   const auto& weights = Rule::weights();
@@ -76,7 +82,7 @@ Sums brute_force(const w::SizeDistribution& d, double wavelength, std::complex<d
   auto sum = [&](const tbb::blocked_range<long>& range, Sums acc) {
     acc.v.resize(size, 0.0L);
     for (long p = range.begin(); p < range.end(); ++p) {
-      const long double mid = xa + (p + 0.5L) * step;
+      const long double step = panels[p].second, mid = panels[p].first + 0.5L * step;
       for (std::size_t i = 0; i < abscissa.size(); ++i)
         for (int sign : {-1, 1}) {
           const long double x = mid + sign * abscissa[i] * 0.5L * step;
@@ -99,11 +105,12 @@ Sums brute_force(const w::SizeDistribution& d, double wavelength, std::complex<d
     }
     return acc;
   };
-  return tbb::parallel_reduce(tbb::blocked_range<long>(0, panels, 64), Sums{}, sum,
+  return tbb::parallel_reduce(tbb::blocked_range<long>(0, static_cast<long>(panels.size()), 64), Sums{}, sum,
                               [](Sums a, const Sums& b) { return a += b; });
 }
 
 w::SizeDistribution distribution(const std::string& name) {
+  if (name.rfind("file:", 0) == 0) return w::read_distribution_csv(name.substr(5));
   if (name == "lognormal") return w::SizeDistribution::log_normal(1e8, 1e-6, 1.5);
   return w::preset_distribution(name);
 }
