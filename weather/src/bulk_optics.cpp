@@ -496,9 +496,12 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   const double k = 2 * kPi / wavelength;
   const std::vector<double> cuts = initial_cuts(support, s, k);
   // A table of many rows has a panel per row at least: refuse before the work.
-  const double floor_evaluations = static_cast<double>(cuts.size()) * s.kronrod_points;
-  if (floor_evaluations > static_cast<double>(s.max_evaluations))
-    throw std::runtime_error("integral over " + d.describe() + ": its " + std::to_string(cuts.size()) +
+  // Only the table's own pieces count; a smooth density's steps in ln r can
+  // still be merged by the refinement, whose failure names the integral.
+  const std::size_t table_pieces = support.breakpoints_m.size() - 1;
+  const double floor_evaluations = static_cast<double>(table_pieces) * s.kronrod_points;
+  if (table_pieces > 1 && floor_evaluations > static_cast<double>(s.max_evaluations))
+    throw std::runtime_error("integral over " + d.describe() + ": its " + std::to_string(table_pieces) +
                              " pieces need at least " + significant(floor_evaluations, 3) +
                              " efficiency evaluations, beyond the budget of " + std::to_string(s.max_evaluations) +
                              "; merge rows or bins of the table");
