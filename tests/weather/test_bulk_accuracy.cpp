@@ -44,7 +44,7 @@ void check(const char* name, double value, double error, double reference, doubl
   CHECK(error <= allowed);
 }
 
-void check_case(const SizeDistribution& d, double wavelength, const Reference& ref, double tolerance, int L,
+BulkOptics check_case(const SizeDistribution& d, double wavelength, const Reference& ref, double tolerance, int L,
                 std::complex<double> m, bool compare_backscatter = true) {
   QuadratureSettings s;
   s.rel_tolerance = tolerance;
@@ -58,7 +58,10 @@ void check_case(const SizeDistribution& d, double wavelength, const Reference& r
   const double ext = b.extinction.value;
   check("sigma_ext", ext, b.extinction.error(), ref.ext, ref.spread_sigma, tolerance * ext);
   check("sigma_sca", b.scattering.value, b.scattering.error(), ref.sca, ref.spread_sigma, tolerance * ext);
-  check("sigma_abs", b.absorption.value, b.absorption.error(), ref.abs, ref.spread_abs, tolerance * ext);
+  if (compare_backscatter)
+    check("sigma_abs", b.absorption.value, b.absorption.error(), ref.abs, ref.spread_abs, tolerance * ext);
+  else
+    CHECK(b.absorption.error() <= tolerance * ext);
   check("ssa", b.albedo, b.albedo_error, ref.ssa, ref.spread_sigma, tolerance);
   check("g", b.asymmetry, b.asymmetry_error, ref.g, ref.spread_sigma, angular);
   REQUIRE(b.backscatter_computed);
@@ -77,7 +80,7 @@ void check_case(const SizeDistribution& d, double wavelength, const Reference& r
   for (std::size_t j = 0; j < ref.phase.size(); ++j) {
     const std::string name = "p(" + std::to_string(static_cast<int>(kAngles[j])) + " deg)";
     check(name.c_str(), b.phase[j], b.phase_error[j], ref.phase[j], ref.spread_angular, angular * b.phase[j]);
-  }
+  }  return b;
 }
 
 std::complex<double> water(double wavelength) { return refractive_index_table("water").at(wavelength); }
@@ -197,9 +200,21 @@ TEST_CASE("bulk optics within their tolerance of brute force: advection fog, 550
   // is not compared: both sums sample the resonances narrower than their node spacing (~1e-4 in x)
   // by chance, and at x ~ 1000 those carry ~3e-5 of beta_pi (this rule resolves them: 0.0017015082
   // against 0.0017014604 and 0.0017014699), so the brute force's own agreement understates its
-  // error there; its reported error is still held within the tolerance.
+  // error there.  sigma_abs (1e-6 of sigma_ext, most of it in those resonances) likewise: this
+  // rule gives 2.43551e-8 against 2.43042e-8 and the h/2 sum 1.6e-3 away from it, so neither sum
+  // is a reference at the 1e-9 (of sigma_ext) asked.  Both are held within the tolerance, and
+  // sigma_ext is checked against the contour integral (Cauchy above the axis), which has no
+  // resonances to sample.
   const Reference advection{0.0287467774412008, 0.0287467531370012, 2.43041996014109e-08, 0.999999154541769,
                             0.872261229673554, 0.00170146037463523, 16.8953552311577, {}, {},
                             4.1e-8, 1.6e-3, 5.6e-6};
-  check_case(preset_distribution("advection"), 550e-9, advection, 1e-9, -1, water(550e-9), false);
+  const BulkOptics b =
+      check_case(preset_distribution("advection"), 550e-9, advection, 1e-9, -1, water(550e-9), false);
+  ContourSettings cs;
+  cs.rel_tolerance = 1e-12;
+  const auto exact = contour_extinction(preset_distribution("advection"), 550e-9, water(550e-9), cs);
+  REQUIRE(exact);
+  INFO(std::setprecision(15) << "real axis " << b.extinction.value << " +- " << b.extinction.error() << ", contour "
+                             << exact->extinction.value << " +- " << exact->extinction.error());
+  CHECK(std::abs(b.extinction.value - exact->extinction.value) <= b.extinction.error() + exact->extinction.error());
 }
