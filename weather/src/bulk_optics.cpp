@@ -464,7 +464,7 @@ detail::ResonancePlan resonance_plan(const Integrator& integ, const std::vector<
   }
   return detail::plan_resonances(
       m, breakpoints_x.front(), x_hi, layout, allowed, breakpoints_x,
-      [&](double x0) { return nearby(first, d, k, x0); }, s.max_evaluations / detail::kPoleRulePoints);
+      [&](double x0) { return nearby(first, d, k, x0); }, s.max_evaluations / detail::kPoleRulePoints, s.cancel);
 }
 
 // Where the large-x expansion of Q_ext replaces Mie (rain at optical

@@ -14,6 +14,7 @@
 
 #include "attenuvis/io/check.hpp"
 #include "attenuvis/io/number_text.hpp"
+#include "attenuvis/weather/cancel.hpp"
 
 namespace attenuvis::weather::detail {
 namespace {
@@ -108,13 +109,18 @@ Vec resonance_bound(const Layout& layout, int order, double x0, double residue, 
 
 ResonancePlan plan_resonances(std::complex<double> m, double x_lo, double x_hi, const Layout& layout,
                               const Vec& allowed, const std::vector<double>& breakpoints_x,
-                              const std::function<NearbySamples(double)>& near, std::size_t max_resolved) {
+                              const std::function<NearbySamples(double)>& near, std::size_t max_resolved,
+                              const std::atomic<bool>* cancel) {
   ResonancePlan plan;
   const std::size_t n = static_cast<std::size_t>(layout.size());
   plan.unresolved_bound.assign(n, 0.0);
   if (!(m.real() > 1) || !(x_hi > x_lo)) return plan;
   std::vector<Candidate> candidates;
-  for (const auto& br : mie::resonance_brackets(m.real(), x_lo, x_hi)) {
+  throw_if_cancelled(cancel);
+  const std::vector<mie::ResonanceBracket> brackets = mie::resonance_brackets(m.real(), x_lo, x_hi);
+  throw_if_cancelled(cancel);
+  for (const auto& br : brackets) {
+    if (candidates.size() % 1024 == 0) throw_if_cancelled(cancel);
     Candidate c;
     c.bracket = br;
     const double x0 = 0.5 * (br.x_lo + br.x_hi);
@@ -132,6 +138,7 @@ ResonancePlan plan_resonances(std::complex<double> m, double x_lo, double x_hi, 
   for (const auto& c : candidates) add(rest, c.estimate);
   std::size_t count = 0;
   while (count < candidates.size() && !within(rest, allowed, 0.25)) {
+    throw_if_cancelled(cancel);
     const std::size_t first = count;
     while (count < candidates.size() && count < first + 64) add(rest, candidates[count++].estimate, -1);
     tbb::parallel_for(first, count, [&](std::size_t i) {
