@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <string>
 #include <vector>
 
 #include <boost/math/constants/constants.hpp>
@@ -19,6 +20,7 @@
 #include "attenuvis/weather.hpp"
 
 using namespace attenuvis::weather;
+using Catch::Matchers::Contains;
 namespace mie = attenuvis::mie;
 
 namespace {
@@ -151,12 +153,21 @@ TEST_CASE("bulk backscatter, phase function and moments agree with each other (M
 }
 
 namespace {
+// How far the brute-force sums can be trusted.  Where the resonances are
+// broader than the step (1.55 um: k ~ 1e-4) the two sums agree far below our
+// reported error and serve as truth: `Converged` requires that.  At 550 nm
+// (k = 1.96e-9) the resonances near x ~ 100 are ~1e-8 wide, far narrower than
+// any affordable step, and the two sums sample them at unrelated phases: they
+// disagree by ~1e-4 (beta_pi, p(180)) and ~1e-6 (chi_l), far above the 1e-6
+// and 1e-8 we report.  There the comparison grants their disagreement and
+// checks only agreement to that level; the finer claim rests on the pole
+// analysis (bulk_optics.hpp) and on the 1.55 um cases.
+enum class BruteForce { Converged, Unconverged };
+
 // Our bulk result for `d` against two brute-force references with steps h and
-// 0.6 h in x (h = 1e-3: 800 points per 0.8-period ripple).  The references must
-// agree with each other to a fraction of the reported error before either
-// serves as truth.
+// 0.6 h in x (h = 1e-3: 800 points per 0.8-period ripple).
 void check_against_brute_force(const SizeDistribution& d, double wavelength, const std::vector<double>& angles,
-                               int L, double h = 1e-3) {
+                               int L, BruteForce kind = BruteForce::Converged, double h = 1e-3) {
   const auto m = refractive_index_table("water").at(wavelength);
   QuadratureSettings s;
   s.backscatter = true;
@@ -165,40 +176,52 @@ void check_against_brute_force(const SizeDistribution& d, double wavelength, con
   const BulkOptics b = bulk_optics(d, wavelength, m, s);
   const Reference r1 = brute_force(d, wavelength, m, h, angles, L);
   const Reference r2 = brute_force(d, wavelength, m, 0.6 * h, angles, L);
+  const bool converged = kind == BruteForce::Converged;
+  const double angular = std::max(s.rel_tolerance, 1e-6);  // bulk_optics.hpp: the default angular tolerance
   INFO(std::setprecision(10) << d.describe() << " at " << wavelength << " m, " << b.evaluations << " evaluations");
-  // beta_pi
+  // |ours - t2| within our error (and the references' own disagreement where
+  // they have not converged); our error within the tolerance asked for.
+  auto check = [&](const char* name, double value, double error, double t1, double t2, double allowed) {
+    const double spread = converged ? 0.0 : std::abs(t1 - t2);
+    INFO(name << " " << value << " +- " << error << "; brute force " << t1 << " / " << t2 << " (allowed error "
+              << allowed << ")");
+    if (converged) CHECK(std::abs(t1 - t2) < 0.3 * error + 1e-15);
+    CHECK(std::abs(value - t2) <= error + spread + 1e-15);
+    CHECK(error <= allowed);
+  };
   {
     const double t1 = static_cast<double>(r1.back), t2 = static_cast<double>(r2.back);
-    INFO("beta_pi " << b.backscatter.value << " +- " << b.backscatter.error() << " (resonance "
-                    << b.backscatter.resonance_error << ", quadrature " << b.backscatter.quadrature_error
-                    << "); brute force " << t1 << " / " << t2);
-    CHECK(std::abs(t1 - t2) < 0.3 * b.backscatter.error());
-    CHECK(std::abs(b.backscatter.value - t2) <= b.backscatter.error());
-    const double s_ref = static_cast<double>(r2.ext / r2.back);
-    INFO("lidar ratio " << b.lidar_ratio << " +- " << b.lidar_ratio_error << " brute force " << s_ref);
-    CHECK(std::abs(b.lidar_ratio - s_ref) <= b.lidar_ratio_error);
+    INFO("beta_pi resonance part " << b.backscatter.resonance_error << ", quadrature "
+                                   << b.backscatter.quadrature_error);
+    check("beta_pi", b.backscatter.value, b.backscatter.error(), t1, t2, angular * b.backscatter.value);
+    const double s1 = static_cast<double>(r1.ext / r1.back), s2 = static_cast<double>(r2.ext / r2.back);
+    check("lidar ratio", b.lidar_ratio, b.lidar_ratio_error, s1, s2, angular * b.lidar_ratio);
   }
   for (std::size_t a = 0; a < angles.size(); ++a) {
     const double t1 = static_cast<double>(r1.phase[a] / r1.sca), t2 = static_cast<double>(r2.phase[a] / r2.sca);
-    INFO("p(" << angles[a] << ") " << b.phase[a] << " +- " << b.phase_error[a] << " brute force " << t1 << " / "
-              << t2);
-    CHECK(std::abs(t1 - t2) < 0.3 * b.phase_error[a]);
-    CHECK(std::abs(b.phase[a] - t2) <= b.phase_error[a]);
+    const std::string name = "p(" + std::to_string(angles[a]) + ")";
+    check(name.c_str(), b.phase[a], b.phase_error[a], t1, t2, angular * b.phase[a]);
   }
   for (int l = 0; l <= L; ++l) {
     const double t1 = static_cast<double>(r1.moments[l] / r1.sca), t2 = static_cast<double>(r2.moments[l] / r2.sca);
-    INFO("chi_" << l << " " << b.moments[l] << " +- " << b.moments_error[l] << " brute force " << t1 << " / " << t2);
-    CHECK(std::abs(t1 - t2) < 0.3 * b.moments_error[l] + 1e-15);
-    CHECK(std::abs(b.moments[l] - t2) <= b.moments_error[l] + 1e-15);
+    const std::string name = "chi_" + std::to_string(l);
+    check(name.c_str(), b.moments[l], b.moments_error[l], t1, t2, angular);
   }
 }
 }  // namespace
 
-TEST_CASE("bulk backscatter and phase function errors cover the resonances: advection fog, 550 nm",
-          "[weather][bulk][backscatter][brute][advection][slow]") {
+TEST_CASE("bulk phase function at 90 deg of advection fog at 550 nm: a tolerance beyond the budget is refused",
+          "[weather][bulk][backscatter][advection][slow]") {
   // Advection fog (P.1817-1 / seed Table: alpha = 3, a = 0.027, b = 0.3), water at 550 nm
-  // (Hale & Querry 1973, k = 1.96e-9): Q_back resonances of every width up to x ~ 1700.
-  check_against_brute_force(preset_distribution("advection"), 550e-9, {180.0, 150.0, 90.0}, -1);
+  // (Hale & Querry 1973, k = 1.96e-9): resonances of every width up to x ~ 1700.  At 90 deg the
+  // phase function is ~0.1 and the narrow resonances weigh most; 1e-6 of it needs more than the
+  // default budget (it stops ~200 times above it after 1.1e6 evaluations), and the result must
+  // say so rather than claim it (~45 s of one core; a smaller budget fails sooner but on
+  // sigma_sca or the resonance plan, not on the quantity this case is about).
+  QuadratureSettings s;
+  s.angles_deg = {90.0};
+  CHECK_THROWS_WITH(bulk_optics(preset_distribution("advection"), 550e-9, refractive_index_table("water").at(550e-9), s),
+                    Contains("phase function at 90 deg") && Contains("not met"));
 }
 
 TEST_CASE("bulk backscatter and phase function errors cover the resonances: advection fog, 1.55 um",
@@ -210,18 +233,17 @@ TEST_CASE("bulk Legendre moment errors cover the resonances: radiation fog, 550 
           "[weather][bulk][backscatter][brute][slow]") {
   // Radiation fog (alpha = 6, a = 607.5, b = 3: x < 140 at 550 nm) keeps the O(N^2) moments of
   // the brute-force sums affordable.
-  check_against_brute_force(preset_distribution("radiation"), 550e-9, {180.0}, 8);
+  check_against_brute_force(preset_distribution("radiation"), 550e-9, {180.0}, 8, BruteForce::Unconverged);
   // Without a phase function the moments' own (looser) resonance target drives the refinement.
-  check_against_brute_force(preset_distribution("radiation"), 550e-9, {}, 8);
+  check_against_brute_force(preset_distribution("radiation"), 550e-9, {}, 8, BruteForce::Unconverged);
   check_against_brute_force(preset_distribution("radiation"), 1.55e-6, {180.0}, 8);
 }
 
 TEST_CASE("bulk Legendre moment errors cover the resonances: advection fog, 1.55 um, L = 64",
           "[weather][bulk][backscatter][brute][advection][slow]") {
   // Advection fog (x < 580 at 1.55 um) with the moments of the optics command's
-  // L = 64: pass B's quadrature stops at a hundredth of the moments' resonance
-  // target (mie_bulk_optics), and the reported error of every chi_l must still
-  // cover the brute-force sums (2 x ~0.6 M spheres with moments).
+  // L = 64: the reported error of every chi_l must cover the brute-force sums
+  // (2 x ~0.6 M spheres with moments).
   check_against_brute_force(preset_distribution("advection"), 1.55e-6, {}, 64);
 }
 

@@ -199,6 +199,8 @@ TEST_CASE("sigma() of a distribution file takes the segmented contour and says s
 
 TEST_CASE("segmented contour declines what is not a table or reaches too far", "[weather][segmented]") {
   CHECK_FALSE(segmented_contour_extinction(preset_distribution("advection"), 550e-9, kAbsorbing));
-  // A table of rain drops up to 3 mm reaches x ~ 3.4e4 at 550 nm, beyond max_x (cost ~ x^2).
-  CHECK_FALSE(segmented_contour_extinction(table_through({{100, 1e-3}, {3000, 1e-6}}, "rain"), 550e-9, kAbsorbing));
+  // Drops up to 10 mm reach x = 2 pi r / lambda ~ 1.14e5 at 550 nm, beyond max_x = 1e5, the
+  // range of forward_amplitude (cost ~ x^2).
+  CHECK_FALSE(segmented_contour_extinction(table_through({{100, 1e-3}, {10000, 1e-6}}, "hail-sized"), 550e-9,
+                                           kAbsorbing));
 }

@@ -165,8 +165,8 @@ int moments_benchmark(int L) {
     for (double target : {1e-9, 1e-7, 1e-6, 1e-5, 1e-4}) {
       w::QuadratureSettings b = s;  // as mie_bulk_optics sets up pass B
       b.backscatter = false;
-      b.resonance_tolerance = 1.0;
       b.rel_tolerance = target;
+      b.angular_tolerance = target;
       w::BulkOptics r;
       const double t = seconds([&] { r = w::integrate_bulk_optics(d, wavelength, w::mie_efficiencies(m, b), b, m); });
       if (tightest.empty()) tightest = r.moments;
@@ -176,7 +176,7 @@ int moments_benchmark(int L) {
         change = std::max(change, std::abs(r.moments[l] - tightest[l]));
       }
       std::printf("                 %7.0e  %11zu  %9.2f  %15.2e  %25.2e%s\n", target, r.evaluations, t, err, change,
-                  target == std::max(s.rel_tolerance, 1e-2 * s.angular_resonance_tolerance) ? "  (default)" : "");
+                  target == std::max(s.rel_tolerance, 1e-6) ? "  (default)" : "");
     }
   }
   return 0;

@@ -62,4 +62,8 @@ struct Layout {
   }
 };
 
+// The relative tolerance of g, beta_pi, chi_l, p(theta) and the expansion:
+// QuadratureSettings::angular_tolerance, or max(rel_tolerance, 1e-6) when it is 0.
+double angular_tolerance(const QuadratureSettings& s);
+
 }  // namespace attenuvis::weather::detail

@@ -18,7 +18,8 @@
 #include "resonance.hpp"
 #include "bulk_components.hpp"
 #include "extinction_tail.hpp"
-#include "gauss_kronrod_rule.hpp"
+#include "bulk_panels.hpp"
+#include "resonance_plan.hpp"
 #include "attenuvis/io/number_text.hpp"
 
 namespace attenuvis::weather {
@@ -36,165 +37,8 @@ using detail::kBack;
 using detail::kFixed;
 using detail::Layout;
 using detail::Vec;
-
-struct Panel {
-  double a = 0, b = 0;  // in u = ln r
-  Vec kronrod, error;
-  Vec difference;       // signed K - G (without the aliasing term): errors of ratios
-  Vec q_max;            // largest |component / weight| sampled (for the tails)
-  double qext_max = 0;
-  double x_span = 0;  // size-parameter width of the panel
-  bool floor = false; // no wider than resonance_x_span: its error counted as resonance error
-  std::size_t evaluations = 0;
-  double max_x = 0;
-  bool used_asymptotic = false;
-};
-
-using detail::Rule;
-using detail::rule_for;
-
-class Integrator {
- public:
-  Integrator(const SizeDistribution& d, double wavelength, const EfficiencyBatch& q, const QuadratureSettings& s,
-             std::complex<double> m)
-      : d_(d), k_(2 * kPi / wavelength), q_(q), s_(s), layout_(s), rule_(rule_for(s.kronrod_points)),
-        resolved_x_span_(0.6 * s.kronrod_points), m_(m) {}
-
-  const Layout& layout() const { return layout_; }
-
-  // A node of a panel at u = ln r: its size parameter and the weight
-  // r n(r) pi r^2 of the integrand in u.
-  struct Node {
-    double x = 0, w = 0;
-    bool asymptotic = false;  // beyond asymptotic_x: Q_ext's large-x expansion, no Mie
-    std::size_t rule = 0;     // index of its abscissa and weights in the panel's rule
-  };
-  Node node(double u, Panel& p) const {
-    const double r = std::exp(u);
-    Node nd{k_ * r, r * d_.density(r) * kPi * r * r, false};
-    p.max_x = std::max(p.max_x, nd.x);
-    nd.asymptotic = s_.asymptotic_x > 0 && nd.x > s_.asymptotic_x;
-    if (nd.asymptotic) p.used_asymptotic = true;
-    return nd;
-  }
-
-  // Integrand at a node:  w {Q_ext, Q_sca, Q_abs, g Q_sca, bound, ...}, from
-  // the node's efficiencies e (unused for an asymptotic node).
-  Vec integrand(const Node& nd, const Efficiency& e, double& qext) const {
-    const double x = nd.x, w = nd.w;
-    Vec f(layout_.size(), 0.0);
-    if (nd.asymptotic) {
-      qext = qext_asymptotic(x);
-      f[kExt] = w * qext;
-      f[kAsym] = w * qext_asymptotic_bound(x, m_);
-      f[kWeight] = w;
-      return f;
-    }
-    qext = e.qext;
-    f[kExt] = w * e.qext;
-    f[kSca] = w * e.qsca;
-    f[kAbs] = w * e.qabs;
-    f[kGSca] = w * e.g * e.qsca;
-    f[kWeight] = w;
-    f[kBack] = w * e.qback / (4 * kPi);
-    if (e.moments.size() < static_cast<std::size_t>(layout_.moments) ||
-        e.phase.size() < static_cast<std::size_t>(layout_.angles) ||
-        e.expansion.size() < static_cast<std::size_t>(layout_.expansion))
-      throw std::invalid_argument("bulk optics: the efficiency function does not supply the Legendre moments or "
-                                  "phase function asked for");
-    for (int l = 0; l < layout_.moments; ++l) f[layout_.moment(l)] = w * e.qsca * e.moments[l];
-    for (int j = 0; j < layout_.angles; ++j) f[layout_.angle(j)] = w * e.qsca * e.phase[j];
-    for (int i = 0; i < layout_.expansion; ++i) f[layout_.expansion_at(i)] = w * e.qsca * e.expansion[i];
-    return f;
-  }
-
-  // The panel's nodes in the rule's order (the centre, then each abscissa at
-  // +xi and -xi), their efficiencies in one batch call.
-  Panel evaluate(double a, double b) const {
-    throw_if_cancelled(s_.cancel);  // once per panel: a few dozen Mie evaluations
-    Panel p;
-    p.a = a;
-    p.b = b;
-    double mid = 0.5 * (a + b), half = 0.5 * (b - a);
-    const int n = layout_.size();
-    Vec k(n, 0.0), g(n, 0.0), q_min(n, INFINITY), q_max(n, -INFINITY);
-    p.q_max.assign(n, 0.0);
-    p.kronrod.assign(n, 0.0);
-    p.error.assign(n, 0.0);
-    p.difference.assign(n, 0.0);
-    std::vector<Node> nodes;
-    std::vector<double> xs;
-    for (std::size_t i = 0; i < rule_.abscissa.size(); ++i)
-      for (int sgn = 0; sgn < (i == 0 ? 1 : 2); ++sgn) {
-        nodes.push_back(node(mid + (sgn ? -rule_.abscissa[i] : rule_.abscissa[i]) * half, p));
-        nodes.back().rule = i;
-        if (!nodes.back().asymptotic) xs.push_back(nodes.back().x);
-      }
-    std::vector<Efficiency> eff(xs.size());
-    if (!xs.empty()) q_(xs.data(), xs.size(), eff.data());
-    std::size_t e = 0;
-    const Efficiency none;
-    for (const Node& nd : nodes) {
-      double qext = 0;
-      Vec f = integrand(nd, nd.asymptotic ? none : eff[e++], qext);
-      ++p.evaluations;
-      p.qext_max = std::max(p.qext_max, std::abs(qext));
-      for (int c = 0; c < n; ++c) {
-        k[c] += rule_.kronrod_weight[nd.rule] * f[c];
-        g[c] += rule_.gauss_weight[nd.rule] * f[c];
-        if (f[kWeight] > 0) {
-          double q = f[c] / f[kWeight];
-          q_min[c] = std::min(q_min[c], q);
-          q_max[c] = std::max(q_max[c], q);
-          p.q_max[c] = std::max(p.q_max[c], std::abs(q));
-        }
-      }
-    }
-    for (int c = 0; c < n; ++c) {
-      p.kronrod[c] = half * k[c];
-      p.difference[c] = half * (k[c] - g[c]);
-      p.error[c] = half * std::abs(k[c] - g[c]);
-    }
-    p.x_span = k_ * (std::exp(b) - std::exp(a));
-    // |K - G| estimates the error only where the rule resolves the ripple of
-    // Q(x) (period pi/(n-1) ~ 9.5 in x for water).  On a wider panel K and G
-    // can alias alike.  There, since K has positive weights, K and the true
-    // integral both lie in [Q_lo W, Q_hi W] with W the panel's geometric
-    // cross-section and [Q_lo, Q_hi] the range Q takes on the panel; the
-    // range is estimated from the rule's nodes (which fall at unrelated
-    // phases of the ripple) and widened by half.  Panels that matter are
-    // split until resolved; the rest keep this bound.
-    if (p.x_span > resolved_x_span_)
-      for (int c : layout_.checked()) {
-        double range = std::isfinite(q_max[c] - q_min[c]) ? q_max[c] - q_min[c] : 0.0;
-        p.error[c] += 1.5 * range * std::abs(p.kronrod[kWeight]);
-      }
-    return p;
-  }
-
-  // Both halves of each panel, evaluated in parallel (TBB; each half is
-  // independent).  The set of panels split is chosen before, so the result
-  // does not depend on the number of threads.
-  std::vector<Panel> split(const std::vector<Panel>& parents) const {
-    std::vector<Panel> halves(2 * parents.size());
-    tbb::parallel_for(std::size_t(0), halves.size(), [&](std::size_t j) {
-      const Panel& p = parents[j / 2];
-      double mid = 0.5 * (p.a + p.b);
-      halves[j] = (j % 2 == 0) ? evaluate(p.a, mid) : evaluate(mid, p.b);
-    });
-    return halves;
-  }
-
- private:
-  const SizeDistribution& d_;
-  double k_;
-  const EfficiencyBatch& q_;
-  QuadratureSettings s_;
-  Layout layout_;
-  Rule rule_;
-  double resolved_x_span_;  // x-width a panel may span and still trust |K - G|
-  std::complex<double> m_;  // for the large-x bound
-};
+using detail::Panel;
+using detail::Integrator;
 
 // The r^2 support of `d` (where the geometric cross-section lives), all but
 // `tail_fraction` of it; throws when the moment diverges or is empty.
@@ -214,8 +58,7 @@ Support cross_section_support(const SizeDistribution& d, double tail_fraction) {
 // Initial panels: the support's smooth pieces in ln r, each cut into steps
 // of at most 0.25 in ln r and at the asymptotic switch, so the first pass
 // already sees the shape of the weight.
-std::vector<Panel> initial_panels(const Integrator& integ, const Support& support, const QuadratureSettings& s,
-                                  double k) {
+std::vector<double> initial_cuts(const Support& support, const QuadratureSettings& s, double k) {
   std::vector<double> cuts;
   for (std::size_t i = 0; i + 1 < support.breakpoints_m.size(); ++i) {
     double a = std::log(support.breakpoints_m[i]), b = std::log(support.breakpoints_m[i + 1]);
@@ -226,92 +69,141 @@ std::vector<Panel> initial_panels(const Integrator& integ, const Support& suppor
   if (s.asymptotic_x > 0) cuts.push_back(std::log(s.asymptotic_x / k));
   std::sort(cuts.begin(), cuts.end());
   cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
-  double u_lo = std::log(support.breakpoints_m.front()), u_hi = std::log(support.breakpoints_m.back());
+  const double u_lo = std::log(support.breakpoints_m.front()), u_hi = std::log(support.breakpoints_m.back());
+  cuts.erase(std::remove_if(cuts.begin(), cuts.end(), [&](double u) { return u < u_lo || u > u_hi; }), cuts.end());
+  return cuts;
+}
 
-  std::vector<std::pair<double, double>> first;
-  for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
-    if (cuts[i] >= u_lo && cuts[i + 1] <= u_hi) first.emplace_back(cuts[i], cuts[i + 1]);
-  std::vector<Panel> panels(first.size());
-  tbb::parallel_for(std::size_t(0), first.size(),
-                    [&](std::size_t i) { panels[i] = integ.evaluate(first[i].first, first[i].second); });
+// An interval to evaluate, with the resolved resonance it holds (if any).
+struct Task {
+  double a = 0, b = 0;
+  const detail::ResolvedResonance* pole = nullptr;
+};
+
+std::vector<Panel> evaluate_tasks(const Integrator& integ, const std::vector<Task>& tasks) {
+  std::vector<Panel> panels(tasks.size());
+  tbb::parallel_for(std::size_t(0), tasks.size(), [&](std::size_t i) {
+    const Task& t = tasks[i];
+    panels[i] = t.pole ? integ.evaluate_pole(t.a, t.b, t.pole->resonance.pole.real(), t.pole->resonance.half_width())
+                       : integ.evaluate(t.a, t.b);
+  });
   return panels;
 }
 
-// The panels of the integral and their running sums, refined adaptively.
-//
-// Nearly non-absorbing spheres (resonance.hpp): a panel no wider than
-// resonance_x_span in x resolves the smooth ripple of Q(x) (period ~0.8 in x
-// for water), so what its Kronrod and Gauss sums still disagree on is
-// resonance structure; it is reported as resonance error (floor_error), not
-// counted against rel_tolerance.
+std::vector<Task> plain_tasks(const std::vector<double>& cuts) {
+  std::vector<Task> tasks;
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i) tasks.push_back({cuts[i], cuts[i + 1], nullptr});
+  return tasks;
+}
+
+// The cuts with a panel [x0 - reach, x0 + reach] for every resolved
+// resonance: the cuts inside it are dropped (the support's breakpoints never
+// are: reach stops at them, resonance_plan.cpp).
+std::vector<Task> tasks_with_resonances(const std::vector<double>& cuts, const detail::ResonancePlan& plan,
+                                        double k) {
+  std::vector<Task> tasks;
+  std::size_t i = 0;
+  double at = cuts.front();
+  for (const auto& r : plan.resolved) {
+    const double lo = std::log((r.resonance.pole.real() - r.reach) / k);
+    const double hi = std::log((r.resonance.pole.real() + r.reach) / k);
+    for (; i < cuts.size() && cuts[i] <= lo; ++i)
+      if (cuts[i] > at) tasks.push_back({at, cuts[i], nullptr}), at = cuts[i];
+    if (lo > at) tasks.push_back({at, lo, nullptr});
+    tasks.push_back({lo, hi, &r});
+    at = hi;
+    while (i < cuts.size() && cuts[i] <= hi) ++i;
+  }
+  for (; i < cuts.size(); ++i)
+    if (cuts[i] > at) tasks.push_back({at, cuts[i], nullptr}), at = cuts[i];
+  return tasks;
+}
+
+// Each component's tolerance: rel_tolerance on sigma_ext, sigma_sca,
+// sigma_abs; the angular tolerance (QuadratureSettings::angular_tolerance) on
+// g, beta_pi, chi_l, p(theta) and the expansion.
+double component_tolerance(const Layout& layout, int c, const QuadratureSettings& s) {
+  return (c == kGSca || layout.angular(c)) ? detail::angular_tolerance(s) : s.rel_tolerance;
+}
+
+// The panels of the integral and their running sums, refined adaptively
+// (QUADPACK QAG-style, the worst panels first, kBatch at a time so that
+// their halves are evaluated in parallel) until every component's
+// quadrature error plus the bound on its unresolved resonances meets its
+// tolerance times its scale (Layout::scale).
 class Refinement {
  public:
-  Refinement(const Integrator& integ, std::vector<Panel> panels, const QuadratureSettings& s)
-      : integ_(integ), s_(s), layout_(integ.layout()), checked_(layout_.checked()),
-        resonances_(s.estimate_resonances), panels_(std::move(panels)) {
+  // extinction_only: the large-x expansion was used, so sigma_ext alone is
+  // reported (BulkOptics::scattering_computed) and alone governs the refinement.
+  Refinement(const Integrator& integ, std::vector<Panel> panels, const QuadratureSettings& s, Vec unresolved,
+             bool extinction_only)
+      : integ_(integ), s_(s), layout_(integ.layout()),
+        checked_(extinction_only ? std::vector<int>{kExt} : layout_.checked()), panels_(std::move(panels)),
+        unresolved_(std::move(unresolved)) {
     const std::size_t n = static_cast<std::size_t>(layout_.size());
+    if (unresolved_.empty()) unresolved_.assign(n, 0.0);
+    ATTENUVIS_CHECK_EQ(unresolved_.size(), n);
     value_.assign(n, 0.0);
     error_.assign(n, 0.0);
-    floor_error_.assign(n, 0.0);
-    scale0_.assign(n, 0.0);
-    for (auto& p : panels_) p.floor = is_floor(p);
     for (const auto& p : panels_) evaluations_ += p.evaluations;
     totals();
-    for (int c : checked_) scale0_[c] = scale(c, value_);
+    scale0_.assign(n, 0.0);
+    for (int c : checked_) scale0_[c] = scale(c) * component_tolerance(layout_, c, s_);
   }
 
   // Recomputes the sums from the panels (the running sums drift).
   void totals() {
     std::fill(value_.begin(), value_.end(), 0.0);
     std::fill(error_.begin(), error_.end(), 0.0);
-    std::fill(floor_error_.begin(), floor_error_.end(), 0.0);
     for (const auto& p : panels_)
       for (std::size_t c = 0; c < value_.size(); ++c) {
         value_[c] += p.kronrod[c];
-        (p.floor ? floor_error_ : error_)[c] += p.error[c];
+        error_[c] += p.error[c];
       }
   }
 
-  // Each component's error is measured against the scale it is reported on
-  // (Layout::scale).  Resonance errors of the optional (angular) components
-  // have their own target, angular_resonance_tolerance.
-  double scale(int c, const Vec& v) const { return layout_.scale(c, v); }
-  bool within(const Vec& e, double tol, double angular_tol) const {
+  double scale(int c) const { return layout_.scale(c, value_); }
+
+  // The error of the quantity component c is reported as, relative to its
+  // tolerance times its scale: sigma_ext, sigma_sca and sigma_abs each get
+  // 0.45 of rel_tolerance x sigma_ext (so that the albedo, (err_sca + w
+  // err_ext) / sigma_ext, stays within it too); the ratios to sigma_sca (g,
+  // chi_l, p(theta), the expansion) carry (err_c + |v| err_sca) / sigma_sca
+  // as fill_optional reports them; beta_pi carries its own relative error
+  // plus sigma_ext's, so that the lidar ratio stays within its tolerance.
+  // 0.9 of each leaves room for the tails (1e-3 of the tolerance).
+  double share(int c) const {
+    const double tol = component_tolerance(layout_, c, s_);
+    const auto err = [&](int i) { return error_[i] + unresolved_[i]; };
+    const double ext = std::max(std::abs(value_[kExt]), 1e-300), sca = std::max(std::abs(value_[kSca]), 1e-300);
+    if (c == kExt || c == kSca || c == kAbs) return err(c) / (0.45 * tol * ext);
+    if (c == kBack) return (err(c) / std::max(std::abs(value_[c]), 1e-300) + err(kExt) / ext) / (0.9 * tol);
+    const double v = value_[c] / sca;
+    const double e = (err(c) + std::abs(v) * err(kSca)) / sca;
+    const bool relative = c >= layout_.angle(0) && c < layout_.expansion_at(0);  // p(theta)
+    return e / (0.9 * tol * (relative ? std::max(std::abs(v), 1e-300) : 1.0));
+  }
+  bool met() const {
     for (int c : checked_)
-      if (e[c] > (layout_.angular(c) ? angular_tol : tol) * scale(c, value_)) return false;
+      if (share(c) > 1) return false;
     return true;
   }
-  bool quadrature_met() const { return within(error_, s_.rel_tolerance, s_.rel_tolerance); }
 
-  // Global adaptive refinement (QUADPACK QAG-style), the worst panels first,
-  // kBatch at a time so that their halves can be evaluated in parallel.
-  // Pass 1 (floor_pass false) splits the panels wider than the resonance
-  // floor until their summed error meets rel_tolerance; pass 2 splits floor
-  // panels (down to min_resonance_x_span) until the resonance error meets
-  // resonance_tolerance, or the evaluation budget is spent.  Pass 2 is what
-  // finds and resolves the resonances of intermediate width (1e-2..1 in x)
-  // that carry most of the resonance error; narrower ones stay reported.
-  void refine(bool floor_pass) {
-    auto cmp = [&](std::size_t i, std::size_t j) {
-      return floor_pass ? floor_key(panels_[i]) < floor_key(panels_[j]) : key(panels_[i]) < key(panels_[j]);
-    };
+  void refine() {
+    auto cmp = [&](std::size_t i, std::size_t j) { return key(panels_[i]) < key(panels_[j]); };
     std::priority_queue<std::size_t, std::vector<std::size_t>, decltype(cmp)> heap(cmp);
-    for (std::size_t i = 0; i < panels_.size(); ++i)
-      if (panels_[i].floor == floor_pass) heap.push(i);
+    for (std::size_t i = 0; i < panels_.size(); ++i) heap.push(i);
     std::size_t rounds = 0;
     for (;;) {
-      bool done = floor_pass ? within(floor_error_, s_.resonance_tolerance, s_.angular_resonance_tolerance)
-                             : quadrature_met();
-      if (done || heap.empty() || evaluations_ > s_.max_evaluations) return;
+      if (met() || heap.empty() || evaluations_ > s_.max_evaluations) return;
       std::vector<std::size_t> chosen;
       std::vector<Panel> parents;
       while (!heap.empty() && chosen.size() < kBatch) {
-        std::size_t i = heap.top();
+        const std::size_t i = heap.top();
         heap.pop();
         const Panel& p = panels_[i];
-        double mid = 0.5 * (p.a + p.b);
+        const double mid = 0.5 * (p.a + p.b);
         if (!(mid > p.a && mid < p.b) || (p.b - p.a) < 1e-12) continue;  // cannot split further
-        if (floor_pass && 0.5 * p.x_span < s_.min_resonance_x_span) continue;  // narrower than any sampling
         chosen.push_back(i);
         parents.push_back(p);
       }
@@ -319,48 +211,48 @@ class Refinement {
       std::vector<Panel> halves = integ_.split(parents);
       for (std::size_t j = 0; j < chosen.size(); ++j) {
         replace_by_halves(chosen[j], parents[j], halves[2 * j], halves[2 * j + 1]);
-        for (std::size_t child : {chosen[j], panels_.size() - 1})
-          if (panels_[child].floor == floor_pass) heap.push(child);
+        heap.push(chosen[j]);
+        heap.push(panels_.size() - 1);
       }
       if (++rounds % 32 == 0) totals();  // keep the running sums from drifting
     }
   }
 
-  // Throws naming the worst integral when pass 1 did not meet rel_tolerance
-  // (a sum that is not finite, which no comparison catches, included).
-  void require_quadrature_met(const SizeDistribution& d) const {
+  // Throws naming the worst integral when the tolerances are not met (a sum
+  // that is not finite, which no comparison catches, included).
+  void require_met(const SizeDistribution& d) const {
     for (int c : checked_)
       if (!std::isfinite(value_[c]) || !std::isfinite(error_[c]))
         throw std::runtime_error("integral over " + d.describe() + " is not finite in double precision (sigma_ext " +
                                  significant(value_[kExt], 3) + "); the distribution's number density is out of "
                                  "range");
-    if (quadrature_met()) return;
+    if (met()) return;
     int worst = kExt;
     double ratio = 0;
     for (int c : checked_)
-      if (error_[c] / scale(c, value_) > ratio) { ratio = error_[c] / scale(c, value_); worst = c; }
+      if (share(c) > ratio) ratio = share(c), worst = c;
+    const double tol = component_tolerance(layout_, worst, s_);
     throw std::runtime_error(component_name(worst) + " integral over " + d.describe() + ": relative tolerance " +
-                             significant(s_.rel_tolerance, 3) + " not met after " + std::to_string(evaluations_) +
-                             " efficiency evaluations (estimated quadrature error " + significant(ratio, 3) +
-                             " relative); the integrand is too rough or too wide for the evaluation budget "
+                             significant(tol, 3) + " not met after " + std::to_string(evaluations_) +
+                             " efficiency evaluations (estimated error " + significant(ratio, 3) +
+                             " times that); the integrand is too rough or too wide for the evaluation budget "
                              "(raise max_evaluations or the tolerance)");
   }
 
   const std::vector<Panel>& panels() const { return panels_; }
   const Vec& value() const { return value_; }
   const Vec& error() const { return error_; }
-  const Vec& floor_error() const { return floor_error_; }
+  const Vec& unresolved() const { return unresolved_; }
   const Layout& layout() const { return layout_; }
   std::size_t evaluations() const { return evaluations_; }
 
  private:
   static constexpr std::size_t kBatch = 8;
 
-  bool is_floor(const Panel& p) const { return resonances_ && p.x_span <= s_.resonance_x_span; }
-  // Pass 1 order: the worst relative error first.
+  // The worst error relative to what its component may carry.
   double key(const Panel& p) const {
     double worst = 0;
-    for (int c : checked_) worst = std::max(worst, p.error[c] / scale0_[c]);
+    for (int c : checked_) worst = std::max(worst, p.error[c] / std::max(scale0_[c], 1e-300));
     return worst;
   }
   // The integral of a component the tolerances govern (Layout::checked), by
@@ -382,32 +274,18 @@ class Refinement {
     return std::string("scattering-matrix expansion ") + detail::kExpansionPartNames[part / layout_.moments] + "_" +
            std::to_string(part % layout_.moments);
   }
-  // In pass 2 the order must not depend on what the nodes sampled: splitting
-  // where |K - G| is large splits away the nodes that hit a resonance while
-  // panels whose nodes missed theirs stay, which biases sigma low (measured
-  // for advection fog at 550 nm: 0.0287462 +- 2.9e-7 with that order against
-  // 0.0287466 +- 0.9e-7 at a tighter target, intervals that do not overlap).
-  // Floor panels are therefore split by a key that follows the weight alone:
-  // their geometric cross-section W times their width in x (a hit resonance
-  // costs of order W x_span / span of Q), divided by the size parameter,
-  // since a Mie evaluation costs ~x (split where error goes cheapest).
-  static double floor_key(const Panel& p) {
-    double x_mid = p.x_span / (2 * std::sinh(0.5 * (p.b - p.a)));
-    return std::abs(p.kronrod[kWeight]) * p.x_span / std::max(x_mid, 1.0);
-  }
   // panels_[i] (= parent) becomes `lower`; `upper` joins at the end.
   void replace_by_halves(std::size_t i, const Panel& parent, Panel& lower, Panel& upper) {
     for (Panel* child : {&lower, &upper}) {
-      child->floor = is_floor(*child);
       evaluations_ += child->evaluations;
       for (std::size_t c = 0; c < value_.size(); ++c) {
         value_[c] += child->kronrod[c];
-        (child->floor ? floor_error_ : error_)[c] += child->error[c];
+        error_[c] += child->error[c];
       }
     }
     for (std::size_t c = 0; c < value_.size(); ++c) {
       value_[c] -= parent.kronrod[c];
-      (parent.floor ? floor_error_ : error_)[c] -= parent.error[c];
+      error_[c] -= parent.error[c];
     }
     panels_[i] = lower;
     panels_.push_back(upper);
@@ -417,9 +295,9 @@ class Refinement {
   const QuadratureSettings& s_;
   const Layout& layout_;
   std::vector<int> checked_;
-  bool resonances_;
   std::vector<Panel> panels_;
-  Vec value_, error_, floor_error_, scale0_;
+  Vec unresolved_;
+  Vec value_, error_, scale0_;
   std::size_t evaluations_ = 0;
 };
 
@@ -433,12 +311,12 @@ double sampled_max(const Refinement& r, int c) {
 }
 
 // Component c as an IntegralEstimate with all its error terms.
-IntegralEstimate component_estimate(const Refinement& r, int c, double omitted_moment, bool resonances) {
+IntegralEstimate component_estimate(const Refinement& r, int c, double omitted_moment) {
   IntegralEstimate e;
   e.value = r.value()[c];
   e.quadrature_error = r.error()[c];
   e.tail_error = 2 * sampled_max(r, c) * kPi * omitted_moment;
-  if (resonances) e.resonance_error = r.floor_error()[c];
+  e.resonance_error = r.unresolved()[c];
   return e;
 }
 
@@ -450,7 +328,7 @@ void fill_optional(BulkOptics& out, const Refinement& r, const Support& support,
   if (!out.scattering_computed || !(sca > 0)) return;
   if (layout.back) {
     out.backscatter_computed = true;
-    out.backscatter = component_estimate(r, kBack, support.omitted_moment, s.estimate_resonances);
+    out.backscatter = component_estimate(r, kBack, support.omitted_moment);
     const double beta = out.backscatter.value;
     if (beta > 0) {
       out.lidar_ratio = out.extinction.value / beta;
@@ -460,18 +338,20 @@ void fill_optional(BulkOptics& out, const Refinement& r, const Support& support,
   }
   // v = M_c / sigma_sca from the same panels: its error is that of
   // M_c - v sigma_sca, whose Kronrod-Gauss differences cancel where the two
-  // sums err alike (a resonance hit by a node raises both), panel by panel;
-  // the aliasing terms of wide panels are added as they are.
+  // sums err alike (a node near a resonance raises both), panel by panel;
+  // the aliasing and rounding terms of panels are added as they are, and the
+  // bounds on unresolved resonances of both.
   auto normalised = [&](int c, double& value, double& error) {
     value = r.value()[c] / sca;
     double sum = 0;
     for (const auto& p : r.panels()) {
-      const double aliasing_c = p.error[c] - std::abs(p.difference[c]);
-      const double aliasing_sca = p.error[kSca] - std::abs(p.difference[kSca]);
-      sum += std::abs(p.difference[c] - value * p.difference[kSca]) + aliasing_c + std::abs(value) * aliasing_sca;
+      const double extra_c = p.error[c] - std::abs(p.difference[c]);
+      const double extra_sca = p.error[kSca] - std::abs(p.difference[kSca]);
+      sum += std::abs(p.difference[c] - value * p.difference[kSca]) + extra_c + std::abs(value) * extra_sca;
     }
     const double tails = 2 * (sampled_max(r, c) + std::abs(value) * sampled_max(r, kSca)) * kPi * support.omitted_moment;
-    error = (sum + tails) / sca;
+    const double resonances = r.unresolved()[c] + std::abs(value) * r.unresolved()[kSca];
+    error = (sum + tails + resonances) / sca;
   };
   out.moments.assign(layout.moments, 0.0);
   out.moments_error.assign(layout.moments, 0.0);
@@ -495,7 +375,7 @@ void fill_optional(BulkOptics& out, const Refinement& r, const Support& support,
 
 // The estimates, errors and method of the refined panels.
 BulkOptics bulk_optics_result(const Refinement& r, const Support& support, const QuadratureSettings& s,
-                              double tail_fraction) {
+                              double tail_fraction, const detail::ResonancePlan& plan) {
   const Vec& value = r.value();
   const Vec& error = r.error();
   BulkOptics out;
@@ -514,39 +394,96 @@ BulkOptics bulk_optics_result(const Refinement& r, const Support& support, const
     e.value = value[c];
     e.quadrature_error = error[c];
     e.tail_error = tail;
+    e.resonance_error = r.unresolved()[c];
   };
   fill(out.extinction, kExt);
   fill(out.scattering, kSca);
   fill(out.absorption, kAbs);
   out.extinction.asymptotic_error = value[kAsym] + error[kAsym];
-  if (s.estimate_resonances) {
-    out.extinction.resonance_error = r.floor_error()[kExt];
-    out.scattering.resonance_error = r.floor_error()[kSca];
-    out.absorption.resonance_error = r.floor_error()[kAbs];
-    out.floor_panels = 0;
-    for (const auto& p : r.panels()) out.floor_panels += p.floor ? 1 : 0;
-  }
+  out.resonances_resolved = plan.resolved.size();
+  out.resonances_located = plan.located;
   if (out.scattering_computed && value[kExt] > 0) {
     out.albedo = value[kSca] / value[kExt];
     out.albedo_error = (out.scattering.error() + out.albedo * out.extinction.error()) / value[kExt];
     out.asymmetry = value[kSca] > 0 ? value[kGSca] / value[kSca] : 0;
-    out.asymmetry_error = value[kSca] > 0 ? (error[kGSca] + tail + std::abs(out.asymmetry) * out.scattering.error()) /
-                                                value[kSca]
+    out.asymmetry_error = value[kSca] > 0 ? (error[kGSca] + r.unresolved()[kGSca] + tail +
+                                             std::abs(out.asymmetry) * out.scattering.error()) / value[kSca]
                                           : 0;
   }
   fill_optional(out, r, support, s);
   std::ostringstream method;
   method << "adaptive Gauss-Kronrod " << s.kronrod_points << " (Boost.Math) in ln r, rel. tol " << s.rel_tolerance
-         << ", tails cut at " << tail_fraction << " of the r^2 moment, " << out.evaluations << " evaluations, x <= "
+         << " (" << detail::angular_tolerance(s) << " for g, backscatter and angular quantities)";
+  method << ", tails cut at " << tail_fraction << " of the r^2 moment, " << out.evaluations << " evaluations, x <= "
          << significant(out.max_size_parameter, 3);
   if (used_asymptotic) method << ", Q_ext large-x expansion beyond x = " << s.asymptotic_x;
   if (s.estimate_resonances)
-    method << ", resonance panels <= " << s.resonance_x_span << " in x refined to " << s.resonance_tolerance
-           << " relative (down to " << s.min_resonance_x_span << " in x)";
-  if (s.estimate_resonances && (r.layout().back || r.layout().size() > kFixed))
-    method << ", " << s.angular_resonance_tolerance << " for backscatter/angular quantities";
+    method << ", resonances: " << plan.bracketed << " bracketed, " << plan.located << " located, "
+           << plan.resolved.size() << " resolved by product-rule panels, the rest bounded (resonance_plan.hpp)";
   out.method = method.str();
   return out;
+}
+
+// What the first pass sampled near x0: the panel holding x0 and the largest
+// size weight within x0 +- 1/2.
+detail::NearbySamples nearby(const std::vector<Panel>& panels, const SizeDistribution& d, double k, double x0) {
+  detail::NearbySamples near;
+  const double u0 = std::log(x0 / k);
+  for (const auto& p : panels)
+    if (u0 >= p.a && u0 <= p.b) near.q_max = p.q_max;
+  if (near.q_max.empty()) near.q_max.assign(panels.front().q_max.size(), 0.0);
+  for (double x : {x0 - 0.5, x0, x0 + 0.5}) {
+    const double r = x / k;
+    if (r > 0) near.weight_x = std::max(near.weight_x, kPi * r * r * d.density(r) / k);
+  }
+  return near;
+}
+
+// The plan of the resonances of nearly lossless spheres (resonance_plan.hpp)
+// from the first pass's panels: each component may carry its tolerance
+// times its first estimate.
+detail::ResonancePlan resonance_plan(const Integrator& integ, const std::vector<Panel>& first, const Support& support,
+                                     const SizeDistribution& d, const QuadratureSettings& s, std::complex<double> m,
+                                     bool extinction_only) {
+  if (!s.estimate_resonances) return {};
+  const Layout& layout = integ.layout();
+  Vec value(static_cast<std::size_t>(layout.size()), 0.0), allowed(value.size(), 0.0);
+  for (const auto& p : first)
+    for (std::size_t c = 0; c < value.size(); ++c) value[c] += p.kronrod[c];
+  // Resonances may take up to half of this (resonance_plan.hpp), a fifth of
+  // what Refinement::share allows each quantity.
+  for (int c : layout.checked())
+    if (!extinction_only || c == kExt) allowed[c] = 0.4 * component_tolerance(layout, c, s) * layout.scale(c, value);
+  const double k = integ.wavenumber();
+  std::vector<double> breakpoints_x;
+  for (double r : support.breakpoints_m) breakpoints_x.push_back(k * r);
+  double x_hi = breakpoints_x.back();
+  if (s.asymptotic_x > 0 && s.asymptotic_x < x_hi) {
+    x_hi = s.asymptotic_x;
+    breakpoints_x.push_back(x_hi);  // a cut of the first panels: no resonance panel crosses it
+  }
+  return detail::plan_resonances(
+      m, breakpoints_x.front(), x_hi, layout, allowed, breakpoints_x,
+      [&](double x0) { return nearby(first, d, k, x0); }, s.max_evaluations / detail::kPoleRulePoints, s.cancel);
+}
+
+// Where the large-x expansion of Q_ext replaces Mie (rain at optical
+// wavelengths), sigma_ext alone is computed and its error is at least the
+// expansion's bound; resolving resonances far below that would buy nothing.
+// The tolerances are then raised to half that bound (relative), as the first
+// panels estimate it: the result's error stays within ~1.5 times the bound.
+QuadratureSettings settings_beside_expansion(const std::vector<Panel>& first, const QuadratureSettings& s) {
+  double bound = 0, ext = 0;
+  for (const auto& p : first) {
+    bound += p.kronrod[kAsym];
+    ext += p.kronrod[kExt];
+  }
+  QuadratureSettings t = s;
+  if (!(bound > 0) || !(ext > 0)) return t;
+  const double floor = std::min(0.5 * bound / ext, 1e-2);
+  t.rel_tolerance = std::max(s.rel_tolerance, floor);
+  t.angular_tolerance = std::max(detail::angular_tolerance(s), floor);
+  return t;
 }
 
 BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double wavelength, const EfficiencyBatch& q,
@@ -556,18 +493,42 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   const double tail_fraction = s.tail_fraction > 0 ? s.tail_fraction : 1e-3 * s.rel_tolerance;
   const Support support = cross_section_support(d, tail_fraction);
   const Integrator integ(d, wavelength, q, s, m);
-  Refinement r(integ, initial_panels(integ, support, s, 2 * kPi / wavelength), s);
-  r.refine(false);
-  r.totals();
-  r.require_quadrature_met(d);
-  if (s.estimate_resonances) {
-    r.refine(true);
-    r.totals();
+  const double k = 2 * kPi / wavelength;
+  const std::vector<double> cuts = initial_cuts(support, s, k);
+  // A table of many rows has a panel per row at least: refuse before the work.
+  // Only the table's own pieces count; a smooth density's steps in ln r can
+  // still be merged by the refinement, whose failure names the integral.
+  const std::size_t table_pieces = support.breakpoints_m.size() - 1;
+  const double floor_evaluations = static_cast<double>(table_pieces) * s.kronrod_points;
+  if (table_pieces > 1 && floor_evaluations > static_cast<double>(s.max_evaluations))
+    throw std::runtime_error("integral over " + d.describe() + ": its " + std::to_string(table_pieces) +
+                             " pieces need at least " + significant(floor_evaluations, 3) +
+                             " efficiency evaluations, beyond the budget of " + std::to_string(s.max_evaluations) +
+                             "; merge rows or bins of the table");
+  std::vector<Panel> panels = evaluate_tasks(integ, plain_tasks(cuts));
+  const QuadratureSettings t = settings_beside_expansion(panels, s);
+  bool extinction_only = false;
+  for (const auto& p : panels) extinction_only = extinction_only || p.used_asymptotic;
+  const detail::ResonancePlan plan = resonance_plan(integ, panels, support, d, t, m, extinction_only);
+  std::size_t probe = 0;
+  if (!plan.resolved.empty()) {
+    for (const auto& p : panels) probe += p.evaluations;
+    panels = evaluate_tasks(integ, tasks_with_resonances(cuts, plan, k));
   }
-  return bulk_optics_result(r, support, s, tail_fraction);
+  Refinement r(integ, std::move(panels), t, plan.unresolved_bound, extinction_only);
+  r.refine();
+  r.totals();
+  r.require_met(d);
+  BulkOptics out = bulk_optics_result(r, support, t, tail_fraction, plan);
+  out.evaluations += probe;
+  return out;
 }
 
 }  // namespace
+
+double detail::angular_tolerance(const QuadratureSettings& s) {
+  return s.angular_tolerance > 0 ? s.angular_tolerance : std::max(s.rel_tolerance, 1e-6);
+}
 
 BulkOptics integrate_bulk_optics(const SizeDistribution& d, double wavelength_m, const EfficiencyBatch& q,
                                  const QuadratureSettings& s, std::complex<double> m) {

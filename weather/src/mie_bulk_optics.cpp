@@ -13,6 +13,7 @@
 #include "attenuvis/mie/spheres.hpp"
 #include "attenuvis/weather/bulk_optics.hpp"
 #include "resonance.hpp"
+#include "bulk_components.hpp"
 #include "two_pass_bulk_optics.hpp"
 
 namespace attenuvis::weather {
@@ -97,25 +98,16 @@ BulkOptics detail::two_pass_bulk_optics(const SizeDistribution& d, double wavele
   cheap.polarised = false;
   BulkOptics out = integrate_bulk_optics(d, wavelength_m, cheap_batch, cheap, m);
   if (!out.scattering_computed) return out;  // large-x expansion used: no angular quantities either
-  // Pass B: the angular quantities; sigma's resonance target was met in pass A,
-  // so only theirs drives the refinement of the resonance panels here.
+  // Pass B: the angular quantities.  Their sigma_sca serves only as the
+  // denominator of chi_l and p(theta), so pass B integrates everything to the
+  // angular tolerance; the reported sigma, g and beta_pi come from pass A.
   QuadratureSettings angular_settings = s;
   angular_settings.backscatter = false;
-  angular_settings.resonance_tolerance = 1.0;
-  // Quadrature target of pass B.  For nearly lossless drops the angular
-  // quantities carry a resonance error of order angular_resonance_tolerance
-  // (measured 1e-4..5e-4 on chi_1 of advection fog), which pass B reports; to
-  // drive their quadrature error to rel_tolerance (1e-9) under it cost 40,610
-  // evaluations with O(x^2) moments for advection fog at 550 nm, L = 64, against
-  // 18,569 for a target of a hundredth of the resonance target (1e-5), which
-  // moves the total error of no chi_l by more than that.  The quadrature error
-  // (|K - G| and the aliasing bound of wide panels) is reported as before, so the
-  // errors still bound the true ones (brute-force tests in
-  // tests/weather/test_bulk_backscatter.cpp).  Pass B's sigma_sca serves only as
-  // the denominator of the chi_l and p(theta) of the same panels; the reported
-  // sigma, g and beta_pi come from pass A at rel_tolerance.
-  if (m.imag() < resonance_free_k() && s.estimate_resonances)
-    angular_settings.rel_tolerance = std::max(s.rel_tolerance, 1e-2 * s.angular_resonance_tolerance);
+  angular_settings.rel_tolerance = detail::angular_tolerance(s);
+  angular_settings.angular_tolerance = detail::angular_tolerance(s);
+  // The tails as pass A cuts them: p(0) Q_sca grows like x^2, so the bound on
+  // the omitted drops (sampled maximum x omitted moment) needs the finer cut.
+  if (s.tail_fraction <= 0) angular_settings.tail_fraction = 1e-3 * s.rel_tolerance;
   const BulkOptics b = integrate_bulk_optics(d, wavelength_m, angular(angular_settings), angular_settings, m);
   out.moments = b.moments;
   out.moments_error = b.moments_error;

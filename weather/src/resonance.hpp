@@ -1,19 +1,11 @@
-// What the quadrature does about the fine structure of Q_ext(x).
+// The resonance threshold and the large-x expansion of Q_ext of the
+// real-axis quadrature (bulk_optics.hpp).
 //
 // Nearly non-absorbing spheres (water in the visible, k ~ 2e-9) have
-// morphology-dependent resonances in Q_ext(x) whose widths (of order k x and
+// morphology-dependent resonances in Q(x) whose widths (of order k x and
 // narrower) no fixed sampling resolves.  When Im(m) < resonance_free_k(),
-// bulk_optics treats a panel no wider than QuadratureSettings::
-// resonance_x_span (2 in x: 31 nodes over ~2.5 periods of the ~0.8 ripple)
-// as a resonance panel: what its Kronrod and Gauss sums still disagree on (a
-// resonance hit by a node shows up there) is reported as the resonance error,
-// not counted against rel_tolerance.  Resonance panels are then split until
-// that error is below resonance_tolerance x sigma_ext, in an order that does
-// not look at the sampled values (weight x width / x, bulk_optics.cpp): an
-// order driven by |K - G| splits away the nodes that hit resonances and keeps
-// those that missed theirs, biasing sigma low.  That the reported error
-// covers the resonances the nodes missed is not proven; it is checked against
-// brute-force dense integration in tests/weather/test_resonances.cpp.
+// bulk_optics locates them (mie/resonances.hpp), resolves those that matter
+// with a panel each and bounds the rest (resonance_plan.hpp).
 //
 // Cost floor (validation/bench/weather_speed.cpp measures it): any rule must
 // sample the ripple, a few nodes per 0.8 in x, up to the tail cut (x ~ 1600
@@ -38,7 +30,7 @@
 namespace attenuvis::weather {
 
 // Imaginary index above which resonances are absorption-broadened enough for
-// the adaptive rule to resolve them (no floor, no resonance error).
+// the adaptive rule to resolve them (nothing located, no resonance error).
 double resonance_free_k();
 
 double qext_asymptotic(double x);

@@ -394,7 +394,31 @@ std::string method_text(const SizeDistribution& d, const SegmentedContourSetting
   return method.str();
 }
 
+// Evaluations per unit of x on the path (the 2n ripple, segmented_contour.hpp)
+// and per leg, and the cost of one evaluation, from the runs quoted there.
+constexpr double kEvaluationsPerX = 3.0, kEvaluationsPerLeg = 100.0;
+constexpr double kSecondsPerTerm = 16e-9, kSecondsPerEvaluation = 1e-6;
+
 }  // namespace
+
+ContourCost segmented_contour_cost(const SizeDistribution& d, double wavelength_m, const SegmentedContourSettings& s) {
+  ContourCost cost;
+  const auto pieces = pieces_of(d);
+  if (!pieces) return cost;
+  const double k = 2 * kPi / wavelength_m;
+  auto add = [&](double evaluations, double x) {
+    cost.evaluations += evaluations;
+    cost.seconds += evaluations * (kSecondsPerEvaluation + kSecondsPerTerm * x);
+  };
+  for (const Piece& p : *pieces) {
+    if (p.zero()) continue;
+    const double xa = k * p.r0, xb = k * p.r1;
+    add(s.kronrod_points * std::max(1.0, (xb - xa) * kEvaluationsPerX / s.kronrod_points), 0.5 * (xa + xb));
+  }
+  for (std::size_t i = 0; i <= pieces->size(); ++i)
+    add(kEvaluationsPerLeg, k * (i < pieces->size() ? (*pieces)[i].r0 : pieces->back().r1));
+  return cost;
+}
 
 std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribution& d, double wavelength_m,
                                                               Complex m, const SegmentedContourSettings& s) {
@@ -402,7 +426,14 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
   if (!pieces) return std::nullopt;
   const double k = 2 * kPi / wavelength_m;
   const double x_min = k * pieces->front().r0, x_max = k * pieces->back().r1;
-  if (!(x_max <= s.max_x) || !(x_min > 0) || pieces->size() > s.max_pieces) return std::nullopt;
+  if (!(x_max <= s.max_x) || !(x_min > 0)) return std::nullopt;
+  const ContourCost cost = segmented_contour_cost(d, wavelength_m, s);
+  if (cost.evaluations > static_cast<double>(s.max_evaluations))
+    throw std::runtime_error("sigma_ext by segmented contour over " + d.describe() + ": " +
+                             std::to_string(pieces->size()) + " pieces up to x = " + significant(x_max, 3) +
+                             " are estimated to take " + significant(cost.evaluations, 2) + " Mie evaluations (~" +
+                             significant(cost.seconds, 2) + " s of one core), beyond the budget of " +
+                             std::to_string(s.max_evaluations) + "; merge rows or bins of the table");
   const mie::Precision arithmetic = detail::contour_arithmetic(s.rel_tolerance, s.height);
   const Integrand f(std::move(*pieces), wavelength_m, m, s, arithmetic);
 

@@ -169,10 +169,7 @@ QuadratureSettings detail::real_axis_settings(const MieCondition& c, const Setti
   q.rel_tolerance = s.rel_tolerance;
   q.cancel = s.cancel;
   if (is_rain(c)) {
-    // Rain's error is dominated by the large-x bound (~5e-3 relative), so the
-    // resonances need not be refined below 1e-3 of sigma.
     q.asymptotic_x = s.rain_asymptotic_x;
-    q.resonance_tolerance = 1e-3;
     q.max_evaluations = 1000000;
   }
   return q;

@@ -15,12 +15,11 @@ struct QuadratureTradeoffRow {
   double rel_tolerance = 0;
   int kronrod_points = 0;
   double tail_fraction = 0;
-  double resonance_x_span = 0;     // panels this narrow in x count as resonance panels (weather/src/resonance.hpp)
-  double resonance_tolerance = 0;  // resonance panels refined until their error is below this x sigma
+  std::size_t resonances_resolved = 0;  // real axis: resonances given a product-rule panel (bulk_optics.hpp)
   double sigma_per_m = 0;
   double reported_quadrature_tail_error = 0;  // what the integrator claims (quadrature + tails)
   double actual_error = 0;    // |sigma - reference|; reference: contour integral, tol 1e-12, tail 1e-16
-  double resonance_error = 0; // the separate unresolved-resonance term
+  double resonance_error = 0; // the bound on the resonances left unresolved
   std::size_t evaluations = 0;
   double milliseconds = 0;    // wall time of one call, best of `repeats`
 };
@@ -30,7 +29,7 @@ struct QuadratureTradeoffRow {
 // (contour_extinction.hpp, what sigma() uses) at heights 2, 4, 6 and tolerances
 // 1e-6, 1e-9, 1e-12, and -- except for advection fog, where each row takes
 // seconds -- the real-axis rule (bulk_optics.hpp) over tolerances x Gauss-
-// Kronrod orders x tail cuts x resonance tolerances.  The reference is the
+// Kronrod orders x tail cuts.  The reference is the
 // contour integral at tolerance 1e-12 and tail 1e-16 (its error is in its row).
 std::vector<QuadratureTradeoffRow> quadrature_tradeoff(double wavelength_m = 550e-9, int repeats = 3);
 std::string quadrature_tradeoff_csv(const std::vector<QuadratureTradeoffRow>& rows);

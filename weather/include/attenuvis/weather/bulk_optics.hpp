@@ -18,34 +18,66 @@
 // Each is one more component of the same panel sums, with the same error terms
 // (backscatter and phase relative to their own value, moments absolute, like g).
 //
-// computed with Gauss-Kronrod rules from Boost.Math (boost/math/quadrature/
+// Tolerances: rel_tolerance governs sigma_ext, sigma_sca and sigma_abs (each
+// relative to sigma_ext, so that the albedo is good to it as well);
+// angular_tolerance (default max(rel_tolerance, 1e-6)) governs g, beta_pi,
+// chi_l, p(theta) and the expansion.  The reported error of every quantity
+// is at most its tolerance (or the function throws) and, by the analysis
+// below, at least its actual error; tests/weather/test_bulk_accuracy.cpp
+// checks both against brute-force sums at 550 nm, 1.55 um and 10.6 um.  At
+// 1.55 and 10.6 um those sums converge far below the tolerance; at 550 nm the
+// resonances of water (k = 2e-9) are narrower than any affordable step, the
+// sums agree with each other only to ~1e-5 (beta_pi, p) and ~1e-3 (sigma_abs),
+// and the comparison holds only to that; sigma_ext is checked there against
+// the contour integral (contour_extinction.hpp), which has no resonances.
+//
+// Method: Gauss-Kronrod rules from Boost.Math (boost/math/quadrature/
 // gauss_kronrod.hpp) in u = ln r, refined adaptively (globally, worst panel
-// first, QUADPACK QAG-style) until the summed |Kronrod - Gauss| of every panel
-// is below rel_tolerance x sigma_ext.  One efficiency evaluation serves all four
-// integrands.
+// first, QUADPACK QAG-style) until every component's summed |Kronrod - Gauss|
+// plus its resonance bound is below its tolerance times its scale.  One
+// efficiency evaluation serves all integrands.
+//
+// Resonances.  For nearly lossless spheres (Im m < resonance_free_k(),
+// src/resonance.hpp) Q(x) carries peaks of half-width down to ~k x / n
+// (2e-9 x for water at 550 nm), the morphology-dependent resonances, which no
+// sampling finds.  They are located instead: every pole x0 - i gamma of
+// a_n, b_n below the real axis in the size range is bracketed and, where it
+// matters, located with its residue R (mie/resonances.hpp).  Each pole's
+// possible contribution to each integral is bounded by |R|, gamma and the
+// size of the rest of the series sampled near x0 (src/resonance_plan.hpp:
+// it scales like pi |R| w(x0) times the coefficient's factor, |R| <= the
+// pole's radiative half-width).  The poles are taken in the order of that
+// bound and each is given a panel of its own on which the integrand times
+// |x - x_p|^2 is smooth, integrated by Clenshaw-Curtis with the Lorentzian
+// weight 1/|x - x_p|^2 taken exactly (src/pole_rule.hpp, 25 evaluations,
+// error from its 13-point subset), until the bounds of the others sum to
+// half of each component's allowed error; that sum is reported as the
+// resonance error.  Elsewhere no feature is narrower than the rule's
+// panels: resonances above the centrifugal barrier (x > n) have
+// half-widths >= ~0.05, and panels wider than 2 in x are charged the
+// aliasing term below.  A tighter tolerance resolves more poles: the cost
+// grows with the accuracy asked (docs/validation/bulk-optics-accuracy.md).
 //
 // The reported error of each integral is the sum of
-//   quadrature  sum over panels of |K - G| (an overestimate for smooth integrands),
+//   quadrature  sum over panels of |K - G| (an overestimate for smooth
+//               integrands), on resonance panels the difference from the
+//               13-point rule plus 4 eps sum |w F| (their weights grow like
+//               1/gamma where F is small),
 //   tails       q_bound x pi x (exact 2nd moment outside the integration range);
 //               the range holds all but tail_fraction of that moment,
 //   asymptotic  where x > asymptotic_x, Q_ext is replaced by its large-sphere
 //               expansion and |Q_ext - expansion| <= its stated bound is integrated,
-//   aliasing    on panels wider than the rule resolves (0.6 x points in x),
-//               1.5 x (sampled range of Q) x (panel's geometric cross-section)
-//               is added, since K and G can alias alike there,
-//   resonance   for nearly non-absorbing particles, what panels no wider
-//               than resonance_x_span still disagree on (src/resonance.hpp);
-//               not counted against rel_tolerance: those panels are split
-//               in an order set by the weight alone (not by |K - G|, which
-//               would bias sigma low) until it is below resonance_tolerance
-//               x sigma_ext, the evaluation budget is spent, or they reach
-//               min_resonance_x_span; what remains is reported.
+//   aliasing    on panels wider than the rule resolves (2 in x for nearly
+//               lossless spheres, else 0.6 x points), 1.5 x (sampled range of
+//               Q) x (panel's geometric cross-section) is added, since K and G
+//               can alias alike there,
+//   resonance   the bounds of the resonances not given a panel.
 // Panels are split a few at a time and their halves evaluated in parallel
 // (TBB, the threads the caller allows); which panels are split does not
 // depend on the thread count, so neither does the result.
-// If the quadrature part cannot be brought below the tolerance within
-// max_evaluations, or a moment diverges, the function throws
-// std::runtime_error naming the integral and the reason.
+// If a tolerance cannot be met within max_evaluations (resonance panels
+// included: the function says how many it would need), or a moment diverges,
+// the function throws std::runtime_error naming the integral and the reason.
 #pragma once
 
 #include <atomic>
@@ -85,28 +117,25 @@ using EfficiencyBatch = std::function<void(const double* x, std::size_t n, Effic
 
 // How the bulk integrals are computed, and which quantities they compute.
 struct QuadratureSettings {
-  double rel_tolerance = 1e-9;     // on every integral, relative to sigma_ext
+  double rel_tolerance = 1e-9;     // on sigma_ext, sigma_sca, sigma_abs (relative to sigma_ext)
+  // On g, beta_pi, chi_l, p(theta) and the expansion (relative to sigma_sca
+  // for g and chi_l, to itself for beta_pi and p(theta)); 0: max(rel_tolerance,
+  // 1e-6).  Their integrands carry resonances 10-1000x stronger than Q_ext's
+  // (Q_back ~ x |T| per resonance), so each decade costs more there.
+  double angular_tolerance = 0;
   int kronrod_points = 31;         // Boost.Math gauss_kronrod order: 15, 21, 31, 41, 51 or 61
   double tail_fraction = 0;        // fraction of the r^2 moment left outside; 0: 1e-3 * rel_tolerance
-  std::size_t max_evaluations = 400000;
+  std::size_t max_evaluations = 1000000;  // resonance panels (25 each) included
   double asymptotic_x = 0;         // > 0: use the large-x expansion of Q_ext beyond this x (extinction only)
   // Nearly non-absorbing spheres (Im m < resonance_free_k(), see src/resonance.hpp):
+  // locate the resonances, resolve those that matter, bound the rest.
   bool estimate_resonances = true;
-  double resonance_x_span = 2.0;      // panels this narrow in x resolve the ripple: their |K - G| is resonance error
-  double resonance_tolerance = 5e-5;  // split such panels until the resonance error is below this x sigma_ext...
-  double min_resonance_x_span = 0.01; // ...but never below this width in x
   // Optional bulk quantities (off by default: the efficiency function must
   // supply them, and the angular ones cost O(N^2) per sphere, N ~ x terms):
   bool backscatter = false;           // beta_pi and the lidar ratio
   int legendre_moments = -1;          // L >= 0: chi_0..chi_L
   std::vector<double> angles_deg;     // bulk phase function at these angles
   bool polarised = false;             // with legendre_moments >= 0: alpha1..4, beta1, 2 of the bulk matrix
-  // Resonance target of those quantities (relative to beta_pi, to p(theta),
-  // absolute on chi_l): Q_back and the angular quantities of nearly lossless
-  // drops carry resonances ~10-100x stronger than Q_ext's, so meeting
-  // resonance_tolerance on them would take millions of evaluations; what is
-  // left is reported as their resonance error.
-  double angular_resonance_tolerance = 1e-3;
   const std::atomic<bool>* cancel = nullptr;  // checked once per panel: Cancelled when set (cancel.hpp)
 };
 
@@ -124,7 +153,8 @@ struct BulkOptics {
   double albedo = 0, albedo_error = 0;
   double asymmetry = 0, asymmetry_error = 0;
   std::size_t evaluations = 0;
-  std::size_t floor_panels = 0;     // panels no wider than resonance_x_span
+  std::size_t resonances_located = 0;   // poles of a_n, b_n located (nearly lossless spheres)
+  std::size_t resonances_resolved = 0;  // of those, integrated by a product-rule panel each
   double max_size_parameter = 0;
   bool scattering_computed = true;  // false when the asymptotic region (extinction only) was used
   std::string method;               // rule, tolerance, tail cut, in words
@@ -169,7 +199,7 @@ void for_each_field(const MatrixExpansion& value, const MatrixExpansion& error, 
 template <class Visit>
 void for_each_field(const BulkOptics& b, Visit&& visit) {
   const auto& [extinction, scattering, absorption, albedo, albedo_error, asymmetry, asymmetry_error, evaluations,
-               floor_panels, max_size_parameter, scattering_computed, method, backscatter_computed, backscatter,
+               resonances_located, resonances_resolved, max_size_parameter, scattering_computed, method, backscatter_computed, backscatter,
                lidar_ratio, lidar_ratio_error, moments, moments_error, angles_deg, phase, phase_error, expansion,
                expansion_error] = b;
   visit("extinction", extinction);
@@ -178,7 +208,8 @@ void for_each_field(const BulkOptics& b, Visit&& visit) {
   visit("albedo", albedo, albedo_error);
   visit("asymmetry", asymmetry, asymmetry_error);
   visit("evaluations", evaluations);
-  visit("floor_panels", floor_panels);
+  visit("resonances_located", resonances_located);
+  visit("resonances_resolved", resonances_resolved);
   visit("max_size_parameter", max_size_parameter);
   visit("scattering_computed", scattering_computed);
   visit("method", method);
@@ -219,15 +250,11 @@ EfficiencyFunction mie_efficiencies(std::complex<double> m, const QuadratureSett
 
 // With Lorenz-Mie efficiencies of a homogeneous sphere of index m (mie_efficiencies),
 // in two passes when moments or a phase function are asked for: the angular
-// terms cost O(x^2) per sphere against O(x) for the efficiencies, and the
-// resonance panels that Q_back and sigma need (hundreds of thousands for fog at
-// 550 nm) are not needed to bring the moments' resonance error below
-// angular_resonance_tolerance.  So pass A integrates everything else with cheap
-// evaluations, pass B the moments and phase function, refining resonance
-// panels for their targets alone; `evaluations` counts both.  For nearly
-// lossless drops (Im m < resonance_free_k()) pass B's quadrature target is
-// max(rel_tolerance, angular_resonance_tolerance / 100): the resonance error it
-// reports is of order angular_resonance_tolerance whatever the quadrature does.
+// terms cost O(x^2) per sphere against O(x) for the efficiencies.  Pass A
+// integrates sigma, g and beta_pi with cheap evaluations to their
+// tolerances; pass B the moments and phase function to the angular
+// tolerance (its sigma_sca, their denominator, to the same), locating and
+// resolving the resonances for its own components; `evaluations` counts both.
 BulkOptics mie_bulk_optics(const SizeDistribution& d, double wavelength_m, std::complex<double> m,
                            const QuadratureSettings& s = {});
 
