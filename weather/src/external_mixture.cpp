@@ -94,7 +94,8 @@ BulkOptics external_mixture(const std::vector<const BulkOptics*>& optics, const 
     add_scaled(out.absorption, b.absorption, numbers[j]);
     add_scaled(out.backscatter, b.backscatter, numbers[j]);
     out.evaluations += b.evaluations;
-    out.floor_panels += b.floor_panels;
+    out.resonances_located += b.resonances_located;
+    out.resonances_resolved += b.resonances_resolved;
     out.max_size_parameter = std::max(out.max_size_parameter, b.max_size_parameter);
     out.scattering_computed = out.scattering_computed && b.scattering_computed;
     out.backscatter_computed = out.backscatter_computed && b.backscatter_computed;

@@ -64,6 +64,7 @@
 
 namespace attenuvis::mie {
 
+// Which coefficient a resonance is a pole of.
 enum class ResonanceMode { electric, magnetic };  // a pole of aₙ (TM), of bₙ (TE)
 
 // A resonance of the lossless sphere bracketed on the real axis: its order,
@@ -90,6 +91,7 @@ struct ResonanceBracket {
 // barrier), but callers are expected to know that: they ask only for water.
 std::vector<ResonanceBracket> resonance_brackets(double index, double x_lo, double x_hi);
 
+// One located resonance: its order, mode, pole and residue.
 struct Resonance {
   int order = 0;
   ResonanceMode mode = ResonanceMode::electric;

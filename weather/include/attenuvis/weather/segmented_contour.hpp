@@ -96,6 +96,8 @@ struct ContourCost {
 ContourCost segmented_contour_cost(const SizeDistribution& d, double wavelength_m,
                                    const SegmentedContourSettings& s = {});
 
+// sigma_ext of a tabulated or binned distribution by the segmented contour
+// described above, or nullopt where the rule does not apply.
 std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribution& d, double wavelength_m,
                                                               std::complex<double> m,
                                                               const SegmentedContourSettings& s = {});
