@@ -62,7 +62,7 @@ void add_row(Table& t, const Workload& w, int threads, const FloorComparison& f)
 void floors_table(Context& ctx, Section& s) {
   const bool quick = ctx.options.quick;
   const std::vector<double> four = seed_benchmark_sigmas(), one = {four.front()};
-  const double side = quick ? 100.0 : 150.0, city_spacing = quick ? 12.0 : 6.0;
+  const double side = quick ? 100.0 : 150.0, city_spacing = 12.0;
   s.text("The floors, in the same run on the same eye points: raw Embree casting every unordered pair as the "
          "engine's own packets, no scoring (what culling has to beat), and a raw scoring loop over every pair "
          "taken as in sight, distance and exp(-sigma d) vectorised by the compiler with glibc's vector exp, double "
