@@ -221,7 +221,7 @@ class Exchange {
     for (int s = 0; s < count_; ++s) {
       const std::string& bytes = parts_[static_cast<std::size_t>(s)];
       all[static_cast<std::size_t>(s)].resize(bytes.size() / sizeof(T));
-      std::memcpy(all[static_cast<std::size_t>(s)].data(), bytes.data(), bytes.size());
+      if (!bytes.empty()) std::memcpy(all[static_cast<std::size_t>(s)].data(), bytes.data(), bytes.size());
     }
     join(all, v);
     // Everyone must have read the parts before the next round writes them.
