@@ -417,7 +417,7 @@ TEST_CASE("reproduce: an earlier Mie core that cannot be loaded stops the job wi
   fs::remove_all(base);
 }
 
-TEST_CASE("reproduce: an output name taken by a directory stops the job with nothing moved", "[validation][slow]") {
+TEST_CASE("reproduce: an output name taken by a directory stops the job before its work, with nothing moved", "[validation]") {
   const fs::path dir = fs::temp_directory_path() / ("attenuvis-reproduce-taken-" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "key.json");  // where the job's key numbers would go

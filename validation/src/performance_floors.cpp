@@ -67,7 +67,7 @@ void floors_table(Context& ctx, Section& s) {
          "engine's own packets, no scoring (what culling has to beat), and a raw scoring loop over every pair "
          "taken as in sight, distance and exp(-sigma d) vectorised by the compiler with glibc's vector exp, double "
          "sums to both ends, no rays (what in-sight scoring has to come near). Times are CPU seconds of the "
-         "process (best of the repeats), the engine's split by phase from the shares a phase-timed run measured. "
+         "process (one run each), the engine's split by phase from the shares a phase-timed run measured. "
          "The engine stays exact: culling changes no result (the tests compare degree, S_S bits, distances and "
          "edges with casting every pair), and every pair keeps its own rounding to fixed point.");
   const vg::Scene plane(open_plane(side));
@@ -105,7 +105,7 @@ void floors_table(Context& ctx, Section& s) {
     FloorOptions o;
     o.sigmas = w.sigmas;
     o.threads = ctx.threads;
-    o.repeats = quick ? 1 : 2;
+    o.repeats = 1;
     const FloorComparison f = compare_with_floors(*w.scene, w.eyes, o);
     add_row(t, w, ctx.threads, f);
     ctx.set("performance.floors." + w.key + ".speed_over_raw_embree", f.over_rays());

@@ -339,6 +339,9 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::unique_ptr<MieBaseline> mie_baseline = load_mie_baseline(options.mie_baseline);
   const fs::path out = make_output_directory(options.out_dir);
+  // The job's fixed outputs are checked before minutes of work, not only
+  // when they are moved in (move_outputs checks every file again).
+  for (const char* name : {"key.json", "report.html"}) io::require_regular_or_absent((out / name).string());
   const StagingDirectory staging(out);
 
   const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();

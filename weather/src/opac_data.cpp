@@ -39,9 +39,10 @@ std::vector<OpacSizeRow> parse_opac_size_table(const std::string& text, const st
     double v[7];
     const char* names[7] = {"component number", "RH", "Rmin", "Rmax", "Rmod", "rho", "sigma"};
     for (int i = 0; i < 7; ++i) v[i] = detail::number(f[i], where, names[i]);
-    OpacSizeRow r{static_cast<int>(v[0]), v[1], v[2], v[3], v[4], v[5], v[6], line_no};
-    if (!(v[0] >= 1 && v[0] <= 10 && v[0] == r.component))
+    // The number is checked before it becomes an int (a cast out of range is undefined).
+    if (!(v[0] >= 1 && v[0] <= 10 && v[0] == std::floor(v[0])))
       throw std::runtime_error(where + ": component number " + f[0] + " is not 1..10");
+    OpacSizeRow r{static_cast<int>(v[0]), v[1], v[2], v[3], v[4], v[5], v[6], line_no};
     if (!(r.rh_percent >= 0 && r.rh_percent <= 100)) throw std::runtime_error(where + ": RH " + f[1] + " is not 0..100 %");
     if (!(r.r_min_um > 0 && r.r_min_um < r.r_mod_um && r.r_mod_um < r.r_max_um))
       throw std::runtime_error(where + ": needs 0 < Rmin < Rmod < Rmax (um)");
