@@ -46,6 +46,7 @@ nlohmann::json optics_json(const std::string& label, const w::ConditionOptics& o
                       {"distribution", o.distribution},
                       {"refractive_index", o.index_source},
                       {"method", b.method},
+                      {"tolerance_met", b.shortfall.empty()},
                       {"evaluations", b.evaluations},
                       {"sigma_ext", estimate_json(b.extinction, "1/m")}};
   if (!b.scattering_computed) {
@@ -156,6 +157,10 @@ void run_optics(const std::vector<std::string>& conditions, const OpticsOptions&
   nlohmann::json out = nlohmann::json::array();
   for (const auto& [label, c] : parsed) {
     const w::ConditionOptics r = w::condition_optics(c, wavelength, s, request);
+    // A result that missed its tolerance (bulk_optics.hpp: nearly lossless
+    // particles beyond the evaluation budget) is printed with the errors it
+    // reached, and said so on stderr.
+    if (!r.bulk.shortfall.empty()) std::cerr << "warning: " << label << ": " << r.bulk.shortfall << "\n";
     if (o.json) out.push_back(optics_json(label, r));
     else print_text(label, r);
   }

@@ -1149,6 +1149,10 @@ class Optics:
         wavelengths): then only the extinction holds.
     evaluations, resonances_located, resonances_resolved, max_size_parameter, method
         How the integral was computed.
+    shortfall : str
+        Empty when every quantity met its tolerance; else (nearly lossless
+        particles beyond the evaluation budget) which quantity missed it and
+        by how much.  The reported errors are then the ones reached.
     m : complex
         The refractive index used.
     wavelength : float

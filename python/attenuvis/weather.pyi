@@ -83,6 +83,7 @@ class Optics:
     max_size_parameter: float
     scattering_computed: bool
     method: str
+    shortfall: str
     backscatter_computed: bool
     backscatter: Estimate
     lidar_ratio: Tuple[float, float]

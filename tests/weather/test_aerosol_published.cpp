@@ -73,7 +73,9 @@ double half_unit(const std::string& printed) { return attenuvis::io::half_unit_i
 // One particle per cm^3 of a component at a tabulated humidity, in 1/km.
 BulkOptics per_particle(const AerosolPopulation& p, double wavelength_m) {
   QuadratureSettings q;
-  q.rel_tolerance = 1e-6;  // the comparison is at the 1e-3 level; certified to 1e-6 is plenty
+  // The comparison is at the 1e-3 level: certified to 1e-4 is plenty, and the
+  // resonances of the humid sea salt at 350 nm cost 7x more at 1e-6.
+  q.rel_tolerance = 1e-4;
   return mie_bulk_optics(population_distribution(p, 1.0), wavelength_m, p.index_at(wavelength_m), q);
 }
 
@@ -167,6 +169,7 @@ TEST_CASE("lidar ratios within Ackermann's ranges (JAOT 15:1043, 1998)", "[weath
                         {"desert", 355, 42, 48},              {"desert", 532, 17, 25},
                         {"desert", 1064, 17, 25}};
   Settings s;
+  s.rel_tolerance = 1e-4;  // S is checked to 1 sr in 15-80 (>= 1e-2): certified to 1e-4 is plenty
   OpticsRequest r{true, -1, {}, false};
   for (const Band& band : bands)
     for (double rh : {0.0, 50.0, 80.0, 90.0}) {

@@ -25,7 +25,7 @@ namespace wx = attenuvis::weather;
 constexpr double kWavelength = 550e-9;
 // The report's curves need 1e-4, not the library's default 1e-9: the OPAC
 // comparison is at the 1e-3 level.  Every number shown is certified to this.
-constexpr double kTolerance = 1e-6;
+constexpr double kTolerance = 1e-4;
 
 wx::Settings report_settings() {
   wx::Settings s;

@@ -172,9 +172,10 @@ class Refinement {
   // as fill_optional reports them; beta_pi carries its own relative error
   // plus sigma_ext's, so that the lidar ratio stays within its tolerance.
   // 0.9 of each leaves room for the tails (1e-3 of the tolerance).
-  double share(int c) const {
+  // With quadrature false, the share of the unresolved resonances alone.
+  double share(int c, bool quadrature = true) const {
     const double tol = component_tolerance(layout_, c, s_);
-    const auto err = [&](int i) { return error_[i] + unresolved_[i]; };
+    const auto err = [&](int i) { return (quadrature ? error_[i] : 0.0) + unresolved_[i]; };
     const double ext = std::max(std::abs(value_[kExt]), 1e-300), sca = std::max(std::abs(value_[kSca]), 1e-300);
     if (c == kExt || c == kSca || c == kAbs) return err(c) / (0.45 * tol * ext);
     if (c == kBack) return (err(c) / std::max(std::abs(value_[c]), 1e-300) + err(kExt) / ext) / (0.9 * tol);
@@ -188,6 +189,18 @@ class Refinement {
       if (share(c) > 1) return false;
     return true;
   }
+  // Met, or beyond reach: where the budget left resonances unresolved whose
+  // bounds alone take more than half of a component's tolerance (the plan's
+  // share is 0.4), refining its quadrature error below those bounds buys
+  // nothing, so the refinement stops there (share is linear in the error
+  // terms: share <= 2 x the resonances' share means quadrature <= resonances).
+  bool settled() const {
+    for (int c : checked_) {
+      const double resonances = share(c, false);
+      if (share(c) > 1 && !(resonances > 0.5 && share(c) <= 2 * resonances)) return false;
+    }
+    return true;
+  }
 
   void refine() {
     auto cmp = [&](std::size_t i, std::size_t j) { return key(panels_[i]) < key(panels_[j]); };
@@ -195,7 +208,7 @@ class Refinement {
     for (std::size_t i = 0; i < panels_.size(); ++i) heap.push(i);
     std::size_t rounds = 0;
     for (;;) {
-      if (met() || heap.empty() || evaluations_ > s_.max_evaluations) return;
+      if (settled() || heap.empty() || evaluations_ > s_.max_evaluations) return;
       std::vector<std::size_t> chosen;
       std::vector<Panel> parents;
       while (!heap.empty() && chosen.size() < kBatch) {
@@ -219,19 +232,25 @@ class Refinement {
   }
 
   // Throws naming the worst integral when the tolerances are not met (a sum
-  // that is not finite, which no comparison catches, included).
-  void require_met(const SizeDistribution& d) const {
+  // that is not finite, which no comparison catches, included).  With
+  // may_fall_short (nearly lossless spheres, bulk_optics.hpp) a finite result
+  // that misses its tolerance is returned, and this says by how much.
+  std::string require_met(const SizeDistribution& d, bool may_fall_short) const {
     for (int c : checked_)
       if (!std::isfinite(value_[c]) || !std::isfinite(error_[c]))
         throw std::runtime_error("integral over " + d.describe() + " is not finite in double precision (sigma_ext " +
                                  significant(value_[kExt], 3) + "); the distribution's number density is out of "
                                  "range");
-    if (met()) return;
+    if (met()) return {};
     int worst = kExt;
     double ratio = 0;
     for (int c : checked_)
       if (share(c) > ratio) ratio = share(c), worst = c;
     const double tol = component_tolerance(layout_, worst, s_);
+    if (may_fall_short)
+      return component_name(worst) + ": relative tolerance " + significant(tol, 3) + " not met within " +
+             std::to_string(evaluations_) + " efficiency evaluations (error reached " + significant(ratio, 3) +
+             " times that, as reported) over " + d.describe();
     throw std::runtime_error(component_name(worst) + " integral over " + d.describe() + ": relative tolerance " +
                              significant(tol, 3) + " not met after " + std::to_string(evaluations_) +
                              " efficiency evaluations (estimated error " + significant(ratio, 3) +
@@ -441,7 +460,8 @@ detail::NearbySamples nearby(const std::vector<Panel>& panels, const SizeDistrib
 
 // The plan of the resonances of nearly lossless spheres (resonance_plan.hpp)
 // from the first pass's panels: each component may carry its tolerance
-// times its first estimate.
+// times its first estimate.  Resonance panels may take half the evaluation
+// budget; the refinement around them needs the rest.
 detail::ResonancePlan resonance_plan(const Integrator& integ, const std::vector<Panel>& first, const Support& support,
                                      const SizeDistribution& d, const QuadratureSettings& s, std::complex<double> m,
                                      bool extinction_only) {
@@ -464,7 +484,8 @@ detail::ResonancePlan resonance_plan(const Integrator& integ, const std::vector<
   }
   return detail::plan_resonances(
       m, breakpoints_x.front(), x_hi, layout, allowed, breakpoints_x,
-      [&](double x0) { return nearby(first, d, k, x0); }, s.max_evaluations / detail::kPoleRulePoints, s.cancel);
+      [&](double x0) { return nearby(first, d, k, x0); }, s.max_evaluations / (2 * detail::kPoleRulePoints),
+      s.cancel);
 }
 
 // Where the large-x expansion of Q_ext replaces Mie (rain at optical
@@ -518,9 +539,14 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   Refinement r(integ, std::move(panels), t, plan.unresolved_bound, extinction_only);
   r.refine();
   r.totals();
-  r.require_met(d);
+  const std::string missed = r.require_met(d, t.estimate_resonances);
   BulkOptics out = bulk_optics_result(r, support, t, tail_fraction, plan);
   out.evaluations += probe;
+  if (!missed.empty()) {
+    out.shortfall = missed;
+    if (!plan.short_of.empty()) out.shortfall += "; " + plan.short_of;
+    out.method += "; tolerance not met: " + out.shortfall;
+  }
   return out;
 }
 

@@ -7,6 +7,7 @@
 
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/mie/layered.hpp"
+#include "resonance.hpp"
 #include "two_pass_bulk_optics.hpp"
 
 namespace attenuvis::weather {
@@ -64,12 +65,20 @@ BulkOptics coated_bulk_optics(const SizeDistribution& d, double wavelength_m, st
     throw std::invalid_argument("coated particles: the shell volume fraction must be in [0, 0.999]");
   QuadratureSettings q = s;
   q.asymptotic_x = 0;  // the large-x expansion is the homogeneous sphere's
+  // The pole analysis (mie/resonances.hpp) is the homogeneous sphere's: a
+  // coated particle's resonances lie elsewhere, so none are located, and the
+  // method says that its errors are what the panels sample.
+  const bool lossless_shell = s.estimate_resonances && coating.shell_m.imag() < resonance_free_k();
+  q.estimate_resonances = false;
   BulkOptics b = detail::two_pass_bulk_optics(
       d, wavelength_m, coating.shell_m, coated_efficiency_batch(core_m, coating),
       [core_m, coating](const QuadratureSettings& a) { return coated_efficiencies(core_m, coating, a); }, q);
   b.method = "core-shell particles (layered-sphere Mie, shell " + io::significant(coating.shell_volume_fraction, 4) +
              " of the volume, index " + io::significant(coating.shell_m.real(), 6) + "+" +
              io::significant(coating.shell_m.imag(), 6) + "i); " + b.method;
+  if (lossless_shell)
+    b.method += "; the shell is nearly lossless (k < " + io::significant(resonance_free_k(), 3) +
+                "): its resonances are not located, the errors cover what the panels sample";
   return b;
 }
 

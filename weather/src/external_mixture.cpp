@@ -99,6 +99,7 @@ BulkOptics external_mixture(const std::vector<const BulkOptics*>& optics, const 
     out.max_size_parameter = std::max(out.max_size_parameter, b.max_size_parameter);
     out.scattering_computed = out.scattering_computed && b.scattering_computed;
     out.backscatter_computed = out.backscatter_computed && b.backscatter_computed;
+    if (!b.shortfall.empty()) out.shortfall += (out.shortfall.empty() ? "" : "; ") + b.shortfall;
   }
   if (!out.backscatter_computed) out.backscatter = {};
   out.method = "external mixture of " + std::to_string(optics.size()) + " populations, " +

@@ -117,6 +117,7 @@ BulkOptics detail::two_pass_bulk_optics(const SizeDistribution& d, double wavele
   out.expansion = b.expansion;
   out.expansion_error = b.expansion_error;
   out.evaluations += b.evaluations;
+  if (!b.shortfall.empty()) out.shortfall += (out.shortfall.empty() ? "" : "; ") + ("angular pass: " + b.shortfall);
   out.method += "; moments/phase function in a second pass (" + std::to_string(b.evaluations) +
                 " evaluations with angular terms, rel. tol " + io::significant(angular_settings.rel_tolerance, 3) +
                 ")";

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <stdexcept>
 #include <string>
 
 #include <boost/math/constants/constants.hpp>
@@ -71,9 +70,9 @@ double reach_of(double x0, double left_neighbour, double right_neighbour, const 
 }
 
 std::string too_costly(std::size_t needed, std::size_t max_resolved) {
-  return "resolving the resonances of the nearly lossless drops to the tolerance needs " + std::to_string(needed) +
-         " resonance panels (" + std::to_string(needed * 25) + " Mie evaluations) against a budget of " +
-         std::to_string(max_resolved) + "; raise the tolerance (--tolerance) or the evaluation budget";
+  return "resolving the resonances of the nearly lossless particles to the tolerance needs " +
+         std::to_string(needed) + " resonance panels of 25 evaluations, beyond the budget's " +
+         std::to_string(max_resolved) + ": the others are bounded, not resolved";
 }
 
 }  // namespace
@@ -172,11 +171,18 @@ ResonancePlan plan_resonances(std::complex<double> m, double x_lo, double x_hi, 
     add(unresolved, c.bound, -1);
   }
   if (!within(unresolved, allowed, 1.0))
-    throw std::runtime_error(
-        "the resonances of the nearly lossless drops narrower than double precision resolves (half-width < 1e5 "
-        "eps x) may contribute " + io::significant(worst_share(unresolved, allowed), 3) +
-        " times the allowed error; raise the tolerance (--tolerance)");
-  if (chosen.size() > max_resolved) throw std::runtime_error(too_costly(chosen.size(), max_resolved));
+    plan.short_of = "resonances narrower than double precision resolves (half-width < 1e5 eps x) may contribute " +
+                    io::significant(worst_share(unresolved, allowed), 3) + " times their share of the tolerance";
+  if (chosen.size() > max_resolved) {
+    // The tolerance is out of reach.  chosen is in decreasing order of bound:
+    // the largest keep their panels (bounding them instead is ~100x looser,
+    // the bounds being worst cases), the others stay bounded, and the
+    // refinement stops where its quadrature error falls below their bound
+    // (Refinement::settled).
+    plan.short_of = too_costly(chosen.size(), max_resolved);
+    for (std::size_t j = max_resolved; j < chosen.size(); ++j) add(unresolved, candidates[chosen[j]].bound);
+    chosen.resize(max_resolved);
+  }
   std::sort(chosen.begin(), chosen.end(), [&](std::size_t a, std::size_t b) {
     return candidates[a].pole.pole.real() < candidates[b].pole.pole.real();
   });
@@ -192,9 +198,9 @@ ResonancePlan plan_resonances(std::complex<double> m, double x_lo, double x_hi, 
     }
     plan.resolved.push_back({pole, reach});
   }
-  if (!within(unresolved, allowed, 1.0))
-    throw std::runtime_error("resonances on a breakpoint of the size distribution may contribute " + io::significant(worst_share(unresolved, allowed), 3) +
-                             " times the allowed error; raise the tolerance (--tolerance)");
+  if (plan.short_of.empty() && !within(unresolved, allowed, 1.0))
+    plan.short_of = "resonances on a breakpoint of the size distribution may contribute " +
+                    io::significant(worst_share(unresolved, allowed), 3) + " times their share of the tolerance";
   plan.unresolved_bound = unresolved;
   return plan;
 }

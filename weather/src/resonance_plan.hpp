@@ -46,13 +46,18 @@
 // pole_rule.hpp) in the order of their bound until the unresolved ones sum to
 // half of it.  A pole narrower than ~1e5 unit roundoffs of x cannot be
 // resolved in double (its position is known to ~n eps x) and stays bounded;
-// its |R| <= gamma makes that bound small.
+// its |R| <= gamma makes that bound small.  When more poles would need a
+// panel than max_resolved allows, those with the largest bounds get one and
+// the rest stay bounded: the plan then says so (ResonancePlan::short_of), and
+// the unresolved bound, reported as the resonance error, exceeds the share
+// the tolerance gave it.
 #pragma once
 
 #include <atomic>
 #include <complex>
 #include <cstddef>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "attenuvis/mie/resonances.hpp"
@@ -76,6 +81,9 @@ struct ResonancePlan {
   std::vector<ResolvedResonance> resolved;  // in increasing x0
   Vec unresolved_bound;                     // per component: what the other resonances may contribute
   std::size_t bracketed = 0, located = 0;
+  // Empty when the unresolved bound is within the allowed error; else why not
+  // (the budget, or poles narrower than double precision resolves).
+  std::string short_of;
 };
 
 // The bound on what one resonance of order n at x0, |R| and half-width
@@ -85,9 +93,7 @@ Vec resonance_bound(const Layout& layout, int order, double x0, double residue, 
 
 // The plan for index m over [x_lo, x_hi] in x, each component's allowed
 // error in `allowed` (absolute), the breakpoints of the density (no panel
-// crosses one) in x.  Throws std::runtime_error when the unresolved bound
-// cannot be brought within `allowed`, or when resolving would take more than
-// max_resolved panels, with the numbers and the remedy.  Checks `cancel`
+// crosses one) in x, at most max_resolved panels.  Checks `cancel`
 // between batches of poles (Cancelled when set, cancel.hpp): a fog at 550 nm
 // has ~1e4 of them.
 ResonancePlan plan_resonances(std::complex<double> m, double x_lo, double x_hi, const Layout& layout,
