@@ -58,6 +58,12 @@ void add_weather_options(CLI::App* cmd, WeatherOptions& o, WeatherOptionSet whic
     cmd->add_option("--tolerance", o.tolerance,
                     "relative tolerance of Mie size integrals; " + w::range_text(w::domain::tolerance))
         ->capture_default_str();
+  if (which.tolerance)
+    cmd->add_option("--max-evaluations", o.max_evaluations,
+                    "Mie evaluations per size integral on the real axis; nearly lossless particles beyond it "
+                    "report the error reached (in [1000, 1e9])")
+        ->check(CLI::Range(std::size_t{1000}, std::size_t{1000000000}))
+        ->capture_default_str();
   cmd->add_option("--water", o.water, "refractive-index table of the drops: " + water_table_choices())
       ->capture_default_str();
 }
@@ -67,6 +73,7 @@ weather::Settings weather_settings(const WeatherOptions& o) {
   s.convention = for_option("--convention", [&] { return w::parse_convention(o.convention); });
   s.contrast_threshold = for_option("--threshold", [&] { return w::read_in(w::domain::contrast_threshold, o.threshold); });
   s.rel_tolerance = for_option("--tolerance", [&] { return w::read_in(w::domain::tolerance, o.tolerance); });
+  s.max_evaluations = o.max_evaluations;
   if (!w::find_water_table(o.water))
     throw std::invalid_argument("--water: unknown table '" + o.water + "' (" + w::water_table_names() + ")");
   s.water_table = o.water;

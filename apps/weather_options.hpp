@@ -20,6 +20,7 @@ struct WeatherOptions {
   std::string convention = "itu";
   std::string threshold = "0.02";
   std::string tolerance = "1e-9";
+  std::size_t max_evaluations = 1000000;
   std::string water = "hale-querry";
 };
 

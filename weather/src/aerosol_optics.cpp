@@ -48,6 +48,7 @@ class PerParticleMemo {
 QuadratureSettings population_settings(const Settings& s, const OpticsRequest& r) {
   QuadratureSettings q;
   q.rel_tolerance = s.rel_tolerance;
+  q.max_evaluations = s.max_evaluations;
   q.cancel = s.cancel;
   q.backscatter = r.backscatter;
   q.legendre_moments = r.legendre_moments;
@@ -58,6 +59,7 @@ QuadratureSettings population_settings(const Settings& s, const OpticsRequest& r
 
 std::string request_key(const OpticsRequest& r, double wavelength_m, const Settings& s) {
   std::string key = io::shortest(wavelength_m) + "|" + io::shortest(s.rel_tolerance) + "|" +
+                    std::to_string(s.max_evaluations) + "|" +
                     (r.backscatter ? "b" : "") + "|" + std::to_string(r.legendre_moments) + (r.polarised ? "p" : "");
   for (double a : r.angles_deg) key += "," + io::shortest(a);
   return key;

@@ -40,7 +40,7 @@ BulkOptics real_axis_optics(const MieCondition& c, double wavelength_m, const Se
 // the settings that enter the integral.  Conditions read from a file have no
 // key (the file may change between calls).
 using MieKey = std::tuple<std::size_t, double, std::size_t, std::size_t, double, double, std::string, std::size_t,
-                          double, double, double, std::string, double, double, double, double>;
+                          double, double, double, std::string, double, double, double, double, std::size_t>;
 std::optional<MieKey> cache_key(const MieCondition& c, double wavelength_m, const Settings& s) {
   // Files may change between calls; parametric drops are keyed by no preset
   // (their sigma comes from the contour rule in milliseconds).
@@ -61,7 +61,8 @@ std::optional<MieKey> cache_key(const MieCondition& c, double wavelength_m, cons
   const double coat = c.coating ? c.coating->shell_volume_fraction : -1.0;
   const double shell_n = c.coating ? c.coating->shell_m.real() : 0.0, shell_k = c.coating ? c.coating->shell_m.imag() : 0.0;
   return MieKey{c.drops.index(), rate, preset, c.index.index(), n, k, table, c.rescaling.index(), scale,
-                wavelength_m, s.rel_tolerance, s.water_table, s.rain_asymptotic_x, coat, shell_n, shell_k};
+                wavelength_m, s.rel_tolerance, s.water_table, s.rain_asymptotic_x, coat, shell_n, shell_k,
+                s.max_evaluations};
 }
 
 // Mie integrals of near-lossless drops take seconds; a process asking for
@@ -167,11 +168,9 @@ std::string power_law_words(double published, const Settings& s) {
 QuadratureSettings detail::real_axis_settings(const MieCondition& c, const Settings& s) {
   QuadratureSettings q;
   q.rel_tolerance = s.rel_tolerance;
+  q.max_evaluations = s.max_evaluations;
   q.cancel = s.cancel;
-  if (is_rain(c)) {
-    q.asymptotic_x = s.rain_asymptotic_x;
-    q.max_evaluations = 1000000;
-  }
+  if (is_rain(c)) q.asymptotic_x = s.rain_asymptotic_x;
   return q;
 }
 

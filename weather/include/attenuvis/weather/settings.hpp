@@ -3,6 +3,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstddef>
 #include <string>
 
 #include "attenuvis/weather/units.hpp"
@@ -14,6 +15,10 @@ struct Settings {
   Convention convention = Convention::itu;  // how P.1817 power laws are read (units.hpp)
   double contrast_threshold = 0.02;         // Koschmieder epsilon: 0.02 (3.912) or 0.05 (2.996)
   double rel_tolerance = 1e-9;              // Mie integrals: quadrature + tails, relative to sigma_ext
+  // Mie integrals on the real axis: the budget of Mie evaluations per size
+  // integral (QuadratureSettings::max_evaluations; nearly lossless particles
+  // beyond it come back with the error reached, bulk_optics.hpp).
+  std::size_t max_evaluations = 1000000;
   // Refractive-index table of Mie conditions that name none: a name or alias
   // in water_tables() (refractive_index.hpp), "water" = Hale & Querry (1973).
   // A condition's water= or m= overrides it.
