@@ -73,9 +73,11 @@ double half_unit(const std::string& printed) { return attenuvis::io::half_unit_i
 // One particle per cm^3 of a component at a tabulated humidity, in 1/km.
 BulkOptics per_particle(const AerosolPopulation& p, double wavelength_m) {
   QuadratureSettings q;
-  // The comparison is at the 1e-3 level: certified to 1e-4 is plenty, and the
-  // resonances of the humid sea salt at 350 nm cost 7x more at 1e-6.
-  q.rel_tolerance = 1e-4;
+  // OPAC's values have 3-4 digits and are checked to 4e-3: the tolerance 1e-3 is plenty, and
+  // the evaluation budget caps the resonances resolved for sea salt at 350 and 550 nm (what
+  // stays bounded shows in the reported error, which this comparison does not use).
+  q.rel_tolerance = 1e-3;
+  q.max_evaluations = 100000;
   return mie_bulk_optics(population_distribution(p, 1.0), wavelength_m, p.index_at(wavelength_m), q);
 }
 
@@ -169,7 +171,11 @@ TEST_CASE("lidar ratios within Ackermann's ranges (JAOT 15:1043, 1998)", "[weath
                         {"desert", 355, 42, 48},              {"desert", 532, 17, 25},
                         {"desert", 1064, 17, 25}};
   Settings s;
-  s.rel_tolerance = 1e-4;  // S is checked to 1 sr in 15-80 (>= 1e-2): certified to 1e-4 is plenty
+  // S is checked to 1 sr in 15-80 (>= 1e-2): the tolerance 1e-3 is plenty.  The evaluation
+  // budget caps the resonances resolved for the coarse sea salt at 355 nm; what stays
+  // bounded shows in the reported error, which this comparison does not use.
+  s.rel_tolerance = 1e-3;
+  s.max_evaluations = 100000;
   OpticsRequest r{true, -1, {}, false};
   for (const Band& band : bands)
     for (double rh : {0.0, 50.0, 80.0, 90.0}) {
