@@ -43,7 +43,9 @@ def test_bad_aerosols_raise():
 
 
 def test_table_sweeps_humidity():
-    t = w.table("haze:maritime-clean:rh=0..99/33", [550e-9], ["sigma", "albedo"])
+    # The sweep and its order are checked, not the digits: 1e-3 spares the sea salt's
+    # resonances at 550 nm the work that 1e-9 asks (seconds per humidity).
+    t = w.table("haze:maritime-clean:rh=0..99/33", [550e-9], ["sigma", "albedo"], rel_tolerance=1e-3)
     sigmas = t.value[:, 0]
     assert len(sigmas) == 4
     assert np.all(np.diff(sigmas) > 0)  # sea salt and waso swell with humidity
