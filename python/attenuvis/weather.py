@@ -1250,7 +1250,13 @@ def optics(condition, wavelength: float = 550e-9, *, rel_tolerance: float = 1e-9
     """Bulk optics of a Mie condition, an aerosol or a bare distribution.
 
     Extinction, scattering and absorption with error bounds, albedo and
-    asymmetry parameter, by quadrature on the real axis.
+    asymmetry parameter, by quadrature on the real axis.  The angular
+    quantities cost O(x^2) per sphere and are not computed here
+    (``backscatter_computed`` is False, ``moments`` and ``phase`` are
+    empty): `table` with the quantities "backscatter", "lidar_ratio" or
+    "phase" (at ``angles=``) gives them; the Legendre moments come from the
+    command line, ``attenuvis optics --moments L`` or ``attenuvis table
+    --quantities moments:L``.
 
     Parameters
     ----------

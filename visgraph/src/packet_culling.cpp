@@ -1,6 +1,8 @@
 // Packets decided lane by lane (packet_culling.hpp).
 #include "packet_culling.hpp"
 
+#include "embree_ray.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -54,17 +56,7 @@ Verdict PacketCulling::decide(const double* point, const double* x, const double
     const double d[3] = {x[l] - point[0], y[l] - point[1], z[l] - point[2]};
     const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     if (!(length > 4 * margin_)) return Verdict::cast;
-    RTCRayHit rh{};
-    rh.ray.org_x = static_cast<float>(point[0]);
-    rh.ray.org_y = static_cast<float>(point[1]);
-    rh.ray.org_z = static_cast<float>(point[2]);
-    rh.ray.dir_x = static_cast<float>(d[0]);
-    rh.ray.dir_y = static_cast<float>(d[1]);
-    rh.ray.dir_z = static_cast<float>(d[2]);
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = 1.0f;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = embree_ray(point, d, 0.0, 1.0);
     rtcIntersect1(scene_, &context, &rh);
     // Nothing along the first lane tried: the packet may be all in sight.
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
