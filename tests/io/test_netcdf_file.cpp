@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <netcdf.h>
 #include <unistd.h>
@@ -34,8 +35,8 @@ TEST_CASE("netCDF file: appears on commit with its values, attributes and string
     f.set_attribute(var, "_FillValue", std::nan(""));
     f.set_attribute(attenuvis::io::NetcdfFile::global, "Conventions", "CF-1.8");
     f.end_definitions();
-    f.write(var, {1.5, std::nan(""), -2.0});
-    f.write(str, {"a", "", "ccc"});
+    f.write(var, std::vector<double>{1.5, std::nan(""), -2.0});
+    f.write(str, std::vector<std::string>{"a", "", "ccc"});
     CHECK(!fs::exists(path));  // nothing at the destination before commit
     f.commit();
   }
