@@ -113,6 +113,7 @@ std::string producer() {
 struct TableOptions {
   std::string conditions, wavelengths = "550nm", quantities = "sigma_ext", format = "csv", out;
   std::string angles;  // empty: the default grid, when phase is asked for
+  std::string layer_thickness = "1km";  // disort: DTAUC = sigma_ext x this
   int threads = 0;
 };
 
@@ -176,7 +177,13 @@ void run_table(const TableOptions& t, const CommonOptions& o) {
   }();
   const std::vector<double> angles = table_angles(t, request.phase);
   auto table = w::sigma_table(parsed, wavelengths_m, s, t.threads, request.quantities, request.max_moment, angles);
-  w::write_sigma_table(table, t.out, table_format, unit, {producer()});
+  w::TableWriteOptions write_options;
+  try {
+    write_options.layer_thickness_m = w::parse_distance(t.layer_thickness);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("--layer-thickness: ") + e.what());
+  }
+  w::write_sigma_table(table, t.out, table_format, unit, {producer()}, write_options);
   std::vector<std::string> what;
   if (!request.quantities.empty()) what.push_back(std::to_string(request.quantities.size()) + " quantities");
   if (request.max_moment >= 0) what.push_back("moments 0.." + std::to_string(request.max_moment));
@@ -286,7 +293,13 @@ void register_weather(CLI::App& app) {
                     std::string("scattering angles of phase, degrees: START:STOP:STEP or A,B,... increasing, in "
                                 "[0, 180] (default with phase: ") +
                         kDefaultTableAngles + "; only with phase in --quantities)");
-    cmd->add_option("--format", t->format, "csv, json or netcdf")->capture_default_str();
+    cmd->add_option("--format", t->format,
+                    "csv, json, netcdf, libradtran (uvspec's wc_properties/ic_properties netCDF, one effective "
+                    "radius per condition; needs moments:L) or disort (DTAUC SSALB PMOM per row; needs moments:L)")
+        ->capture_default_str();
+    cmd->add_option("--layer-thickness", t->layer_thickness,
+                    "disort: the layer whose optical depth DTAUC = sigma_ext x thickness is written (m, km or mi)")
+        ->capture_default_str();
     cmd->add_option("--out", t->out, "output file")->required();
     cmd->add_option("--threads", t->threads, "worker threads (0: all cores)")
         ->check(in_range(0, 1024))

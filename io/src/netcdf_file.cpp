@@ -7,9 +7,10 @@
 
 namespace attenuvis::io {
 
-NetcdfFile::NetcdfFile(const std::string& path) : staged_(path) {
+NetcdfFile::NetcdfFile(const std::string& path, Format format) : staged_(path) {
   // NC_CLOBBER: the StagedFile created the temporary (empty, O_EXCL); libnetcdf replaces it.
-  check(nc_create(staged_.temporary_path().c_str(), NC_NETCDF4 | NC_CLOBBER, &id_), "create");
+  const int mode = format == Format::netcdf4 ? NC_NETCDF4 | NC_CLOBBER : NC_CLOBBER;
+  check(nc_create(staged_.temporary_path().c_str(), mode, &id_), "create");
   open_ = true;
 }
 
@@ -35,6 +36,20 @@ int NetcdfFile::add_double_variable(const std::string& name, const std::vector<i
   return var;
 }
 
+int NetcdfFile::add_float_variable(const std::string& name, const std::vector<int>& dimensions) {
+  int var = -1;
+  check(nc_def_var(id_, name.c_str(), NC_FLOAT, static_cast<int>(dimensions.size()), dimensions.data(), &var),
+        "variable " + name);
+  return var;
+}
+
+int NetcdfFile::add_int_variable(const std::string& name, const std::vector<int>& dimensions) {
+  int var = -1;
+  check(nc_def_var(id_, name.c_str(), NC_INT, static_cast<int>(dimensions.size()), dimensions.data(), &var),
+        "variable " + name);
+  return var;
+}
+
 int NetcdfFile::add_string_variable(const std::string& name, const std::vector<int>& dimensions) {
   int var = -1;
   check(nc_def_var(id_, name.c_str(), NC_STRING, static_cast<int>(dimensions.size()), dimensions.data(), &var),
@@ -50,6 +65,14 @@ void NetcdfFile::set_attribute(int variable, const std::string& name, double val
   check(nc_put_att_double(id_, variable, name.c_str(), NC_DOUBLE, 1, &value), "attribute " + name);
 }
 
+void NetcdfFile::set_float_attribute(int variable, const std::string& name, float value) {
+  check(nc_put_att_float(id_, variable, name.c_str(), NC_FLOAT, 1, &value), "attribute " + name);
+}
+
+void NetcdfFile::set_int_attribute(int variable, const std::string& name, int value) {
+  check(nc_put_att_int(id_, variable, name.c_str(), NC_INT, 1, &value), "attribute " + name);
+}
+
 void NetcdfFile::set_attribute(int variable, const std::string& name, const std::vector<double>& values) {
   check(nc_put_att_double(id_, variable, name.c_str(), NC_DOUBLE, values.size(), values.data()), "attribute " + name);
 }
@@ -58,6 +81,14 @@ void NetcdfFile::end_definitions() { check(nc_enddef(id_), "end of definitions")
 
 void NetcdfFile::write(int variable, const std::vector<double>& values) {
   check(nc_put_var_double(id_, variable, values.data()), "values of variable " + std::to_string(variable));
+}
+
+void NetcdfFile::write(int variable, const std::vector<float>& values) {
+  check(nc_put_var_float(id_, variable, values.data()), "values of variable " + std::to_string(variable));
+}
+
+void NetcdfFile::write(int variable, const std::vector<int>& values) {
+  check(nc_put_var_int(id_, variable, values.data()), "values of variable " + std::to_string(variable));
 }
 
 void NetcdfFile::write(int variable, const std::vector<std::string>& values) {

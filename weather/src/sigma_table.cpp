@@ -211,13 +211,15 @@ TableFormat parse_table_format(const std::string& text) {
   if (text == "csv") return TableFormat::csv;
   if (text == "json") return TableFormat::json;
   if (text == "netcdf") return TableFormat::netcdf;
-  throw std::invalid_argument("unknown table format '" + text + "' (csv, json or netcdf)");
+  if (text == "libradtran") return TableFormat::libradtran;
+  if (text == "disort") return TableFormat::disort;
+  throw std::invalid_argument("unknown table format '" + text + "' (csv, json, netcdf, libradtran or disort)");
 }
 
 std::string csv_sidecar_path(const std::string& csv_path) { return csv_path + ".meta.json"; }
 
 void write_sigma_table(const SigmaTable& t, const std::string& path, TableFormat format, SigmaUnit unit,
-                       const TableProvenance& provenance) {
+                       const TableProvenance& provenance, const TableWriteOptions& options) {
   switch (format) {
     case TableFormat::csv: {
       io::StagedFiles files;
@@ -228,6 +230,10 @@ void write_sigma_table(const SigmaTable& t, const std::string& path, TableFormat
     }
     case TableFormat::json: io::write_file_atomically(path, detail::format_sigma_table_json(t, unit, provenance)); return;
     case TableFormat::netcdf: detail::write_sigma_table_netcdf(t, path, unit, provenance); return;
+    case TableFormat::libradtran: detail::write_sigma_table_libradtran(t, path, provenance); return;
+    case TableFormat::disort:
+      io::write_file_atomically(path, detail::format_sigma_table_disort(t, provenance, options.layer_thickness_m));
+      return;
   }
 }
 

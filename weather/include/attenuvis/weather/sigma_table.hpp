@@ -96,9 +96,18 @@ std::string phase_function_normalisation();
 // "phase_0.5deg" (the angle as the shortest text that reads back to it).
 std::string phase_column_name(double angle_deg);
 
-// The file formats of a table, and their names.
-enum class TableFormat { csv, json, netcdf };
-TableFormat parse_table_format(const std::string& text);  // "csv" | "json" | "netcdf"
+// csv, json, netcdf: every quantity asked for, over wavelengths x conditions.
+// libradtran: the netCDF table uvspec reads with wc_properties / ic_properties
+// (the layout of libRadtran's mie tool), one effective radius per Mie
+// condition; disort: DTAUC, SSALB and PMOM per cell as plain text
+// (sigma_table_rt_inputs.cpp says how each maps to attenuvis's quantities).
+enum class TableFormat { csv, json, netcdf, libradtran, disort };
+TableFormat parse_table_format(const std::string& text);  // "csv" | "json" | "netcdf" | "libradtran" | "disort"
+
+// What the radiative-transfer formats need besides the table.
+struct TableWriteOptions {
+  double layer_thickness_m = 1000;  // disort: DTAUC = sigma_ext x this
+};
 
 // What every output says about where it came from.
 struct TableProvenance {
@@ -113,8 +122,13 @@ std::string csv_sidecar_path(const std::string& csv_path);
 // sidecar together (both or neither).  Every number is finite or missing;
 // where sigma_ext = 0 the Koschmieder visibility is unbounded: missing too.
 // netCDF refuses SigmaUnit::dB_per_km (no UDUNITS spelling; CF needs one).
-// The writer of each format: detail/sigma_table_formats.hpp.
+// libradtran and disort need the Legendre moments (max_moment >= 0) of every
+// cell, hence Mie conditions only, and write in their own units whatever
+// `unit` says; libradtran also needs effective radii on an equidistant grid
+// (uvspec interpolates in them) and one refractive index per wavelength.  Each
+// refusal says what to change.  The writer of each format:
+// detail/sigma_table_formats.hpp.
 void write_sigma_table(const SigmaTable& t, const std::string& path, TableFormat format, SigmaUnit unit,
-                       const TableProvenance& provenance);
+                       const TableProvenance& provenance, const TableWriteOptions& options = {});
 
 }  // namespace attenuvis::weather

@@ -17,4 +17,10 @@ std::string format_sigma_table_json(const SigmaTable& t, SigmaUnit unit, const T
 void write_sigma_table_netcdf(const SigmaTable& t, const std::string& path, SigmaUnit unit,
                               const TableProvenance& provenance);
 
+// The radiative-transfer inputs (sigma_table_rt_inputs.cpp): libRadtran's
+// netCDF Mie table, and DISORT's per-layer input as text.
+void write_sigma_table_libradtran(const SigmaTable& t, const std::string& path, const TableProvenance& provenance);
+std::string format_sigma_table_disort(const SigmaTable& t, const TableProvenance& provenance,
+                                      double layer_thickness_m);
+
 }  // namespace attenuvis::weather::detail
