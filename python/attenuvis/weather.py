@@ -32,6 +32,7 @@ the default, or "seed"; README, units).
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence
 
@@ -1353,6 +1354,56 @@ class Table:
     models: Sequence[str]
     quantities: Dict[str, np.ndarray] = field(default_factory=dict)
     angles: Optional[np.ndarray] = None
+    _cpp: Any = field(default=None, repr=False, compare=False)
+
+    def _write(self, path, format: str, layer_thickness_m: float = 1000.0) -> None:
+        if self._cpp is None:
+            raise ValueError(f"{format}: only a table made by table() can be written")
+        from ._version import __version__
+        self._cpp.write(os.fspath(path), format, float(layer_thickness_m), f"attenuvis {__version__} (Python)")
+
+    def to_libradtran(self, path) -> None:
+        """Write the netCDF Mie table libRadtran's uvspec reads (wc_file / ic_file).
+
+        The layout of libRadtran's ``mie`` tool: one effective radius per
+        condition (on an equidistant grid, as uvspec interpolates in it),
+        ``ext`` in km^-1 per g/m^3, ``pmom`` with the factor 2l+1, the phase
+        function rebuilt from the moments (docs/guide/optics-tables.md).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            Written whole or not at all.
+
+        Raises
+        ------
+        ValueError, RuntimeError
+            Without ``moments`` in `table`, for conditions that are not Mie
+            conditions, radii not equidistant, or several refractive indices
+            at one wavelength: the message says what to change.
+
+        Examples
+        --------
+        >>> t = table(["fog:radiation"], [1.55e-6], ["sigma", "albedo"], moments=16)  # doctest: +SKIP
+        >>> t.to_libradtran("water.mie.cdf")  # doctest: +SKIP
+        """
+        self._write(path, "libradtran")
+
+    def to_disort(self, path, layer_thickness: float = 1000.0) -> None:
+        """Write DTAUC, SSALB and PMOM (chi_l, PMOM(0) = 1) per cell as text.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+        layer_thickness : float, default 1000
+            In metres: DTAUC = sigma_ext x layer_thickness.
+
+        Raises
+        ------
+        ValueError, RuntimeError
+            As `to_libradtran`.
+        """
+        self._write(path, "disort", layer_thickness)
 
     def to_xarray(self):
         """The table as an xarray Dataset.
@@ -1417,7 +1468,7 @@ def _table_pairs(conditions):
 
 def table(conditions, wavelengths, quantities: Sequence[str] = ("sigma",), *, convention: str = "itu",
           contrast_threshold: float = 0.02, rel_tolerance: float = 1e-9, water_table: str = "water",
-          threads: int = 0, angles=None) -> Table:
+          threads: int = 0, angles=None, moments: int = -1) -> Table:
     """sigma and other quantities for every condition at every wavelength.
 
     The cells are computed in parallel (the C++ table, weather/sigma_table.hpp)
@@ -1442,11 +1493,16 @@ def table(conditions, wavelengths, quantities: Sequence[str] = ("sigma",), *, co
     angles : array_like of float, optional
         With "phase": the scattering angles in degrees, increasing, in [0,
         180]; default `DEFAULT_PHASE_ANGLES` (every degree).
+    moments : int, default -1
+        >= 0: also the Legendre moments chi_0..chi_L of the phase function
+        of every Mie cell (L = moments), which `Table.to_libradtran` and
+        `Table.to_disort` need.
 
     Returns
     -------
     Table
-        ``.to_xarray()`` gives an xarray Dataset.
+        ``.to_xarray()`` gives an xarray Dataset; ``.to_libradtran(path)``
+        and ``.to_disort(path)`` the radiative-transfer inputs.
 
     Raises
     ------
@@ -1477,15 +1533,15 @@ def table(conditions, wavelengths, quantities: Sequence[str] = ("sigma",), *, co
     pairs = _table_pairs(conditions)
     w = np.asarray(wavelengths, dtype=np.float64).reshape(-1)
     names = [_TABLE_QUANTITIES[q]["name"] for q in ["sigma", *extra]]
-    values, errors, models, p, p_error = _core.table(pairs, list(w), *_settings(convention, contrast_threshold,
-                                                                                rel_tolerance, water_table),
-                                                     int(threads), names, angle_list)
+    (values, errors, models, p, p_error), cpp = _core.table(pairs, list(w), *_settings(convention, contrast_threshold,
+                                                                                     rel_tolerance, water_table),
+                                                          int(threads), names, angle_list, int(moments))
     more = {q: values[_TABLE_QUANTITIES[q]["name"]] for q in extra}
     if phase:
         more["phase"], more["phase_error"] = p, p_error
     sigma_ext = _TABLE_QUANTITIES["sigma"]["name"]
     return Table([c[0] for c in pairs], w, values[sigma_ext], errors[sigma_ext], models, more,
-                 np.asarray(angle_list, dtype=np.float64) if phase else None)
+                 np.asarray(angle_list, dtype=np.float64) if phase else None, cpp)
 
 
 def refractive_index(wavelength, table: str = "water"):

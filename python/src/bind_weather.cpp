@@ -19,6 +19,7 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -420,12 +421,25 @@ void bind_optics(py::module_& m) {
 }
 
 void bind_table(py::module_& m) {
+  // The computed table itself, kept so that Python can write the formats the
+  // C++ writers own (libRadtran's netCDF, DISORT's text) without recomputing.
+  py::class_<w::SigmaTable, std::shared_ptr<w::SigmaTable>>(m, "SigmaTable")
+      .def(
+          "write",
+          [](const w::SigmaTable& t, const std::string& path, const std::string& format, double layer_thickness_m,
+             const std::string& producer) {
+            w::TableWriteOptions options;
+            options.layer_thickness_m = layer_thickness_m;
+            py::gil_scoped_release release;
+            w::write_sigma_table(t, path, w::parse_table_format(format), w::SigmaUnit::per_m, {producer}, options);
+          },
+          py::arg("path"), py::arg("format"), py::arg("layer_thickness_m"), py::arg("producer"));
   m.def(
       "table",
       [](const std::vector<std::pair<std::string, w::Condition>>& conditions, const std::vector<double>& wavelengths,
          const std::string& convention, double contrast_threshold, double rel_tolerance,
          const std::string& water_table, int threads, const std::vector<std::string>& quantities,
-         const std::vector<double>& angles_deg) {
+         const std::vector<double>& angles_deg, int max_moment) {
         std::vector<w::LabelledCondition> labelled;
         for (const auto& [label, c] : conditions) labelled.push_back({label, c});
         std::string names;
@@ -434,12 +448,15 @@ void bind_table(py::module_& m) {
         w::Settings s = settings(convention, contrast_threshold, rel_tolerance, water_table);
         std::atomic<bool> cancel{false};
         s.cancel = &cancel;
-        return table_arrays(watched_call(
-            [&] { return w::sigma_table(labelled, wavelengths, s, threads, asked, -1, angles_deg); }, cancel));
+        auto table = std::make_shared<w::SigmaTable>(watched_call(
+            [&] { return w::sigma_table(labelled, wavelengths, s, threads, asked, max_moment, angles_deg); },
+            cancel));
+        return py::make_tuple(table_arrays(*table), table);
       },
       py::arg("conditions"), py::arg("wavelengths_m"), py::arg("convention"), py::arg("contrast_threshold"),
       py::arg("rel_tolerance"), py::arg("water_table"), py::arg("threads"),
-      py::arg("quantities") = std::vector<std::string>{"sigma_ext"}, py::arg("angles_deg") = std::vector<double>{});
+      py::arg("quantities") = std::vector<std::string>{"sigma_ext"}, py::arg("angles_deg") = std::vector<double>{},
+      py::arg("max_moment") = -1);
 }
 
 }  // namespace

@@ -177,3 +177,42 @@ def test_errors_carry_the_command_line_message(cli):
         w.Rain(8, model="bogus")
     with pytest.raises(ValueError, match="Mie condition"):
         w.optics(w.Rain(8), 550e-9)
+
+
+def test_table_to_libradtran_and_disort_equal_the_command_line(cli, tmp_path):
+    # Gamma drops with r_eff = 1.5 r_mode = 1.5, 2.25, 3 um (equidistant, as uvspec requires) at 10.6 um,
+    # where 24 moments are complete (x < 20).  The file must hold what the command line writes for the same
+    # table, and read back by uvspec's rules (libRadtran's read_mie_table: pmom / (2l+1) = chi_l,
+    # chi_0 = 1, ssa per cell) agree with the table's albedo to float precision.
+    netCDF4 = pytest.importorskip("netCDF4")
+    conds = ["drops:gamma:r=%gum:alpha=6:lwc=0.2" % r for r in (1, 1.5, 2)]
+    t = w.table(conds, [10.6e-6], ["sigma", "albedo"], moments=24)
+    path = tmp_path / "water.mie.cdf"
+    t.to_libradtran(path)
+    ref = tmp_path / "cli.mie.cdf"
+    subprocess.run([cli, "table", "--conditions", ",".join(conds), "--wavelengths", "10.6um", "--quantities",
+                    "sigma_ext,ssa,moments:24", "--format", "libradtran", "--out", str(ref)], check=True,
+                   capture_output=True)
+    with netCDF4.Dataset(path) as ours, netCDF4.Dataset(ref) as theirs:
+        assert set(ours.dimensions) == set(theirs.dimensions)
+        # Two binaries (the extension is built position-independent): the doubles may differ in the
+        # last bits (the phase-function test above measured 4e-16), the float moments by a rounding.
+        for name in ("wavelen", "reff", "ext", "ssa", "rho"):
+            assert np.asarray(ours[name][:]) == pytest.approx(np.asarray(theirs[name][:]), rel=1e-13, abs=0), name
+        assert np.array_equal(ours["nmom"][:], theirs["nmom"][:])
+        assert np.asarray(ours["pmom"][:]) == pytest.approx(np.asarray(theirs["pmom"][:]), rel=2e-7, abs=1e-12)
+        nmom = ours["nmom"][0, :, 0]
+        pmom = np.asarray(ours["pmom"][0, :, 0, :], dtype=np.float64)
+        for i in range(3):
+            chi = pmom[i, : nmom[i]] / (2 * np.arange(nmom[i]) + 1)
+            assert chi[0] == pytest.approx(1.0, abs=1e-7)
+            assert 0 < chi[1] < 1
+        assert np.asarray(ours["ssa"][0, :], dtype=np.float64) == pytest.approx(t.quantities["albedo"][:, 0],
+                                                                                rel=1e-6)
+    disort = tmp_path / "layers.txt"
+    t.to_disort(disort, layer_thickness=250.0)
+    assert disort.stat().st_size > 0
+    bare = w.table(conds, [10.6e-6])
+    with pytest.raises((ValueError, RuntimeError), match="moments"):
+        bare.to_libradtran(tmp_path / "none.cdf")
+    assert not (tmp_path / "none.cdf").exists()
