@@ -43,10 +43,12 @@
 // 2l + 1).
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <boost/math/constants/constants.hpp>
@@ -192,8 +194,14 @@ std::vector<double> cell_phase(const SigmaTable& t, const TableCell& cell, const
   const double pi = boost::math::constants::pi<double>();
   for (double theta : g.theta) {
     const double mu = std::cos(theta * pi / 180);
-    double sum = 0;
-    for (std::size_t l = 0; l < chi.size(); ++l) sum += (2.0 * l + 1) * chi[l] * boost::math::legendre_p(int(l), mu);
+    // P_0..P_L by one upward recurrence (Bonnet), not each from P_0 again.
+    double sum = 0, p_before = 0, p_l = 1;
+    for (std::size_t l = 0; l < chi.size(); ++l) {
+      sum += (2.0 * l + 1) * chi[l] * p_l;
+      const double p_next = boost::math::legendre_next(static_cast<unsigned>(l), mu, p_l, p_before);
+      p_before = p_l;
+      p_l = p_next;
+    }
     p.push_back(sum);
   }
   return p;
@@ -259,59 +267,44 @@ void detail::write_sigma_table_libradtran(const SigmaTable& t, const std::string
   const int dpha = f.add_dimension("nphamat", 1), dreff = f.add_dimension("nreff", nreff);
   const int dth = f.add_dimension("nthetamax", ntheta);
   f.add_dimension("nrho", 1);
-  auto text = [&](int var, const std::string& long_name, const std::string& units) {
+  // Each variable is defined with its long name and units, and written once
+  // the definitions end (classic netCDF), in the same order.
+  std::vector<std::function<void()>> writes;
+  const auto variable = [&](const char* name, const std::vector<int>& dims, const auto& data,
+                            const std::string& long_name, const std::string& units) {
+    using T = typename std::decay_t<decltype(data)>::value_type;
+    int var = -1;
+    if constexpr (std::is_same_v<T, double>) var = f.add_double_variable(name, dims);
+    else if constexpr (std::is_same_v<T, float>) var = f.add_float_variable(name, dims);
+    else {
+      static_assert(std::is_same_v<T, int>, "double, float or int columns");
+      var = f.add_int_variable(name, dims);
+    }
     f.set_attribute(var, "long_name", long_name);
     f.set_attribute(var, "units", units);
+    writes.push_back([&f, var, &data] { f.write(var, data); });
+    return var;
   };
-  const int v_lam = f.add_double_variable("wavelen", {dlam});
-  text(v_lam, "wavelength", "micrometer");
-  const int v_reff = f.add_double_variable("reff", {dreff});
-  text(v_reff, "effective radius", "micrometer");
-  const int v_ntheta = f.add_int_variable("ntheta", {dlam, dreff, dpha});
-  text(v_ntheta, "number of scattering angles", "-");
-  const int v_theta = f.add_float_variable("theta", {dlam, dreff, dpha, dth});
-  text(v_theta, "theta", "degrees");
+  variable("wavelen", {dlam}, wavelen, "wavelength", "micrometer");
+  variable("reff", {dreff}, reff, "effective radius", "micrometer");
+  variable("ntheta", {dlam, dreff, dpha}, nth, "number of scattering angles", "-");
+  const int v_theta = variable("theta", {dlam, dreff, dpha, dth}, theta, "theta", "degrees");
   f.set_float_attribute(v_theta, "_FillValue", -999.0f);
-  const int v_phase = f.add_float_variable("phase", {dlam, dreff, dpha, dth});
-  text(v_phase, "phase", "-");
+  const int v_phase = variable("phase", {dlam, dreff, dpha, dth}, phase, "phase", "-");
   f.set_float_attribute(v_phase, "_FillValue", -999.0f);
-  const int v_nmom = f.add_int_variable("nmom", {dlam, dreff, dpha});
-  text(v_nmom, "number of Legendre polynomials", "-");
-  const int v_pmom = f.add_float_variable("pmom", {dlam, dreff, dpha, dmom});
-  text(v_pmom, "Legendre polynomials", "including factor 2*l+1");
+  variable("nmom", {dlam, dreff, dpha}, nmom, "number of Legendre polynomials", "-");
+  const int v_pmom = variable("pmom", {dlam, dreff, dpha, dmom}, pmom, "Legendre polynomials", "including factor 2*l+1");
   f.set_float_attribute(v_pmom, "_FillValue", 0.0f);
-  const int v_ext = f.add_double_variable("ext", {dlam, dreff});
-  text(v_ext, "extinction coefficient", "km^-1/(g/m^3)");
-  const int v_ssa = f.add_double_variable("ssa", {dlam, dreff});
-  text(v_ssa, "single scattering albedo", "-");
-  const int v_refre = f.add_double_variable("refre", {dlam});
-  text(v_refre, "refractive index (real)", " ");
-  const int v_refim = f.add_double_variable("refim", {dlam});
-  text(v_refim, "refractive index (imaginary)", " ");
-  const int v_rho = f.add_double_variable("rho", {dlam, dreff});
-  text(v_rho, "density of medium", "g/cm^3");
-  const int v_lwc = f.add_double_variable("lwc", {dreff});
-  text(v_lwc, "condensed water content of the condition's drops (ext = sigma_ext / lwc)", "g/m^3");
-  const int v_ext_error = f.add_double_variable("ext_error", {dlam, dreff});
-  text(v_ext_error, "error estimate of ext (attenuvis)", "km^-1/(g/m^3)");
-  const int v_ssa_error = f.add_double_variable("ssa_error", {dlam, dreff});
-  text(v_ssa_error, "error estimate of ssa (attenuvis)", "-");
+  variable("ext", {dlam, dreff}, ext, "extinction coefficient", "km^-1/(g/m^3)");
+  variable("ssa", {dlam, dreff}, ssa, "single scattering albedo", "-");
+  variable("refre", {dlam}, refre, "refractive index (real)", " ");
+  variable("refim", {dlam}, refim, "refractive index (imaginary)", " ");
+  variable("rho", {dlam, dreff}, rho, "density of medium", "g/cm^3");
+  variable("lwc", {dreff}, lwc, "condensed water content of the condition's drops (ext = sigma_ext / lwc)", "g/m^3");
+  variable("ext_error", {dlam, dreff}, ext_error, "error estimate of ext (attenuvis)", "km^-1/(g/m^3)");
+  variable("ssa_error", {dlam, dreff}, ssa_error, "error estimate of ssa (attenuvis)", "-");
   f.end_definitions();
-  f.write(v_lam, wavelen);
-  f.write(v_reff, reff);
-  f.write(v_ntheta, nth);
-  f.write(v_theta, theta);
-  f.write(v_phase, phase);
-  f.write(v_nmom, nmom);
-  f.write(v_pmom, pmom);
-  f.write(v_ext, ext);
-  f.write(v_ssa, ssa);
-  f.write(v_refre, refre);
-  f.write(v_refim, refim);
-  f.write(v_rho, rho);
-  f.write(v_lwc, lwc);
-  f.write(v_ext_error, ext_error);
-  f.write(v_ssa_error, ssa_error);
+  for (const auto& write : writes) write();
   f.commit();
 }
 
