@@ -78,12 +78,6 @@ bool boxes_overlap(const double* alo, const double* ahi, const double* blo, cons
   return true;
 }
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
-#define ATTENUVIS_CULL_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#else
-#define ATTENUVIS_CULL_CLONES
-#endif
-
 // No quad partner (build_occluders), or no occluder yet.
 constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 
@@ -446,7 +440,8 @@ void bound_lines(PacketLines& lines) {
   lines.longest = std::sqrt(longest);
 }
 
-std::uint32_t CullGeometry::lanes_blocked(std::uint32_t triangle, const PacketLines& lines, double margin) const {
+std::uint32_t CullGeometry::lanes_blocked(std::uint32_t triangle, const PacketLines& lines, double margin,
+                                          bool with_solid) const {
   // The planar occluder for all lanes at once, branch-free (segment_blocked's
   // first test; a triangle's unused fourth edge never fails).  A quad's depth
   // term uses a bound for all lanes: |q - point| <= the longest line,
@@ -469,13 +464,8 @@ std::uint32_t CullGeometry::lanes_blocked(std::uint32_t triangle, const PacketLi
     blocked = occluder_lanes(o, sa, side, inside, point, lines.x, lines.y, lines.z, n);
   }
   const std::uint32_t all = (1u << n) - 1u;
-  if (blocked == all || solid_of_[triangle] < 0) return blocked;
-  for (int l = 0; l < n; ++l) {
-    if (blocked >> l & 1u) continue;
-    const double q[3] = {lines.x[l], lines.y[l], lines.z[l]};
-    if (segment_blocked(triangle, point, q, margin)) blocked |= 1u << l;
-  }
-  return blocked;
+  if (blocked == all || !with_solid || solid_of_[triangle] < 0) return blocked;
+  return blocked | solid_lanes(solids_[static_cast<std::size_t>(solid_of_[triangle])], margin, lines);
 }
 
 }  // namespace attenuvis::visgraph::detail

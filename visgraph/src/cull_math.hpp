@@ -11,6 +11,15 @@
 
 #include "cull_geometry.hpp"
 
+// The lane loops of the culling (planar occluders, convex solids) are
+// compiled per instruction set and picked at run time.  Not under clang or
+// the sanitizers, whose builds take the baseline loop.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
+#define ATTENUVIS_CULL_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define ATTENUVIS_CULL_CLONES
+#endif
+
 namespace attenuvis::visgraph::detail::cull_math {
 
 using V3 = std::array<double, 3>;

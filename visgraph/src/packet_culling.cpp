@@ -25,8 +25,12 @@ void remember(PacketCulling::Hints& hints, std::uint32_t t) {
 }
 }  // namespace
 
-std::uint32_t PacketCulling::unblocked(std::uint32_t t, const PacketLines& p, std::uint32_t open) const {
-  return open & ~geometry_->lanes_blocked(t, p, margin_);
+std::uint32_t PacketCulling::unblocked(std::uint32_t t, const PacketLines& p, std::uint32_t open,
+                                       TriedSolids& tried) const {
+  const std::int32_t solid = geometry_->solid_of(t);
+  bool with_solid = solid >= 0 && std::find(tried.solid, tried.solid + tried.count, solid) == tried.solid + tried.count;
+  if (with_solid && tried.count < 16) tried.solid[tried.count++] = solid;
+  return open & ~geometry_->lanes_blocked(t, p, margin_, with_solid);
 }
 
 Verdict PacketCulling::all_in_sight(const PacketLines& p) const {
@@ -43,11 +47,12 @@ Verdict PacketCulling::decide(const double* point, const double* x, const double
   bound_lines(p);
   const std::uint32_t all = (1u << n) - 1u;
   std::uint32_t open = all;
+  TriedSolids tried;
   for (const Hints* list : {&hints, &near})
     for (int h = 0; h < kHints && open; ++h) {
       const std::uint32_t t = list->triangle[h];
       if (t == kNoHint) break;
-      open = unblocked(t, p, open);
+      open = unblocked(t, p, open, tried);
     }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -62,7 +67,7 @@ Verdict PacketCulling::decide(const double* point, const double* x, const double
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
       return open == all && ray == 0 ? all_in_sight(p) : Verdict::cast;
     for (int surface = 0; surface < kSurfaces; ++surface) {
-      const std::uint32_t left = unblocked(rh.hit.primID, p, open);
+      const std::uint32_t left = unblocked(rh.hit.primID, p, open, tried);
       if (left != open) {
         remember(hints, rh.hit.primID);
         remember(near, rh.hit.primID);
