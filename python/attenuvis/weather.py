@@ -32,15 +32,21 @@ the default, or "seed"; README, units).
 
 from __future__ import annotations
 
-from ._weather_names import (registry, registry_kinds)
+from ._weather_names import registry, registry_kinds
 from ._weather_distributions import (
     Distribution, Gamma, GunnMarshall, LogNormal, MarshallPalmer, ModifiedGamma, PowerLaw, preset, tabulated
 )
 from ._weather_conditions import (
     Aerosol, Clear, Condition, Fog, Haze, Rain, Sigma, Snow, Visibility, expand, grammar, parse
 )
-from ._weather_optics import (Estimate, Optics, SigmaResult, optics, sigma)
-from ._weather_table import (DEFAULT_PHASE_ANGLES, PHASE_NORMALISATION, Table, refractive_index, table)
+from ._weather_optics import Estimate, Optics, SigmaResult, optics, sigma
+from ._weather_table import Table, refractive_index, table
+from . import _weather_table
+
+# Constants of tables (in the stub, not in __all__): the default phase angles
+# and the phase function's normalisation.
+DEFAULT_PHASE_ANGLES = _weather_table.DEFAULT_PHASE_ANGLES
+PHASE_NORMALISATION = _weather_table.PHASE_NORMALISATION
 
 __all__ = [
     "Condition", "Clear", "Visibility", "Sigma", "Rain", "Snow", "Fog", "Haze", "Aerosol",
