@@ -29,32 +29,27 @@ int NetcdfFile::add_dimension(const std::string& name, std::size_t length) {
   return dim;
 }
 
-int NetcdfFile::add_double_variable(const std::string& name, const std::vector<int>& dimensions) {
+int NetcdfFile::add_variable(const std::string& name, int type, const std::vector<int>& dimensions) {
   int var = -1;
-  check(nc_def_var(id_, name.c_str(), NC_DOUBLE, static_cast<int>(dimensions.size()), dimensions.data(), &var),
+  check(nc_def_var(id_, name.c_str(), type, static_cast<int>(dimensions.size()), dimensions.data(), &var),
         "variable " + name);
   return var;
+}
+
+int NetcdfFile::add_double_variable(const std::string& name, const std::vector<int>& dimensions) {
+  return add_variable(name, NC_DOUBLE, dimensions);
 }
 
 int NetcdfFile::add_float_variable(const std::string& name, const std::vector<int>& dimensions) {
-  int var = -1;
-  check(nc_def_var(id_, name.c_str(), NC_FLOAT, static_cast<int>(dimensions.size()), dimensions.data(), &var),
-        "variable " + name);
-  return var;
+  return add_variable(name, NC_FLOAT, dimensions);
 }
 
 int NetcdfFile::add_int_variable(const std::string& name, const std::vector<int>& dimensions) {
-  int var = -1;
-  check(nc_def_var(id_, name.c_str(), NC_INT, static_cast<int>(dimensions.size()), dimensions.data(), &var),
-        "variable " + name);
-  return var;
+  return add_variable(name, NC_INT, dimensions);
 }
 
 int NetcdfFile::add_string_variable(const std::string& name, const std::vector<int>& dimensions) {
-  int var = -1;
-  check(nc_def_var(id_, name.c_str(), NC_STRING, static_cast<int>(dimensions.size()), dimensions.data(), &var),
-        "variable " + name);
-  return var;
+  return add_variable(name, NC_STRING, dimensions);
 }
 
 void NetcdfFile::set_attribute(int variable, const std::string& name, const std::string& text) {

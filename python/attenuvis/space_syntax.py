@@ -41,7 +41,7 @@ from numpy.typing import ArrayLike
 from . import _attenuvis
 
 # visgraph imports this module after its own helpers are defined.
-from .visgraph import _eyes, _sigmas
+from ._visgraph_pairs import _eyes, _sigmas
 
 _core = _attenuvis.visgraph
 

@@ -29,7 +29,9 @@ namespace py = pybind11;
 namespace attenuvis::python {
 namespace {
 
-using Doubles = py::array_t<double, py::array::c_style>;
+// Without forcecast: a complex array passed where real size parameters are
+// expected is refused, not silently cast to its real part.
+using Reals = py::array_t<double, py::array::c_style>;
 using Complexes = py::array_t<std::complex<double>, py::array::c_style>;
 
 // A chunk ends at 32768 spheres or at ~1e6 series terms (a sphere sums about
@@ -69,13 +71,13 @@ struct EfficiencyArrays {
   py::tuple tuple(const py::list& errors) const {
     return py::make_tuple(qext, qsca, qabs, qback, qpr, g, terms, errors);
   }
-  Doubles qext, qsca, qabs, qback, qpr, g;
+  Reals qext, qsca, qabs, qback, qpr, g;
   py::array_t<std::int64_t> terms;
   double* p[6];
   std::int64_t* pterms;
 };
 
-py::tuple efficiencies(Doubles x, py::object m_object, unsigned threads) {
+py::tuple efficiencies(Reals x, py::object m_object, unsigned threads) {
   const std::size_t count = static_cast<std::size_t>(x.size());
   const double* xs = x.data();
   // m: one complex value for all spheres, or one per sphere.
@@ -114,7 +116,7 @@ py::tuple efficiencies(Doubles x, py::object m_object, unsigned threads) {
 // Layered spheres of `layers` layers each: x and m hold count × layers
 // values, particle by particle, core first.  Chunks of ~1e6 series terms
 // (outer x times layers) between checks for Ctrl-C, as efficiencies().
-py::tuple layered_efficiencies(Doubles x, Complexes m, std::size_t layers, unsigned threads) {
+py::tuple layered_efficiencies(Reals x, Complexes m, std::size_t layers, unsigned threads) {
   if (layers == 0 || static_cast<std::size_t>(x.size()) % layers != 0 || m.size() != x.size())
     throw std::invalid_argument("x and m must hold the same whole number of particles of `layers` layers");
   const std::size_t count = static_cast<std::size_t>(x.size()) / layers;
@@ -148,7 +150,7 @@ py::tuple layered_efficiencies(Doubles x, Complexes m, std::size_t layers, unsig
   return out.tuple(errors);
 }
 
-py::tuple amplitudes(double x, std::complex<double> m, Doubles angles) {
+py::tuple amplitudes(double x, std::complex<double> m, Reals angles) {
   mie::Extras extras;
   extras.angles_deg.assign(angles.data(), angles.data() + angles.size());
   mie::Scattering<double> s;
@@ -170,7 +172,7 @@ py::tuple coefficients(double x, std::complex<double> m) {
   return py::make_tuple(Complexes(s.a.size(), s.a.data()), Complexes(s.b.size(), s.b.data()));
 }
 
-py::dict scattering_matrix(double x, std::complex<double> m, Doubles angles) {
+py::dict scattering_matrix(double x, std::complex<double> m, Reals angles) {
   const std::vector<double> angles_deg(angles.data(), angles.data() + angles.size());
   mie::ScatteringMatrix s;
   {
@@ -178,11 +180,11 @@ py::dict scattering_matrix(double x, std::complex<double> m, Doubles angles) {
     s = mie::scattering_matrix(x, m, angles_deg);
   }
   py::dict out;
-  out["s11"] = Doubles(s.s11.size(), s.s11.data());
-  out["s12"] = Doubles(s.s12.size(), s.s12.data());
-  out["s33"] = Doubles(s.s33.size(), s.s33.data());
-  out["s34"] = Doubles(s.s34.size(), s.s34.data());
-  out["phase"] = Doubles(s.phase.size(), s.phase.data());
+  out["s11"] = Reals(s.s11.size(), s.s11.data());
+  out["s12"] = Reals(s.s12.size(), s.s12.data());
+  out["s33"] = Reals(s.s33.size(), s.s33.data());
+  out["s34"] = Reals(s.s34.size(), s.s34.data());
+  out["phase"] = Reals(s.phase.size(), s.phase.data());
   return out;
 }
 
@@ -190,14 +192,14 @@ std::size_t order_or_all(py::object max_order) {
   return max_order.is_none() ? mie::all_orders : max_order.cast<std::size_t>();
 }
 
-Doubles legendre_moments(double x, std::complex<double> m, py::object max_order) {
+Reals legendre_moments(double x, std::complex<double> m, py::object max_order) {
   const std::size_t order = order_or_all(max_order);
   std::vector<double> chi;
   {
     py::gil_scoped_release release;
     chi = mie::phase_function_moments(x, m, order);
   }
-  return Doubles(chi.size(), chi.data());
+  return Reals(chi.size(), chi.data());
 }
 
 py::dict expansion(double x, std::complex<double> m, py::object max_order) {
@@ -210,20 +212,20 @@ py::dict expansion(double x, std::complex<double> m, py::object max_order) {
     e = mie::scattering_matrix_expansion(mie::scatter(x, m, extras), order);
   }
   py::dict out;
-  out["alpha1"] = Doubles(e.alpha1.size(), e.alpha1.data());
-  out["alpha2"] = Doubles(e.alpha2.size(), e.alpha2.data());
-  out["alpha3"] = Doubles(e.alpha3.size(), e.alpha3.data());
-  out["alpha4"] = Doubles(e.alpha4.size(), e.alpha4.data());
-  out["beta1"] = Doubles(e.beta1.size(), e.beta1.data());
-  out["beta2"] = Doubles(e.beta2.size(), e.beta2.data());
+  out["alpha1"] = Reals(e.alpha1.size(), e.alpha1.data());
+  out["alpha2"] = Reals(e.alpha2.size(), e.alpha2.data());
+  out["alpha3"] = Reals(e.alpha3.size(), e.alpha3.data());
+  out["alpha4"] = Reals(e.alpha4.size(), e.alpha4.data());
+  out["beta1"] = Reals(e.beta1.size(), e.beta1.data());
+  out["beta2"] = Reals(e.beta2.size(), e.beta2.data());
   return out;
 }
 
-Doubles phase_from_moments(Doubles chi, Doubles angles) {
+Reals phase_from_moments(Reals chi, Reals angles) {
   const std::vector<double> c(chi.data(), chi.data() + chi.size());
   const std::vector<double> a(angles.data(), angles.data() + angles.size());
   const std::vector<double> p = mie::phase_function_from_moments(c, a);
-  return Doubles(p.size(), p.data());
+  return Reals(p.size(), p.data());
 }
 
 }  // namespace
@@ -247,7 +249,7 @@ void bind_mie(py::module_ module) {
   // call over the whole array, as a C++ program makes it, timed in C++.
   module.def(
       "spheres_seconds",
-      [](Doubles x, std::complex<double> m, unsigned threads) {
+      [](Reals x, std::complex<double> m, unsigned threads) {
         std::vector<mie::Efficiencies<double>> out(static_cast<std::size_t>(x.size()));
         mie::SpheresOptions options;
         options.threads = threads;

@@ -22,9 +22,6 @@ namespace vg = attenuvis::visgraph;
 namespace attenuvis::python {
 namespace {
 
-using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
-using Indices = py::array_t<std::uint32_t, py::array::c_style | py::array::forcecast>;
-
 vg::GraphStorage storage_of(const std::string& graph) {
   vg::GraphStorage storage = vg::GraphStorage::automatic;
   if (!vg::parse_graph_storage(graph, storage))

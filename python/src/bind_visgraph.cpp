@@ -34,9 +34,6 @@ namespace vg = attenuvis::visgraph;
 namespace attenuvis::python {
 namespace {
 
-using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
-using Indices = py::array_t<std::uint32_t, py::array::c_style | py::array::forcecast>;
-
 // A built scene and what the Python layer shows of it.
 struct PyScene {
   std::unique_ptr<vg::Scene> scene;
@@ -252,8 +249,7 @@ py::dict run(const PyScene& s, const std::vector<Eigen::Vector3d>& sources,
 
 }  // namespace
 
-std::vector<Eigen::Vector3d> points(const py::array_t<double, py::array::c_style | py::array::forcecast>& array,
-                                    const char* what) {
+std::vector<Eigen::Vector3d> points(const Doubles& array, const char* what) {
   if (array.ndim() != 2 || array.shape(1) != 3)
     throw std::invalid_argument(std::string(what) + ": expected an (N, 3) array of x, y, z in metres");
   const double* p = array.data();

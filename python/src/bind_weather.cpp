@@ -42,8 +42,6 @@ namespace w = attenuvis::weather;
 namespace attenuvis::python {
 namespace {
 
-using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
 py::array_t<double> array(const std::vector<double>& v) { return py::array_t<double>(v.size(), v.data()); }
 
 // An integral as {value, error, its parts}: error() and every field.

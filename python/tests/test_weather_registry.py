@@ -9,6 +9,7 @@ import re
 import pytest
 
 from attenuvis import weather as w
+from attenuvis import _weather_names as wn  # the registries' name tables the public functions check against
 
 KINDS = ["water_tables", "fog_presets", "distribution_presets", "rain_power_laws", "snow_types",
          "visibility_fog_models", "table_quantities", "aerosol_components", "aerosol_mixtures", "humidity_rules"]
@@ -45,23 +46,23 @@ def test_every_kind_is_listed_with_its_fields():
 
 
 def test_python_lookups_are_the_registries():
-    assert set(w._WATER_TABLES) == names("water_tables", aliases=True)
-    assert set(w._FOG_PRESETS) == names("fog_presets")
-    assert set(w._FOG_MODELS) == names("visibility_fog_models")
-    assert set(w._RAIN_LAWS) == names("rain_power_laws")
-    assert set(w._SNOW_TYPES) == names("snow_types")
-    assert set(w._TABLE_QUANTITIES) == {e["python_name"] for e in w.registry("table_quantities")}
-    assert set(w._AEROSOL_COMPONENTS) == names("aerosol_components")
-    assert set(w._AEROSOL_MIXTURES) == names("aerosol_mixtures")
-    assert set(w._HUMIDITY_RULES) == names("humidity_rules")
+    assert set(wn._WATER_TABLES) == names("water_tables", aliases=True)
+    assert set(wn._FOG_PRESETS) == names("fog_presets")
+    assert set(wn._FOG_MODELS) == names("visibility_fog_models")
+    assert set(wn._RAIN_LAWS) == names("rain_power_laws")
+    assert set(wn._SNOW_TYPES) == names("snow_types")
+    assert set(wn._TABLE_QUANTITIES) == {e["python_name"] for e in w.registry("table_quantities")}
+    assert set(wn._AEROSOL_COMPONENTS) == names("aerosol_components")
+    assert set(wn._AEROSOL_MIXTURES) == names("aerosol_mixtures")
+    assert set(wn._HUMIDITY_RULES) == names("humidity_rules")
 
 
-@pytest.mark.parametrize("enum,kind", [(w._core.RainLaw, "rain_power_laws"), (w._core.SnowType, "snow_types"),
-                                       (w._core.VisibilityFogModel, "visibility_fog_models"),
-                                       (w._core.FogPreset, "fog_presets"), (w._core.WaterTable, "water_tables"),
-                                       (w._core.AerosolComponent, "aerosol_components"),
-                                       (w._core.AerosolMixture, "aerosol_mixtures"),
-                                       (w._core.HumidityRule, "humidity_rules")])
+@pytest.mark.parametrize("enum,kind", [(wn._core.RainLaw, "rain_power_laws"), (wn._core.SnowType, "snow_types"),
+                                       (wn._core.VisibilityFogModel, "visibility_fog_models"),
+                                       (wn._core.FogPreset, "fog_presets"), (wn._core.WaterTable, "water_tables"),
+                                       (wn._core.AerosolComponent, "aerosol_components"),
+                                       (wn._core.AerosolMixture, "aerosol_mixtures"),
+                                       (wn._core.HumidityRule, "humidity_rules")])
 def test_bound_enums_are_the_registries(enum, kind):
     assert set(enum.__members__) == {n.replace("-", "_") for n in names(kind)}
 

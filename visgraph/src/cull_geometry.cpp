@@ -1,6 +1,7 @@
 // Shaft queries and planar occluders over Embree's own triangles
 // (cull_geometry.hpp; the proofs behind the tests are in pair_culling.hpp).
 #include "cull_geometry.hpp"
+#include "cull_math.hpp"
 
 #include <algorithm>
 #include <array>
@@ -14,36 +15,7 @@
 namespace attenuvis::visgraph::detail {
 
 namespace {
-using V3 = std::array<double, 3>;
-inline double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-inline V3 cross(const double* a, const double* b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-inline V3 sub(const double* a, const double* b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-inline double norm(const V3& a) { return std::sqrt(dot(a.data(), a.data())); }
-
-// The 8 corners of a box, optionally grown by g on every side.
-void corners(const Box3& b, double g, double (*out)[3]) {
-  for (int k = 0; k < 8; ++k)
-    for (int c = 0; c < 3; ++c) out[k][c] = (k >> c & 1) ? b.hi[c] + g : b.lo[c] - g;
-}
-
-// The distinct corners of a box (a flat box has 4, a point 1): every
-// segment between two boxes is a convex combination of the segments
-// between their corners, and the tests below need each corner once.
-int distinct_corners(const Box3& b, double (*out)[3]) {
-  int count = 1;
-  for (int c = 0; c < 3; ++c) out[0][c] = b.lo[c];
-  for (int c = 0; c < 3; ++c) {
-    if (!(b.hi[c] > b.lo[c])) continue;
-    for (int k = 0; k < count; ++k) {
-      for (int e = 0; e < 3; ++e) out[count + k][e] = out[k][e];
-      out[count + k][c] = b.hi[c];
-    }
-    count *= 2;
-  }
-  return count;
-}
+using namespace cull_math;
 
 // Convex hull of two grown boxes, as the separating-axis tests see it.
 struct Shaft {
@@ -106,58 +78,9 @@ bool boxes_overlap(const double* alo, const double* ahi, const double* blo, cons
   return true;
 }
 
-// A triangle's unit normal (v1 - v0) x (v2 - v0) / |...| and that length
-// (twice its area); the normal is left unnormalised when the length is 0.
-std::pair<V3, double> unit_normal(const double (*v)[3]) {
-  const V3 e1 = sub(v[1], v[0]), e2 = sub(v[2], v[0]);
-  V3 n = cross(e1.data(), e2.data());
-  const double l = norm(n);
-  if (l > 0) n = {n[0] / l, n[1] / l, n[2] / l};
-  return std::make_pair(n, l);
-}
-
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
-#define ATTENUVIS_CULL_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#else
-#define ATTENUVIS_CULL_CLONES
-#endif
-
 // No quad partner (build_occluders), or no occluder yet.
 constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 
-// An undirected edge between two vertex indices, as one key.
-std::uint64_t edge_key(unsigned a, unsigned b) { return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b); }
-
-// The sets of triangles connected through shared vertex indices (union-find
-// over the vertex indices), keyed by a root vertex.
-std::unordered_map<unsigned, std::vector<std::uint32_t>> connected_triangles(const unsigned* index, std::size_t T) {
-  unsigned max_vertex = 0;
-  for (std::size_t k = 0; k < 3 * T; ++k) max_vertex = std::max(max_vertex, index[k]);
-  std::vector<unsigned> parent(static_cast<std::size_t>(max_vertex) + 1);
-  std::iota(parent.begin(), parent.end(), 0u);
-  const auto find = [&](unsigned v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (std::size_t t = 0; t < T; ++t) {
-    const unsigned a = find(index[3 * t]), b = find(index[3 * t + 1]), c = find(index[3 * t + 2]);
-    parent[b] = a;
-    parent[find(c)] = a;
-  }
-  std::unordered_map<unsigned, std::vector<std::uint32_t>> sets;
-  for (std::size_t t = 0; t < T; ++t) sets[find(index[3 * t])].push_back(static_cast<std::uint32_t>(t));
-  return sets;
-}
-
-// True when every edge of the triangles belongs to exactly two of them.
-bool is_closed(const std::vector<std::uint32_t>& tris, const unsigned* index) {
-  std::unordered_map<std::uint64_t, int> edge_uses;
-  for (std::uint32_t t : tris)
-    for (int k = 0; k < 3; ++k) ++edge_uses[edge_key(index[3 * t + k], index[3 * t + (k + 1) % 3])];
-  bool closed = true;
-  for (const auto& [edge, uses] : edge_uses) closed &= uses == 2;
-  return closed;
-}
 }  // namespace
 
 CullGeometry::CullGeometry(RTCScene scene, std::size_t triangle_count) {
@@ -181,122 +104,6 @@ CullGeometry::CullGeometry(RTCScene scene, std::size_t triangle_count) {
   build(0, static_cast<std::uint32_t>(triangle_count), centroid);
   build_occluders(index);
   build_solids(index);
-}
-
-// Closed convex solids: connected sets of at most kMaxSolidTriangles
-// triangles (through shared vertex indices) in which every edge belongs to
-// exactly two triangles and every vertex lies behind every face plane (to
-// within 1e-6 of the solid's size; the excess is kept as slack).  Buildings
-// and obstacles made as closed boxes are such solids.
-void CullGeometry::build_solids(const unsigned* index) {
-  constexpr std::size_t kMaxSolidTriangles = 64;
-  solid_of_.assign(tris_.size(), -1);
-  std::unordered_map<unsigned, std::vector<std::uint32_t>> sets = connected_triangles(index, tris_.size());
-  for (auto& [root, tris] : sets) {
-    (void)root;
-    if (tris.size() < 4 || tris.size() > kMaxSolidTriangles || !is_closed(tris, index)) continue;
-    Solid solid;
-    if (!convex_solid(tris, solid)) continue;
-    const auto id = static_cast<std::int32_t>(solids_.size());
-    solids_.push_back(std::move(solid));
-    for (std::uint32_t t : tris) solid_of_[t] = id;
-  }
-}
-
-// The face planes of a closed set of triangles, outward, if every vertex
-// lies behind every one of them (to within 1e-6 of the set's size, the
-// excess kept as slack) and the centre strictly inside: a convex solid.
-bool CullGeometry::convex_solid(const std::vector<std::uint32_t>& tris, Solid& solid) const {
-  double centre[3] = {0, 0, 0}, size = 0;
-  for (std::uint32_t t : tris)
-    for (int v = 0; v < 3; ++v)
-      for (int c = 0; c < 3; ++c) centre[c] += tris_[t].v[v][c] / (3.0 * static_cast<double>(tris.size()));
-  for (std::uint32_t t : tris)
-    for (int v = 0; v < 3; ++v) size = std::max(size, norm(sub(tris_[t].v[v], centre)));
-  bool convex = size > 0;
-  for (std::uint32_t t : tris) {
-    auto [n, l] = unit_normal(tris_[t].v);
-    if (l == 0) continue;  // a degenerate triangle bounds nothing
-    double c = dot(n.data(), tris_[t].v[0]);
-    if (dot(n.data(), centre) - c > 0) n = {-n[0], -n[1], -n[2]}, c = -c;
-    if (!(dot(n.data(), centre) - c < -1e-6 * size)) convex = false;  // centre on a face: flat, not a solid
-    for (std::uint32_t u : tris)
-      for (int v = 0; v < 3; ++v) {
-        const double beyond = dot(n.data(), tris_[u].v[v]) - c;
-        if (beyond > 1e-6 * size) convex = false;
-        solid.slack = std::max(solid.slack, beyond);
-      }
-    solid.faces.push_back({n[0], n[1], n[2], c});
-  }
-  if (!convex) return false;
-  merge_coplanar_faces(tris, size, solid);
-  std::copy(centre, centre + 3, solid.centre);
-  return true;
-}
-
-// The two triangles of a quad face give (nearly) one plane: keep one.  A
-// plane dropped this way lies within `deviation` of the kept one at every
-// vertex, which the slack covers.
-void CullGeometry::merge_coplanar_faces(const std::vector<std::uint32_t>& tris, double size, Solid& solid) const {
-  std::vector<std::array<double, 4>> kept;
-  for (const auto& f : solid.faces) {
-    bool duplicate = false;
-    for (const auto& k : kept) {
-      if (f[0] * k[0] + f[1] * k[1] + f[2] * k[2] < 1 - 1e-9) continue;
-      double deviation = 0;
-      for (std::uint32_t u : tris)
-        for (int v = 0; v < 3; ++v) {
-          const double* p = tris_[u].v[v];
-          deviation = std::max(deviation, std::abs((f[0] * p[0] + f[1] * p[1] + f[2] * p[2] - f[3]) -
-                                                   (k[0] * p[0] + k[1] * p[1] + k[2] * p[2] - k[3])));
-        }
-      if (deviation > 1e-6 * size) continue;
-      solid.slack = std::max(solid.slack, deviation);
-      duplicate = true;
-      break;
-    }
-    if (!duplicate) kept.push_back(f);
-  }
-  solid.faces = std::move(kept);
-}
-
-bool CullGeometry::solid_blocks(std::uint32_t triangle, const Box3& a, const Box3& b, double margin) const {
-  if (solid_of_[triangle] < 0) return false;
-  const Solid& solid = solids_[static_cast<std::size_t>(solid_of_[triangle])];
-  const double m = margin + solid.slack;
-  double ca[8][3], cb[8][3];
-  const int na = distinct_corners(a, ca), nb = distinct_corners(b, cb);
-  // Both boxes outside the solid: beyond one face plane each.
-  const auto outside = [&](const double (*corner)[3], int count) {
-    for (const auto& f : solid.faces) {
-      bool all = true;
-      for (int k = 0; k < count && all; ++k)
-        all = f[0] * corner[k][0] + f[1] * corner[k][1] + f[2] * corner[k][2] - f[3] >= m;
-      if (all) return true;
-    }
-    return false;
-  };
-  if (!outside(ca, na) || !outside(cb, nb)) return false;
-  double n[3];
-  for (int c = 0; c < 3; ++c) n[c] = 0.5 * (b.lo[c] + b.hi[c]) - 0.5 * (a.lo[c] + a.hi[c]);
-  const double length = std::sqrt(dot(n, n));
-  if (!(length > 0)) return false;
-  for (double& v : n) v /= length;
-  const double c0 = dot(n, solid.centre);
-  double sa[8], sb[8];
-  for (int k = 0; k < na; ++k)
-    if ((sa[k] = dot(n, ca[k]) - c0) > -m) return false;
-  for (int k = 0; k < nb; ++k)
-    if ((sb[k] = dot(n, cb[k]) - c0) < m) return false;
-  for (int i = 0; i < na; ++i)
-    for (int j = 0; j < nb; ++j) {
-      const double t = sa[i] / (sa[i] - sb[j]);
-      double p[3];
-      for (int c = 0; c < 3; ++c) p[c] = ca[i][c] + t * (cb[j][c] - ca[i][c]);
-      for (const auto& f : solid.faces)
-        if (f[0] * p[0] + f[1] * p[1] + f[2] * p[2] - f[3] > -m) return false;
-    }
-  return true;
 }
 
 // Median split on the longest side of the centroids' box; leaves of <= 4.
@@ -633,7 +440,8 @@ void bound_lines(PacketLines& lines) {
   lines.longest = std::sqrt(longest);
 }
 
-std::uint32_t CullGeometry::lanes_blocked(std::uint32_t triangle, const PacketLines& lines, double margin) const {
+std::uint32_t CullGeometry::lanes_blocked(std::uint32_t triangle, const PacketLines& lines, double margin,
+                                          bool with_solid) const {
   // The planar occluder for all lanes at once, branch-free (segment_blocked's
   // first test; a triangle's unused fourth edge never fails).  A quad's depth
   // term uses a bound for all lanes: |q - point| <= the longest line,
@@ -656,13 +464,8 @@ std::uint32_t CullGeometry::lanes_blocked(std::uint32_t triangle, const PacketLi
     blocked = occluder_lanes(o, sa, side, inside, point, lines.x, lines.y, lines.z, n);
   }
   const std::uint32_t all = (1u << n) - 1u;
-  if (blocked == all || solid_of_[triangle] < 0) return blocked;
-  for (int l = 0; l < n; ++l) {
-    if (blocked >> l & 1u) continue;
-    const double q[3] = {lines.x[l], lines.y[l], lines.z[l]};
-    if (segment_blocked(triangle, point, q, margin)) blocked |= 1u << l;
-  }
-  return blocked;
+  if (blocked == all || !with_solid || solid_of_[triangle] < 0) return blocked;
+  return blocked | solid_lanes(solids_[static_cast<std::size_t>(solid_of_[triangle])], margin, lines);
 }
 
 }  // namespace attenuvis::visgraph::detail

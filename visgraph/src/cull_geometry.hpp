@@ -59,7 +59,10 @@ class CullGeometry {
   // segment_blocked for every line of a packet at once: the bit mask of
   // the lanes blocked (the partners' box gives a quick answer when the
   // occluder's plane does not pass between the point and any of them).
-  std::uint32_t lanes_blocked(std::uint32_t triangle, const PacketLines& lines, double margin) const;
+  // With with_solid false, the planar occluder alone (the caller has tried
+  // the triangle's solid on these lanes already).
+  std::uint32_t lanes_blocked(std::uint32_t triangle, const PacketLines& lines, double margin,
+                              bool with_solid = true) const;
   // The solid of a triangle, or -1: callers skip a solid already tried.
   std::int32_t solid_of(std::uint32_t triangle) const { return solid_of_[triangle]; }
 
@@ -85,6 +88,9 @@ class CullGeometry {
   };
   static std::uint32_t occluder_lanes(const Occluder& o, double sa, double side, double inside, const double* point,
                                       const double* x, const double* y, const double* z, int n);
+  // The lanes whose segment `solid` blocks (segment_blocked's solid test,
+  // for every lane of a packet at once).
+  static std::uint32_t solid_lanes(const Solid& solid, double margin, const PacketLines& lines);
   std::uint32_t build(std::uint32_t first, std::uint32_t count, std::vector<double>& centroid);
   void build_occluders(const unsigned* index);
   void pair_quad_triangles(const unsigned* index, std::vector<std::uint32_t>& partner,

@@ -201,8 +201,73 @@ std::vector<std::string> default_heatmap_columns(const ScoreTable& table) {
   return columns;
 }
 
+namespace {
+using nlohmann::json;
+
+// Where the nodes stand: the grid's counts, its rule, and the nodes per
+// surface class or group (the 20 largest, the rest summed).
+json node_grid_json(const NodeSet& g) {
+  json grid = {{"cells", g.cells},
+               {"nodes", g.eyes.size()},
+               {"dropped_no_surface", g.no_surface},
+               {"dropped_covered", g.covered},
+               {"dropped_too_steep", g.too_steep},
+               {"dropped_no_headroom", g.no_headroom}};
+  json surfaces = json::object();
+  std::size_t other = 0;
+  for (std::size_t k = 0; k < g.by_surface.size(); ++k) {
+    if (k < 20) surfaces[g.by_surface[k].name] = g.by_surface[k].nodes;
+    else other += g.by_surface[k].nodes;
+  }
+  if (other) surfaces["(" + std::to_string(g.by_surface.size() - 20) + " others)"] = other;
+  grid["rule"] = g.rule;
+  grid["spacing_m"] = g.spacing;
+  if (!g.spacing_rule.empty()) grid["spacing_rule"] = g.spacing_rule;
+  grid["nodes_by_surface"] = surfaces;
+  grid["elevated_nodes"] = g.elevated;
+  grid["max_elevation_m"] = g.max_elevation;
+  return grid;
+}
+
+// Each score column's range and mean over the nodes that have a value.
+json scores_json(const ScoreTable& table) {
+  json scores = json::object();
+  const std::vector<std::string> columns = score_columns(table);
+  for (std::size_t c = 3; c < columns.size(); ++c) {
+    const std::vector<double> v = score_values(table, columns[c]);
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo, sum = 0;
+    std::size_t n = 0;
+    for (double x : v)
+      if (std::isfinite(x)) lo = std::min(lo, x), hi = std::max(hi, x), sum += x, ++n;
+    scores[columns[c]] = n ? json{{"min", lo}, {"max", hi}, {"mean", sum / n}, {"nodes_with_value", n}}
+                           : json{{"nodes_with_value", 0}};
+  }
+  return scores;
+}
+
+// The space-syntax graphs: threshold, radius, storage, and per condition its
+// lines of sight, components and the condition whose graph it shares.
+json space_syntax_json(const SpaceSyntaxResult& ss, const RunInfo& info) {
+  json per_condition = json::array();
+  for (std::size_t k = 0; k < ss.edges.size(); ++k) {
+    const std::ptrdiff_t same = ss.same_graph_as[k];
+    const bool shares = same >= 0 && static_cast<std::size_t>(same) < info.conditions.size();
+    per_condition.push_back({{"label", k < info.conditions.size() ? info.conditions[k].label : std::to_string(k)},
+                             {"lines_of_sight", ss.edges[k]},
+                             {"components", ss.components[k]},
+                             {"same_graph_as",
+                              shares ? json(info.conditions[static_cast<std::size_t>(same)].label) : json(nullptr)}});
+  }
+  return {{"contrast_threshold", info.contrast_threshold},
+          {"radius", info.radius > 0 ? json(info.radius) : json("n")},
+          {"graph", ss.bit_rows ? "bit rows" : "CSR"},
+          {"graph_bytes", ss.graph_bytes},
+          {"seconds", ss.seconds},
+          {"conditions", per_condition}};
+}
+}  // namespace
+
 std::string summary_json(const ScoreTable& table, const RunInfo& info) {
-  using nlohmann::json;
   const VisibilityResult& r = *table.result;
   json j;
   j["scene"] = {{"source", info.scene}, {"report", info.scene_report}};
@@ -213,26 +278,7 @@ std::string summary_json(const ScoreTable& table, const RunInfo& info) {
   j["mode"] = info.mode;
   if (info.mode == "to-targets") j["targets"] = info.targets;
   j["nodes"] = r.nodes;
-  if (info.grid)
-    j["node_grid"] = {{"cells", info.grid->cells},           {"nodes", info.grid->eyes.size()},
-                      {"dropped_no_surface", info.grid->no_surface}, {"dropped_covered", info.grid->covered},
-                      {"dropped_too_steep", info.grid->too_steep},   {"dropped_no_headroom", info.grid->no_headroom}};
-  if (info.grid) {
-    // Nodes per class or group: the 20 largest, the rest summed.
-    json surfaces = json::object();
-    std::size_t other = 0;
-    for (std::size_t k = 0; k < info.grid->by_surface.size(); ++k) {
-      if (k < 20) surfaces[info.grid->by_surface[k].name] = info.grid->by_surface[k].nodes;
-      else other += info.grid->by_surface[k].nodes;
-    }
-    if (other) surfaces["(" + std::to_string(info.grid->by_surface.size() - 20) + " others)"] = other;
-    j["node_grid"]["rule"] = info.grid->rule;
-    j["node_grid"]["spacing_m"] = info.grid->spacing;
-    if (!info.grid->spacing_rule.empty()) j["node_grid"]["spacing_rule"] = info.grid->spacing_rule;
-    j["node_grid"]["nodes_by_surface"] = surfaces;
-    j["node_grid"]["elevated_nodes"] = info.grid->elevated;
-    j["node_grid"]["max_elevation_m"] = info.grid->max_elevation;
-  }
+  if (info.grid) j["node_grid"] = node_grid_json(*info.grid);
   j["pairs"] = {{"considered", r.pairs_total},
                 {"cast", r.pairs_cast},
                 {"visible", r.pairs_visible},
@@ -252,18 +298,7 @@ std::string summary_json(const ScoreTable& table, const RunInfo& info) {
                           {"note", c.note}});
   j["conditions"] = conditions;
   if (info.wavelength_m > 0) j["wavelength_m"] = info.wavelength_m;
-  json scores = json::object();
-  const std::vector<std::string> columns = score_columns(table);
-  for (std::size_t c = 3; c < columns.size(); ++c) {
-    const std::vector<double> v = score_values(table, columns[c]);
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo, sum = 0;
-    std::size_t n = 0;
-    for (double x : v)
-      if (std::isfinite(x)) lo = std::min(lo, x), hi = std::max(hi, x), sum += x, ++n;
-    scores[columns[c]] = n ? json{{"min", lo}, {"max", hi}, {"mean", sum / n}, {"nodes_with_value", n}}
-                           : json{{"nodes_with_value", 0}};
-  }
-  j["scores"] = scores;
+  j["scores"] = scores_json(table);
   double worst_bound = 0;
   for (std::size_t i = 0; i < r.nodes; ++i) worst_bound = std::max(worst_bound, r.sum_error_bound(i));
   j["pruning"] = {{"prune_below", r.prune_below},
@@ -272,24 +307,7 @@ std::string summary_json(const ScoreTable& table, const RunInfo& info) {
                   {"note", r.pruning_note},
                   {"max_sum_error_bound", worst_bound},
                   {"fixed_point_rounding_bound_per_partner", std::ldexp(1.0, -41)}};
-  if (info.space_syntax) {
-    const SpaceSyntaxResult& ss = *info.space_syntax;
-    json per_condition = json::array();
-    for (std::size_t k = 0; k < ss.edges.size(); ++k)
-      per_condition.push_back({{"label", k < info.conditions.size() ? info.conditions[k].label : std::to_string(k)},
-                               {"lines_of_sight", ss.edges[k]},
-                               {"components", ss.components[k]},
-                               {"same_graph_as",
-                                ss.same_graph_as[k] < 0 || static_cast<std::size_t>(ss.same_graph_as[k]) >= info.conditions.size()
-                                    ? json(nullptr)
-                                    : json(info.conditions[static_cast<std::size_t>(ss.same_graph_as[k])].label)}});
-    j["space_syntax"] = {{"contrast_threshold", info.contrast_threshold},
-                         {"radius", info.radius > 0 ? json(info.radius) : json("n")},
-                         {"graph", ss.bit_rows ? "bit rows" : "CSR"},
-                         {"graph_bytes", ss.graph_bytes},
-                         {"seconds", ss.seconds},
-                         {"conditions", per_condition}};
-  }
+  if (info.space_syntax) j["space_syntax"] = space_syntax_json(*info.space_syntax, info);
   j["threads"] = info.threads;
   j["time_s"] = {{"visibility", r.seconds}, {"culling", r.culling_seconds}, {"total", info.total_seconds}};
   j["pairs_per_s"] = r.seconds > 0 ? static_cast<double>(r.pairs_total) / r.seconds : 0.0;

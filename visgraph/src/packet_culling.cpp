@@ -1,6 +1,8 @@
 // Packets decided lane by lane (packet_culling.hpp).
 #include "packet_culling.hpp"
 
+#include "embree_ray.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -23,8 +25,12 @@ void remember(PacketCulling::Hints& hints, std::uint32_t t) {
 }
 }  // namespace
 
-std::uint32_t PacketCulling::unblocked(std::uint32_t t, const PacketLines& p, std::uint32_t open) const {
-  return open & ~geometry_->lanes_blocked(t, p, margin_);
+std::uint32_t PacketCulling::unblocked(std::uint32_t t, const PacketLines& p, std::uint32_t open,
+                                       TriedSolids& tried) const {
+  const std::int32_t solid = geometry_->solid_of(t);
+  bool with_solid = solid >= 0 && std::find(tried.solid, tried.solid + tried.count, solid) == tried.solid + tried.count;
+  if (with_solid && tried.count < 16) tried.solid[tried.count++] = solid;
+  return open & ~geometry_->lanes_blocked(t, p, margin_, with_solid);
 }
 
 Verdict PacketCulling::all_in_sight(const PacketLines& p) const {
@@ -41,11 +47,12 @@ Verdict PacketCulling::decide(const double* point, const double* x, const double
   bound_lines(p);
   const std::uint32_t all = (1u << n) - 1u;
   std::uint32_t open = all;
+  TriedSolids tried;
   for (const Hints* list : {&hints, &near})
     for (int h = 0; h < kHints && open; ++h) {
       const std::uint32_t t = list->triangle[h];
       if (t == kNoHint) break;
-      open = unblocked(t, p, open);
+      open = unblocked(t, p, open, tried);
     }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -54,23 +61,13 @@ Verdict PacketCulling::decide(const double* point, const double* x, const double
     const double d[3] = {x[l] - point[0], y[l] - point[1], z[l] - point[2]};
     const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     if (!(length > 4 * margin_)) return Verdict::cast;
-    RTCRayHit rh{};
-    rh.ray.org_x = static_cast<float>(point[0]);
-    rh.ray.org_y = static_cast<float>(point[1]);
-    rh.ray.org_z = static_cast<float>(point[2]);
-    rh.ray.dir_x = static_cast<float>(d[0]);
-    rh.ray.dir_y = static_cast<float>(d[1]);
-    rh.ray.dir_z = static_cast<float>(d[2]);
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = 1.0f;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = embree_ray(point, d, 0.0, 1.0);
     rtcIntersect1(scene_, &context, &rh);
     // Nothing along the first lane tried: the packet may be all in sight.
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
       return open == all && ray == 0 ? all_in_sight(p) : Verdict::cast;
     for (int surface = 0; surface < kSurfaces; ++surface) {
-      const std::uint32_t left = unblocked(rh.hit.primID, p, open);
+      const std::uint32_t left = unblocked(rh.hit.primID, p, open, tried);
       if (left != open) {
         remember(hints, rh.hit.primID);
         remember(near, rh.hit.primID);

@@ -53,7 +53,14 @@ class PacketCulling {
 
  private:
   // Clears the bits of the lanes in `open` that triangle t's occluders block.
-  std::uint32_t unblocked(std::uint32_t t, const PacketLines& p, std::uint32_t open) const;
+  // A triangle's solid is tried once per packet: the open lanes only
+  // shrink, so a second try on them cannot block more.  `tried` holds the
+  // solids tried so far.
+  struct TriedSolids {
+    std::int32_t solid[16];
+    int count = 0;
+  };
+  std::uint32_t unblocked(std::uint32_t t, const PacketLines& p, std::uint32_t open, TriedSolids& tried) const;
   Verdict all_in_sight(const PacketLines& p) const;
 
   RTCScene scene_;

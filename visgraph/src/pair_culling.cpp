@@ -2,6 +2,7 @@
 #include "pair_culling.hpp"
 
 #include "cull_geometry.hpp"
+#include "embree_ray.hpp"
 #include "progress.hpp"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -298,17 +299,7 @@ Verdict PairCulling::classify_boxes(const Box3& A, const Box3& B) const {
     return geometry_->hull_is_empty(A, B, margin_) ? Verdict::visible : Verdict::cast;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit rh{};
-  rh.ray.org_x = static_cast<float>(ca[0]);
-  rh.ray.org_y = static_cast<float>(ca[1]);
-  rh.ray.org_z = static_cast<float>(ca[2]);
-  rh.ray.dir_x = static_cast<float>(d[0]);
-  rh.ray.dir_y = static_cast<float>(d[1]);
-  rh.ray.dir_z = static_cast<float>(d[2]);
-  rh.ray.tnear = 0.0f;
-  rh.ray.tfar = 1.0f;
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = embree_ray(ca, d, 0.0, 1.0);
   rtcIntersect1(scene_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
     return geometry_->hull_is_empty(A, B, margin_) ? Verdict::visible : Verdict::cast;

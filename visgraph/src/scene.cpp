@@ -4,6 +4,7 @@
 // memory accounting; one per scene would start a pool per scene).  Embree
 // reports failures through the device's error callback, whose message is
 // kept and put into the exception the failing call throws.
+#include "embree_ray.hpp"
 #include "scene_access.hpp"
 
 #include <attenuvis/visgraph/limits.hpp>
@@ -169,17 +170,7 @@ RTCScene detail::SceneAccess::embree(const Scene& scene) { return scene.impl_->s
 Scene::Hit Scene::intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_near, double t_far) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit rh{};
-  rh.ray.org_x = static_cast<float>(o.x());
-  rh.ray.org_y = static_cast<float>(o.y());
-  rh.ray.org_z = static_cast<float>(o.z());
-  rh.ray.dir_x = static_cast<float>(d.x());
-  rh.ray.dir_y = static_cast<float>(d.y());
-  rh.ray.dir_z = static_cast<float>(d.z());
-  rh.ray.tnear = static_cast<float>(t_near);
-  rh.ray.tfar = static_cast<float>(t_far);
-  rh.ray.mask = 0xFFFFFFFFu;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = detail::embree_ray(o.data(), d.data(), t_near, t_far);
   rtcIntersect1(impl_->scene, &context, &rh);
   Hit hit;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;

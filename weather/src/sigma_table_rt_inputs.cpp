@@ -43,10 +43,12 @@
 // 2l + 1).
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <boost/math/constants/constants.hpp>
@@ -192,55 +194,63 @@ std::vector<double> cell_phase(const SigmaTable& t, const TableCell& cell, const
   const double pi = boost::math::constants::pi<double>();
   for (double theta : g.theta) {
     const double mu = std::cos(theta * pi / 180);
-    double sum = 0;
-    for (std::size_t l = 0; l < chi.size(); ++l) sum += (2.0 * l + 1) * chi[l] * boost::math::legendre_p(int(l), mu);
+    // P_0..P_L by one upward recurrence (Bonnet), not each from P_0 again.
+    double sum = 0, p_before = 0, p_l = 1;
+    for (std::size_t l = 0; l < chi.size(); ++l) {
+      sum += (2.0 * l + 1) * chi[l] * p_l;
+      const double p_next = boost::math::legendre_next(static_cast<unsigned>(l), mu, p_l, p_before);
+      p_before = p_l;
+      p_l = p_next;
+    }
     p.push_back(sum);
   }
   return p;
 }
 
-}  // namespace
-
-void detail::write_sigma_table_libradtran(const SigmaTable& t, const std::string& path,
-                                          const TableProvenance& provenance) {
-  if (t.wavelengths_m.empty() || t.conditions.empty()) throw std::invalid_argument("an empty table has no libradtran form");
-  require_moments(t, "libradtran");
-  const std::vector<Row> rows = effective_radius_rows(t);
-  const std::vector<std::complex<double>> index = shared_index(t, rows);
-  const PhaseGrid grid = phase_grid(t);
-  const int L = t.max_moment;
-  const std::size_t nlam = t.wavelengths_m.size(), nreff = rows.size(), nmommax = static_cast<std::size_t>(L) + 2;
-  const std::size_t ntheta = grid.theta.size();
-
+// The variables of libRadtran's table, in uvspec's units: per wavelength
+// (wavelen, refre, refim), per effective radius (reff, lwc) and per cell,
+// wavelength-major (ext per water mass, ssa, rho, nmom, pmom with 2l+1,
+// theta and phase), and whether every cell's moments are complete.
+struct LibradtranColumns {
   std::vector<double> wavelen, reff, lwc, ext, ext_error, ssa, ssa_error, refre, refim, rho;
   std::vector<int> nmom, nth;
   std::vector<float> pmom, theta, phase;
   bool complete = true;
-  for (const Row& r : rows) reff.push_back(r.reff_um), lwc.push_back(r.lwc_g_m3);
-  for (std::size_t w = 0; w < nlam; ++w) {
-    wavelen.push_back(wavelength_nm(t.wavelengths_m[w]) * 1e-3);
-    refre.push_back(index[w].real());
-    refim.push_back(index[w].imag());
+};
+LibradtranColumns libradtran_columns(const SigmaTable& t, const std::vector<Row>& rows,
+                                     const std::vector<std::complex<double>>& index, const PhaseGrid& grid,
+                                     std::size_t nmommax) {
+  LibradtranColumns c;
+  for (const Row& r : rows) c.reff.push_back(r.reff_um), c.lwc.push_back(r.lwc_g_m3);
+  for (std::size_t w = 0; w < t.wavelengths_m.size(); ++w) {
+    c.wavelen.push_back(wavelength_nm(t.wavelengths_m[w]) * 1e-3);
+    c.refre.push_back(index[w].real());
+    c.refim.push_back(index[w].imag());
     for (const Row& r : rows) {
       const TableCell& cell = t.at(w, r.condition);
       // sigma_ext in 1/km per g/m^3 of condensed water.
       const QuantityValue sigma = table_value(cell, Quantity::sigma_ext), albedo = table_value(cell, Quantity::ssa);
-      ext.push_back(sigma.value * 1e3 / r.lwc_g_m3);
-      ext_error.push_back(sigma.error * 1e3 / r.lwc_g_m3);
-      ssa.push_back(albedo.value);
-      ssa_error.push_back(albedo.error);
-      rho.push_back(r.rho_g_cm3);
-      const std::vector<double> chi = cell_moments(cell, L);
-      nmom.push_back(significant_moments(chi, complete));
+      c.ext.push_back(sigma.value * 1e3 / r.lwc_g_m3);
+      c.ext_error.push_back(sigma.error * 1e3 / r.lwc_g_m3);
+      c.ssa.push_back(albedo.value);
+      c.ssa_error.push_back(albedo.error);
+      c.rho.push_back(r.rho_g_cm3);
+      const std::vector<double> chi = cell_moments(cell, t.max_moment);
+      c.nmom.push_back(significant_moments(chi, c.complete));
       for (std::size_t l = 0; l < nmommax; ++l)
-        pmom.push_back(l < chi.size() ? static_cast<float>((2.0 * l + 1) * chi[l]) : 0.0f);
-      nth.push_back(static_cast<int>(ntheta));
-      for (double a : grid.theta) theta.push_back(static_cast<float>(a));
-      for (double p : cell_phase(t, cell, grid)) phase.push_back(static_cast<float>(p));
+        c.pmom.push_back(l < chi.size() ? static_cast<float>((2.0 * l + 1) * chi[l]) : 0.0f);
+      c.nth.push_back(static_cast<int>(grid.theta.size()));
+      for (double a : grid.theta) c.theta.push_back(static_cast<float>(a));
+      for (double p : cell_phase(t, cell, grid)) c.phase.push_back(static_cast<float>(p));
     }
   }
+  return c;
+}
 
-  io::NetcdfFile f(path, io::NetcdfFile::Format::classic);
+// The global attributes uvspec reads (version, complete_moments) and those
+// that say where the file comes from.
+void libradtran_attributes(io::NetcdfFile& f, const SigmaTable& t, const std::vector<Row>& rows,
+                           const TableProvenance& provenance, const PhaseGrid& grid, bool complete) {
   const int g = io::NetcdfFile::global;
   f.set_attribute(g, "file_info", "Netcdf file created by " + provenance.producer +
                                       " in the layout of libRadtran's Mie tool (uvspec wc_properties/ic_properties)");
@@ -255,63 +265,64 @@ void detail::write_sigma_table_libradtran(const SigmaTable& t, const std::string
   f.set_attribute(g, "pmom_convention", "pmom(l) = (2l+1) chi_l, chi_0 = 1, p(mu) = sum pmom(l) P_l(mu)");
   f.set_attribute(g, "phase_source", grid.from_moments ? "sum over the stored moments (as libRadtran's mie tool)"
                                                        : "the bulk phase function at the table's angles");
+}
+
+}  // namespace
+
+void detail::write_sigma_table_libradtran(const SigmaTable& t, const std::string& path,
+                                          const TableProvenance& provenance) {
+  if (t.wavelengths_m.empty() || t.conditions.empty()) throw std::invalid_argument("an empty table has no libradtran form");
+  require_moments(t, "libradtran");
+  const std::vector<Row> rows = effective_radius_rows(t);
+  const PhaseGrid grid = phase_grid(t);
+  const std::size_t nlam = t.wavelengths_m.size(), nreff = rows.size();
+  const std::size_t nmommax = static_cast<std::size_t>(t.max_moment) + 2, ntheta = grid.theta.size();
+  const LibradtranColumns c = libradtran_columns(t, rows, shared_index(t, rows), grid, nmommax);
+
+  io::NetcdfFile f(path, io::NetcdfFile::Format::classic);
+  libradtran_attributes(f, t, rows, provenance, grid, c.complete);
   const int dlam = f.add_dimension("nlam", nlam), dmom = f.add_dimension("nmommax", nmommax);
   const int dpha = f.add_dimension("nphamat", 1), dreff = f.add_dimension("nreff", nreff);
   const int dth = f.add_dimension("nthetamax", ntheta);
   f.add_dimension("nrho", 1);
-  auto text = [&](int var, const std::string& long_name, const std::string& units) {
+  // Each variable is defined with its long name and units, and written once
+  // the definitions end (classic netCDF), in the same order.
+  std::vector<std::function<void()>> writes;
+  const auto variable = [&](const char* name, const std::vector<int>& dims, const auto& data,
+                            const std::string& long_name, const std::string& units) {
+    using T = typename std::decay_t<decltype(data)>::value_type;
+    int var = -1;
+    if constexpr (std::is_same_v<T, double>) var = f.add_double_variable(name, dims);
+    else if constexpr (std::is_same_v<T, float>) var = f.add_float_variable(name, dims);
+    else {
+      static_assert(std::is_same_v<T, int>, "double, float or int columns");
+      var = f.add_int_variable(name, dims);
+    }
     f.set_attribute(var, "long_name", long_name);
     f.set_attribute(var, "units", units);
+    writes.push_back([&f, var, &data] { f.write(var, data); });
+    return var;
   };
-  const int v_lam = f.add_double_variable("wavelen", {dlam});
-  text(v_lam, "wavelength", "micrometer");
-  const int v_reff = f.add_double_variable("reff", {dreff});
-  text(v_reff, "effective radius", "micrometer");
-  const int v_ntheta = f.add_int_variable("ntheta", {dlam, dreff, dpha});
-  text(v_ntheta, "number of scattering angles", "-");
-  const int v_theta = f.add_float_variable("theta", {dlam, dreff, dpha, dth});
-  text(v_theta, "theta", "degrees");
+  variable("wavelen", {dlam}, c.wavelen, "wavelength", "micrometer");
+  variable("reff", {dreff}, c.reff, "effective radius", "micrometer");
+  variable("ntheta", {dlam, dreff, dpha}, c.nth, "number of scattering angles", "-");
+  const int v_theta = variable("theta", {dlam, dreff, dpha, dth}, c.theta, "theta", "degrees");
   f.set_float_attribute(v_theta, "_FillValue", -999.0f);
-  const int v_phase = f.add_float_variable("phase", {dlam, dreff, dpha, dth});
-  text(v_phase, "phase", "-");
+  const int v_phase = variable("phase", {dlam, dreff, dpha, dth}, c.phase, "phase", "-");
   f.set_float_attribute(v_phase, "_FillValue", -999.0f);
-  const int v_nmom = f.add_int_variable("nmom", {dlam, dreff, dpha});
-  text(v_nmom, "number of Legendre polynomials", "-");
-  const int v_pmom = f.add_float_variable("pmom", {dlam, dreff, dpha, dmom});
-  text(v_pmom, "Legendre polynomials", "including factor 2*l+1");
+  variable("nmom", {dlam, dreff, dpha}, c.nmom, "number of Legendre polynomials", "-");
+  const int v_pmom = variable("pmom", {dlam, dreff, dpha, dmom}, c.pmom, "Legendre polynomials", "including factor 2*l+1");
   f.set_float_attribute(v_pmom, "_FillValue", 0.0f);
-  const int v_ext = f.add_double_variable("ext", {dlam, dreff});
-  text(v_ext, "extinction coefficient", "km^-1/(g/m^3)");
-  const int v_ssa = f.add_double_variable("ssa", {dlam, dreff});
-  text(v_ssa, "single scattering albedo", "-");
-  const int v_refre = f.add_double_variable("refre", {dlam});
-  text(v_refre, "refractive index (real)", " ");
-  const int v_refim = f.add_double_variable("refim", {dlam});
-  text(v_refim, "refractive index (imaginary)", " ");
-  const int v_rho = f.add_double_variable("rho", {dlam, dreff});
-  text(v_rho, "density of medium", "g/cm^3");
-  const int v_lwc = f.add_double_variable("lwc", {dreff});
-  text(v_lwc, "condensed water content of the condition's drops (ext = sigma_ext / lwc)", "g/m^3");
-  const int v_ext_error = f.add_double_variable("ext_error", {dlam, dreff});
-  text(v_ext_error, "error estimate of ext (attenuvis)", "km^-1/(g/m^3)");
-  const int v_ssa_error = f.add_double_variable("ssa_error", {dlam, dreff});
-  text(v_ssa_error, "error estimate of ssa (attenuvis)", "-");
+  variable("ext", {dlam, dreff}, c.ext, "extinction coefficient", "km^-1/(g/m^3)");
+  variable("ssa", {dlam, dreff}, c.ssa, "single scattering albedo", "-");
+  variable("refre", {dlam}, c.refre, "refractive index (real)", " ");
+  variable("refim", {dlam}, c.refim, "refractive index (imaginary)", " ");
+  variable("rho", {dlam, dreff}, c.rho, "density of medium", "g/cm^3");
+  variable("lwc", {dreff}, c.lwc, "condensed water content of the condition's drops (ext = sigma_ext / lwc)", "g/m^3");
+  variable("ext_error", {dlam, dreff}, c.ext_error, "error estimate of ext (attenuvis)", "km^-1/(g/m^3)");
+  variable("ssa_error", {dlam, dreff}, c.ssa_error, "error estimate of ssa (attenuvis)", "-");
   f.end_definitions();
-  f.write(v_lam, wavelen);
-  f.write(v_reff, reff);
-  f.write(v_ntheta, nth);
-  f.write(v_theta, theta);
-  f.write(v_phase, phase);
-  f.write(v_nmom, nmom);
-  f.write(v_pmom, pmom);
-  f.write(v_ext, ext);
-  f.write(v_ssa, ssa);
-  f.write(v_refre, refre);
-  f.write(v_refim, refim);
-  f.write(v_rho, rho);
-  f.write(v_lwc, lwc);
-  f.write(v_ext_error, ext_error);
-  f.write(v_ssa_error, ssa_error);
+  for (const auto& write : writes) write();
   f.commit();
 }
 

@@ -57,6 +57,8 @@ class NetcdfFile {
 
  private:
   void check(int status, const std::string& what) const;
+  // A variable of netCDF type `type` (NC_DOUBLE, NC_FLOAT, ...): what the typed adders share.
+  int add_variable(const std::string& name, int type, const std::vector<int>& dimensions);
   StagedFile staged_;
   int id_ = -1;
   bool open_ = false;

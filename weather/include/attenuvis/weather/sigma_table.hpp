@@ -96,7 +96,6 @@ std::string phase_function_normalisation();
 // "phase_0.5deg" (the angle as the shortest text that reads back to it).
 std::string phase_column_name(double angle_deg);
 
-// The file formats of a table, and their names.
 // csv, json, netcdf: every quantity asked for, over wavelengths x conditions.
 // libradtran: the netCDF table uvspec reads with wc_properties / ic_properties
 // (the layout of libRadtran's mie tool), one effective radius per Mie
