@@ -146,6 +146,7 @@ void check_component(AerosolComponent c, double rh, double wavelength) {
     // vertical leg at each cut (segmented_contour.hpp).
     SegmentedContourSettings cs;
     cs.rel_tolerance = 1e-11;
+    cs.truncated_log_normal = true;
     const auto exact = segmented_contour_extinction(d, wavelength, m, cs);
     REQUIRE(exact);
     INFO(std::setprecision(15) << "sigma_ext " << b.extinction.value << " +- " << b.extinction.error() << ", contour "

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <variant>
@@ -15,6 +16,7 @@
 
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/weather/cancel.hpp"
+#include "attenuvis/weather/detail/analytic_density.hpp"
 #include "contour_panel.hpp"
 #include "gauss_kronrod_rule.hpp"
 
@@ -26,23 +28,49 @@ constexpr double kPi = boost::math::constants::pi<double>();
 using Complex = std::complex<double>;
 
 // The density between two breakpoints, continued to complex r: a straight
-// line n0 + slope (r - r0) (a table's segment, or zero in a gap between bins)
-// or c r^-nu (a power law, principal branch).
+// line n0 + slope (r - r0) (a table's segment, or zero in a gap between bins),
+// c r^-nu (a power law, principal branch), or a log-normal cut at r0 and r1
+// (N / (sqrt(2 pi) s r) exp(-z^2 / 2), z = (ln r - ln r_g) / s, principal
+// branch: analytic in the upper half-plane).
 struct Piece {
   double r0 = 0, r1 = 0;
   double n0 = 0, slope = 0, n1 = 0;  // straight line, and its end value as tabulated
   bool power = false;
   double c = 0, nu = 0;              // power law
-  bool zero() const { return !power && n0 == 0 && slope == 0; }
-  Complex at(Complex r) const { return power ? c * std::exp(-nu * std::log(r)) : n0 + slope * (r - r0); }
-  double value_at(double r) const { return power ? c * std::pow(r, -nu) : n0 + slope * (r - r0); }
-  double slope_at(double r) const { return power ? -nu * c * std::pow(r, -nu - 1) : slope; }
+  std::optional<LogNormal> log_normal;
+  bool curved() const { return power || log_normal.has_value(); }
+  bool zero() const { return !curved() && n0 == 0 && slope == 0; }
+  Complex at(Complex r) const {
+    if (log_normal) return detail::log_normal_density(*log_normal, r);
+    return power ? c * std::exp(-nu * std::log(r)) : n0 + slope * (r - r0);
+  }
+  double value_at(double r) const {
+    if (log_normal) return detail::log_normal_density(*log_normal, r);
+    return power ? c * std::pow(r, -nu) : n0 + slope * (r - r0);
+  }
+  double slope_at(double r) const {
+    if (log_normal) {  // dn/dr = -n (1 + z / s) / r
+      const double s = std::log(log_normal->sigma_g), z = (std::log(r) - std::log(log_normal->median_radius_m)) / s;
+      return -value_at(r) * (1 + z / s) / r;
+    }
+    return power ? -nu * c * std::pow(r, -nu - 1) : slope;
+  }
 };
 
 // The pieces in increasing r, gaps filled with zero pieces; nothing for the
-// distributions that have an analytic continuation of their own.
-std::optional<std::vector<Piece>> pieces_of(const SizeDistribution& d) {
+// distributions that have an analytic continuation of their own, and for a
+// truncated log-normal unless `truncated_log_normal`.
+std::optional<std::vector<Piece>> pieces_of(const SizeDistribution& d, bool truncated_log_normal) {
   std::vector<Piece> out;
+  if (const auto* l = std::get_if<LogNormal>(&d.form())) {
+    if (!truncated_log_normal || !(l->r_min_m > 0) || !std::isfinite(l->r_max_m)) return std::nullopt;
+    Piece piece;
+    piece.r0 = l->r_min_m;
+    piece.r1 = l->r_max_m;
+    piece.log_normal = *l;
+    out.push_back(piece);
+    return out;
+  }
   if (const auto* p = std::get_if<PowerLaw>(&d.form())) {
     Piece piece;
     piece.r0 = p->r_min_m;
@@ -112,18 +140,18 @@ class Integrand {
     // Between two straight pieces of a table the jump is exact (n1 of the
     // left segment against n0 of the right one) rather than a difference of
     // two rounded evaluations.
-    const double left_value = left ? (left->power ? left->value_at(r) : left->n1) : 0.0;
+    const double left_value = left ? (left->curved() ? left->value_at(r) : left->n1) : 0.0;
     const double right_value = right ? right->value_at(r) : 0.0;
     jump = right_value - left_value;
     slope_change = (right ? right->slope_at(r) : 0.0) - (left ? left->slope_at(r) : 0.0);
   }
-  bool power_at(std::size_t k) const {
-    return (k < pieces_.size() && pieces_[k].power) || (k > 0 && pieces_[k - 1].power);
+  bool curved_at(std::size_t k) const {
+    return (k < pieces_.size() && pieces_[k].curved()) || (k > 0 && pieces_[k - 1].curved());
   }
   bool leg_vanishes(std::size_t k) const {
     double jump = 0, slope_change = 0;
     difference_at(k, jump, slope_change);
-    return !power_at(k) && jump == 0 && slope_change == 0;
+    return !curved_at(k) && jump == 0 && slope_change == 0;
   }
 
   Panel path_panel(std::size_t i, double a, double b) const {
@@ -149,7 +177,7 @@ class Integrand {
     const Piece* left = k > 0 ? &pieces_[k - 1] : nullptr;
     double jump = 0, slope_change = 0;
     difference_at(k, jump, slope_change);
-    const bool straight = !(right && right->power) && !(left && left->power);
+    const bool straight = !(right && right->curved()) && !(left && left->curved());
     // Straight pieces: the difference written as jump + slope change x (r - r_k),
     // which is exactly 0 on the axis of a continuous table.
     const auto difference = [&](Complex r) -> Complex {
@@ -168,14 +196,15 @@ class Integrand {
 
   // Below the lowest node y_1 of a leg's panel on the axis the rule sees
   // nothing of a resonance lying closer to the axis; that part is bounded
-  // (segmented_contour.hpp).  A power law's slope varies along the leg: twice
-  // the slope at r_k covers it for y_1 << x_k.
+  // (segmented_contour.hpp).  A power law's or a log-normal's slope varies
+  // along the leg: twice the slope at r_k covers it for y_1 << x_k (for the
+  // log-normal, y_1 << x_k / (1 + |z_k| / s): n'' / n' ~ (1 + |z| / s) / r).
   double lowest_node(double height) const { return 0.5 * height * (1 - rule_.abscissa.back()); }
   double near_axis_bound(std::size_t k, double y1) const {
     double jump = 0, slope_change = 0;
     difference_at(k, jump, slope_change);
     const double s_max = forward_amplitude_bound(x_at(k)) * std::exp(2 * y1);
-    const double slope = (power_at(k) ? 2.0 : 1.0) * std::abs(slope_change);
+    const double slope = (curved_at(k) ? 2.0 : 1.0) * std::abs(slope_change);
     return 2 * scale_ * s_max * (std::abs(jump) * y1 + slope * y1 * y1 / (2 * k_));
   }
   // Where to cut a leg's panel [0, b] on the axis so that the lower part's
@@ -385,7 +414,9 @@ std::string method_text(const SizeDistribution& d, const SegmentedContourSetting
                         double x_max) {
   std::ostringstream method;
   method << "segmented contour: Cauchy on each of " << pieces << " pieces of the "
-         << (std::holds_alternative<PowerLaw>(d.form()) ? "power law" : "table")
+         << (std::holds_alternative<PowerLaw>(d.form())  ? "power law"
+             : std::holds_alternative<LogNormal>(d.form()) ? "cut log-normal"
+                                                            : "table")
          << ", path x = t + i h(t), h <= " << significant(s.height, 3) << ", with " << legs
          << " legs down to the breakpoints, near-axis parts bounded (segmented_contour.hpp), Gauss-Kronrod "
          << s.kronrod_points << " (Boost.Math)" << (verify ? ", verified by halving" : "") << ", S(0) in "
@@ -403,7 +434,7 @@ constexpr double kSecondsPerTerm = 16e-9, kSecondsPerEvaluation = 1e-6;
 
 ContourCost segmented_contour_cost(const SizeDistribution& d, double wavelength_m, const SegmentedContourSettings& s) {
   ContourCost cost;
-  const auto pieces = pieces_of(d);
+  const auto pieces = pieces_of(d, s.truncated_log_normal);
   if (!pieces) return cost;
   const double k = 2 * kPi / wavelength_m;
   auto add = [&](double evaluations, double x) {
@@ -422,7 +453,7 @@ ContourCost segmented_contour_cost(const SizeDistribution& d, double wavelength_
 
 std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribution& d, double wavelength_m,
                                                               Complex m, const SegmentedContourSettings& s) {
-  auto pieces = pieces_of(d);
+  auto pieces = pieces_of(d, s.truncated_log_normal);
   if (!pieces) return std::nullopt;
   const double k = 2 * kPi / wavelength_m;
   const double x_min = k * pieces->front().r0, x_max = k * pieces->back().r1;

@@ -71,6 +71,11 @@ struct SegmentedContourSettings {
   bool verify = false;          // split every converged panel once and charge the change
   std::size_t max_evaluations = 400000;
   const std::atomic<bool>* cancel = nullptr;  // checked once per panel: Cancelled when set (cancel.hpp)
+  // Also a log-normal cut at r_min, r_max: one analytic piece with a leg at
+  // each cut.  Off by default, so that sigma() keeps the real axis for cut
+  // log-normals; the aerosol brute-force tests use it as the independent
+  // sigma_ext where equispaced sums cannot resolve the resonances.
+  bool truncated_log_normal = false;
 };
 
 // Nothing (no throw) when the route does not apply: the distribution is not a
