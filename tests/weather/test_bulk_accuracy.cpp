@@ -45,9 +45,11 @@ void check(const char* name, double value, double error, double reference, doubl
 }
 
 BulkOptics check_case(const SizeDistribution& d, double wavelength, const Reference& ref, double tolerance, int L,
-                std::complex<double> m, bool compare_backscatter = true) {
+                std::complex<double> m, bool compare_backscatter = true,
+                std::size_t max_evaluations = QuadratureSettings{}.max_evaluations) {
   QuadratureSettings s;
   s.rel_tolerance = tolerance;
+  s.max_evaluations = max_evaluations;
   s.backscatter = true;
   s.legendre_moments = L;
   if (!ref.phase.empty()) s.angles_deg = kAngles;
@@ -208,8 +210,11 @@ TEST_CASE("bulk optics within their tolerance of brute force: advection fog, 550
   const Reference advection{0.0287467774412008, 0.0287467531370012, 2.43041996014109e-08, 0.999999154541769,
                             0.872261229673554, 0.00170146037463523, 16.8953552311577, {}, {},
                             4.1e-8, 1.6e-3, 5.6e-6};
+  // At 1e-9 the plan resolves ~2e4 resonances here, each a product-rule panel and the
+  // Gauss-Kronrod panel beside it (~56 evaluations), within half the budget: 2.5e6 evaluations
+  // (the default 1e6 reports the tolerance as not met, with the error reached).
   const BulkOptics b =
-      check_case(preset_distribution("advection"), 550e-9, advection, 1e-9, -1, water(550e-9), false);
+      check_case(preset_distribution("advection"), 550e-9, advection, 1e-9, -1, water(550e-9), false, 2500000);
   ContourSettings cs;
   cs.rel_tolerance = 1e-12;
   const auto exact = contour_extinction(preset_distribution("advection"), 550e-9, water(550e-9), cs);

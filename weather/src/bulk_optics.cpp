@@ -461,7 +461,12 @@ detail::NearbySamples nearby(const std::vector<Panel>& panels, const SizeDistrib
 // The plan of the resonances of nearly lossless spheres (resonance_plan.hpp)
 // from the first pass's panels: each component may carry its tolerance
 // times its first estimate.  Resonance panels may take half the evaluation
-// budget; the refinement around them needs the rest.
+// budget, each counted with the Gauss-Kronrod panel it cuts off beside it;
+// the refinement needs the rest, at least to bring every panel to 2 in x
+// (bulk_panels.hpp: wider, the nodes miss the resonances of half-width
+// >= 0.1 that the plan leaves to them, and a component that is small away
+// from its peaks, as a lossless sphere's Q_abs, is not bounded by its
+// sampled range).
 detail::ResonancePlan resonance_plan(const Integrator& integ, const std::vector<Panel>& first, const Support& support,
                                      const SizeDistribution& d, const QuadratureSettings& s, std::complex<double> m,
                                      bool extinction_only) {
@@ -484,7 +489,8 @@ detail::ResonancePlan resonance_plan(const Integrator& integ, const std::vector<
   }
   return detail::plan_resonances(
       m, breakpoints_x.front(), x_hi, layout, allowed, breakpoints_x,
-      [&](double x0) { return nearby(first, d, k, x0); }, s.max_evaluations / (2 * detail::kPoleRulePoints),
+      [&](double x0) { return nearby(first, d, k, x0); },
+      s.max_evaluations / (2 * (detail::kPoleRulePoints + static_cast<std::size_t>(s.kronrod_points))),
       s.cancel);
 }
 
