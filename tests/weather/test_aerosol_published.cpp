@@ -25,6 +25,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -33,6 +34,7 @@
 #include "attenuvis/weather.hpp"
 
 using namespace attenuvis::weather;
+using Catch::Matchers::Contains;
 
 namespace {
 
@@ -218,4 +220,25 @@ TEST_CASE("visibility and mass scalings give what they ask", "[weather][aerosol]
   const auto desert = std::get<AerosolCondition>(parse_condition("haze:desert:rh=50"));
   const Sigma plain = sigma(desert, 1064e-9, Settings{});
   CHECK(m1.per_m == Approx(plain.per_m * 100 / aerosol_dry_mass_ug_m3(desert)).epsilon(1e-12));
+}
+
+TEST_CASE("aerosol sigma_ext by the segmented contour agrees with the real axis within both errors",
+          "[weather][aerosol][contour]") {
+  // Two independent routes to the same integral: the contour above the
+  // resonances (aerosol_sigma) and the real-axis quadrature that resolves or
+  // bounds them one by one (aerosol_optics).  Maritime clean carries coarse
+  // sea salt, ~1e4 resonances below x = 1000 at 550 nm.
+  const auto c = std::get<AerosolCondition>(parse_condition("haze:maritime-clean:rh=80"));
+  Settings fine;  // the default 1e-9
+  const Sigma contour = sigma(c, 550e-9, fine);
+  CHECK_THAT(contour.note, Contains("segmented contour"));
+  CHECK(contour.error_per_m <= 1e-9 * contour.per_m);
+  Settings coarse;
+  coarse.rel_tolerance = 1e-3;
+  coarse.max_evaluations = 200000;
+  const AerosolOptics axis = aerosol_optics(c, 550e-9, coarse, OpticsRequest{false, -1, {}, false});
+  INFO(std::setprecision(12) << "contour " << contour.per_m << " +- " << contour.error_per_m << ", real axis "
+                             << axis.bulk.extinction.value << " +- " << axis.bulk.extinction.error());
+  CHECK(axis.bulk.extinction.error() <= 1e-3 * axis.bulk.extinction.value);
+  CHECK(std::abs(contour.per_m - axis.bulk.extinction.value) <= contour.error_per_m + axis.bulk.extinction.error());
 }

@@ -57,6 +57,14 @@ struct Piece {
   }
 };
 
+// A table's segment from (r0, n0) to (r1, n1).
+Piece straight(double r0, double r1, double n0, double n1) {
+  Piece p;
+  p.r0 = r0, p.r1 = r1, p.n0 = n0, p.n1 = n1;
+  p.slope = (n1 - n0) / (r1 - r0);
+  return p;
+}
+
 // The pieces in increasing r, gaps filled with zero pieces; nothing for the
 // distributions that have an analytic continuation of their own, and for a
 // truncated log-normal unless `truncated_log_normal`.
@@ -87,8 +95,8 @@ std::optional<std::vector<Piece>> pieces_of(const SizeDistribution& d, bool trun
     if (!(s.r1 > s.r0)) continue;  // a zero-width segment holds no particles
     if (!out.empty() && s.r0 < out.back().r1)
       throw std::invalid_argument("tabulated distribution " + d.describe() + ": segments overlap or are not in order");
-    if (!out.empty() && s.r0 > out.back().r1) out.push_back({out.back().r1, s.r0, 0, 0, 0});
-    out.push_back({s.r0, s.r1, s.n0, (s.n1 - s.n0) / (s.r1 - s.r0), s.n1});
+    if (!out.empty() && s.r0 > out.back().r1) out.push_back(straight(out.back().r1, s.r0, 0, 0));
+    out.push_back(straight(s.r0, s.r1, s.n0, s.n1));
   }
   if (out.empty()) return std::nullopt;
   return out;

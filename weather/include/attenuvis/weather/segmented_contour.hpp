@@ -72,9 +72,10 @@ struct SegmentedContourSettings {
   std::size_t max_evaluations = 400000;
   const std::atomic<bool>* cancel = nullptr;  // checked once per panel: Cancelled when set (cancel.hpp)
   // Also a log-normal cut at r_min, r_max: one analytic piece with a leg at
-  // each cut.  Off by default, so that sigma() keeps the real axis for cut
-  // log-normals; the aerosol brute-force tests use it as the independent
-  // sigma_ext where equispaced sums cannot resolve the resonances.
+  // each cut.  Off by default, so that sigma() keeps the real axis for the
+  // cut log-normals of Mie conditions; aerosols' sigma_ext takes it
+  // (aerosol_optics.hpp), and the aerosol brute-force tests use it as the
+  // independent sigma_ext where equispaced sums cannot resolve the resonances.
   bool truncated_log_normal = false;
 };
 
