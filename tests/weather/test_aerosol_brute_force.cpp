@@ -121,13 +121,25 @@ void check_component(AerosolComponent c, double rh, double wavelength) {
   // meets no resonance; the fogs' sigma_abs, beta_pi and chi_l are checked where sums converge in
   // test_bulk_accuracy.cpp.
   const bool lossless = m.imag() < 1e-3;
-  const auto resolves = [&b](const Sums& s1, const Sums& s2) {
-    return std::abs(static_cast<double>(s1.ext - s2.ext)) <= 0.5 * b.extinction.error() &&
-           std::abs(static_cast<double>(s1.sca - s2.sca)) <= 0.5 * b.scattering.error() &&
-           std::abs(static_cast<double>(s1.abs - s2.abs)) <= 0.5 * b.absorption.error() &&
-           std::abs(static_cast<double>(s1.gsca / s1.sca - s2.gsca / s2.sca)) <= 0.5 * b.asymmetry_error;
+  // Resolved: the two sums' spread within half of every reported error,
+  // the spread shrunk by `factor` first.
+  const auto resolves = [&b](const Sums& s1, const Sums& s2, double factor = 1) {
+    return std::abs(static_cast<double>(s1.ext - s2.ext)) / factor <= 0.5 * b.extinction.error() &&
+           std::abs(static_cast<double>(s1.sca - s2.sca)) / factor <= 0.5 * b.scattering.error() &&
+           std::abs(static_cast<double>(s1.abs - s2.abs)) / factor <= 0.5 * b.absorption.error() &&
+           std::abs(static_cast<double>(s1.gsca / s1.sca - s2.gsca / s2.sca)) / factor <= 0.5 * b.asymmetry_error;
   };
-  while (lossless && !resolves(coarse, fine) && 16 * n <= kMaxReferencePoints) {
+  // Each refinement divides Simpson's error by ~16 once the peaks are
+  // resolved (h^4); it falls faster only while the step crosses the widths of
+  // the peaks.  A spread that the refinements left could not close even at
+  // 256 per step goes straight to the fallback below rather than to
+  // kMaxReferencePoints (the reference's budget, not a check, is at stake).
+  const auto reachable = [&](long points) {
+    double factor = 1;
+    for (long next = 16 * points; next <= kMaxReferencePoints; next *= 4) factor *= 256;
+    return resolves(coarse, fine, factor);
+  };
+  while (lossless && !resolves(coarse, fine) && 16 * n <= kMaxReferencePoints && reachable(n)) {
     n *= 4;
     coarse = fine;
     fine = simpson(d, l, wavelength, m, 4 * n);
