@@ -93,6 +93,7 @@ const QuickRun& quick_run() {
     r.status = std::system(cmd.c_str());
     r.log = slurp(log);
     if (fs::exists(r.dir / "key.json")) r.key = nlohmann::json::parse(slurp(r.dir / "key.json"));
+    if (r.baseline) fs::remove_all(lib.parent_path());  // the earlier core was needed for the run only
     return r;
   }();
   return run;

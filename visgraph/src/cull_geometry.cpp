@@ -379,54 +379,6 @@ std::uint32_t CullGeometry::occluder_lanes(const Occluder& o, double sa, double 
   return blocked;
 }
 
-bool CullGeometry::segment_blocked(std::uint32_t triangle, const double* a, const double* b, double margin) const {
-  // The planar occluder: a and b on either side of its plane (by the margin
-  // and a quad's depth), the crossing inside every edge (occluder_blocks
-  // with one corner per box).
-  const Occluder& o = occluders_[occluder_of_[triangle]];
-  if (o.edges > 0) {
-    const double sa = dot(o.n, a) - o.c, sb = dot(o.n, b) - o.c;
-    const double side = margin + o.depth;
-    if ((sa <= -side && sb >= side) || (sa >= side && sb <= -side)) {
-      double inside = margin;
-      if (o.depth > 0) {
-        const V3 ab = sub(b, a);
-        inside += o.depth + o.depth * norm(ab) / (std::abs(sa) + std::abs(sb));
-      }
-      const double t = sa / (sa - sb);
-      double p[3];
-      for (int c = 0; c < 3; ++c) p[c] = a[c] + t * (b[c] - a[c]);
-      bool within = true;
-      for (int k = 0; k < o.edges && within; ++k) within = dot(o.u[k], p) - o.o[k] >= inside;
-      if (within) return true;
-    }
-  }
-  // The convex solid: a and b each beyond one face plane, and the crossing
-  // of the plane through its centre normal to the segment inside every face.
-  if (solid_of_[triangle] < 0) return false;
-  const Solid& solid = solids_[static_cast<std::size_t>(solid_of_[triangle])];
-  const double m = margin + solid.slack;
-  const auto outside = [&](const double* p) {
-    for (const auto& f : solid.faces)
-      if (f[0] * p[0] + f[1] * p[1] + f[2] * p[2] - f[3] >= m) return true;
-    return false;
-  };
-  if (!outside(a) || !outside(b)) return false;
-  V3 n = sub(b, a);
-  const double length = norm(n);
-  if (!(length > 0)) return false;
-  for (double& v : n) v /= length;
-  const double c0 = dot(n.data(), solid.centre);
-  const double sa = dot(n.data(), a) - c0, sb = dot(n.data(), b) - c0;
-  if (sa > -m || sb < m) return false;
-  const double t = sa / (sa - sb);
-  double p[3];
-  for (int c = 0; c < 3; ++c) p[c] = a[c] + t * (b[c] - a[c]);
-  for (const auto& f : solid.faces)
-    if (f[0] * p[0] + f[1] * p[1] + f[2] * p[2] - f[3] > -m) return false;
-  return true;
-}
-
 void bound_lines(PacketLines& lines) {
   Box3& b = lines.box;
   b.lo[0] = b.hi[0] = lines.x[0], b.lo[1] = b.hi[1] = lines.y[0], b.lo[2] = b.hi[2] = lines.z[0];
@@ -442,8 +394,8 @@ void bound_lines(PacketLines& lines) {
 
 std::uint32_t CullGeometry::lanes_blocked(std::uint32_t triangle, const PacketLines& lines, double margin,
                                           bool with_solid) const {
-  // The planar occluder for all lanes at once, branch-free (segment_blocked's
-  // first test; a triangle's unused fourth edge never fails).  A quad's depth
+  // The planar occluder for all lanes at once, branch-free (a triangle's
+  // unused fourth edge never fails).  A quad's depth
   // term uses a bound for all lanes: |q - point| <= the longest line,
   // |s_a| + |s_b| >= |s_a| + side: a larger margin, never a smaller one.
   const double* point = lines.point;

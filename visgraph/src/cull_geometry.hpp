@@ -51,14 +51,12 @@ class CullGeometry {
   // `margin` (every segment then passes through its interior, so enters it
   // through its watertight surface).
   bool solid_blocks(std::uint32_t triangle, const Box3& a, const Box3& b, double margin) const;
-  // The same two tests (planar occluder, convex solid) for one segment from
-  // point a to point b: true when the occluder or the solid of `triangle`
-  // blocks it with `margin`.  The case of boxes that are points, without
-  // their setup: packets test each of their sight lines this way.
-  bool segment_blocked(std::uint32_t triangle, const double* a, const double* b, double margin) const;
-  // segment_blocked for every line of a packet at once: the bit mask of
-  // the lanes blocked (the partners' box gives a quick answer when the
-  // occluder's plane does not pass between the point and any of them).
+  // The same two tests (planar occluder, convex solid) for each sight line
+  // of a packet, from its point to each partner: the case of boxes that are
+  // points, without their setup.  The bit mask of the lanes whose segment
+  // the occluder or the solid of `triangle` blocks with `margin` (the
+  // partners' box gives a quick answer when the occluder's plane does not
+  // pass between the point and any of them).
   // With with_solid false, the planar occluder alone (the caller has tried
   // the triangle's solid on these lanes already).
   std::uint32_t lanes_blocked(std::uint32_t triangle, const PacketLines& lines, double margin,
@@ -88,8 +86,7 @@ class CullGeometry {
   };
   static std::uint32_t occluder_lanes(const Occluder& o, double sa, double side, double inside, const double* point,
                                       const double* x, const double* y, const double* z, int n);
-  // The lanes whose segment `solid` blocks (segment_blocked's solid test,
-  // for every lane of a packet at once).
+  // The lanes whose segment `solid` blocks (lanes_blocked's solid test).
   static std::uint32_t solid_lanes(const Solid& solid, double margin, const PacketLines& lines);
   std::uint32_t build(std::uint32_t first, std::uint32_t count, std::vector<double>& centroid);
   void build_occluders(const unsigned* index);

@@ -167,7 +167,7 @@ bool CullGeometry::solid_blocks(std::uint32_t triangle, const Box3& a, const Box
   return true;
 }
 
-// segment_blocked's solid test on the 16 lanes at once: the row outside
+// lanes_blocked's solid test on the 16 lanes at once: the row outside
 // (one face plane with the row at least m beyond it), each partner outside,
 // and the crossing of the segment with the plane through the centre normal
 // to it inside every face by m.  The comparisons are written so that a NaN

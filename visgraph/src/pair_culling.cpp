@@ -97,6 +97,12 @@ void PairCulling::collect(const tbb::enumerable_thread_specific<Local>& locals) 
       if (r[0] != r[1]) records_[r[1]].push_back({r[0], v});
     }
   }
+  // The threads' lists arrive in whatever order the scheduler left them;
+  // the rows' packets are tried in record order and carry occluder hints
+  // from one to the next, so that order must not depend on the threads:
+  // by the other cluster (its id: the tree's depth-first order).
+  for (auto& list : records_)
+    std::sort(list.begin(), list.end(), [](const Record& a, const Record& b) { return a.other < b.other; });
 }
 
 // Split on the longest side of the nodes' bounding box, at the median
