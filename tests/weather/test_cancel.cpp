@@ -46,10 +46,10 @@ TEST_CASE("a set cancel flag stops sigma, optics and tables with Cancelled", "[w
 
 TEST_CASE("a cancel flag left clear changes no bit of the results", "[weather][cancel]") {
   std::atomic<bool> cancel{false};
-  // Any tolerance shows it; 1e-6 spares the phase function the resonances'
-  // work that the default 1e-9 asks at 550 nm.
+  // Any tolerance shows it; 1e-3 spares the phase function the resonances'
+  // work that tighter ones ask at 550 nm (20 s under ASan at 1e-6).
   Settings plain;
-  plain.rel_tolerance = 1e-6;
+  plain.rel_tolerance = 1e-3;
   Settings flagged = plain;
   flagged.cancel = &cancel;
   for (const char* text : {kLogNormal, kPowerLaw}) {
