@@ -357,36 +357,56 @@ bool CullGeometry::occluder_blocks(std::uint32_t triangle, const Box3& a, const 
 // signed distance sa from its plane (|sa| >= side) and the margin inside
 // its edges: a branch-free loop over the lanes (a triangle's unused fourth
 // edge always passes), vectorised per instruction set.
+//
+// Without a division.  The crossing of the line from a to q with the plane
+// is p = a + t (q - a), t = s_a / D, D = s_a - s_b.  A lane that passes the
+// side test has s_b beyond the plane on the far side, so D has the sign of
+// s_a and |D| = |s_a| + sign s_b >= |s_a| + side > 0; each edge test
+// u.p - o >= inside, multiplied by |D|, reads
+//     (u.a - o - inside) |D| + |s_a| (u.q - u.a) >= 0.
+// The same comparison in exact arithmetic; the rounding of either form is a
+// few ulps of the coordinates, far inside the margin.  The unused fourth
+// edge (u = 0, o = -inf) gives +inf: it passes.
 ATTENUVIS_CULL_CLONES
 std::uint32_t CullGeometry::occluder_lanes(const Occluder& o, double sa, double side, double inside,
-                                           const double* point, const double* x, const double* y, const double* z,
-                                           int n) {
+                                           const PacketLines& lines) {
   const double sign = sa < 0 ? 1.0 : -1.0;  // the partner must be beyond +side (row below) or -side (row above)
+  const double abs_sa = std::abs(sa);
+  const double* a = lines.point;
+  double ua[4], rest[4];
+  for (int k = 0; k < 4; ++k) {
+    ua[k] = o.u[k][0] * a[0] + o.u[k][1] * a[1] + o.u[k][2] * a[2];
+    rest[k] = ua[k] - o.o[k] - inside;
+  }
   int ok[16];
   for (int l = 0; l < 16; ++l) {
-    const int j = l < n ? l : 0;
-    const double qx = x[j], qy = y[j], qz = z[j];
+    const double qx = lines.x[l], qy = lines.y[l], qz = lines.z[l];
     const double sb = o.n[0] * qx + o.n[1] * qy + o.n[2] * qz - o.c;
-    const double t = sa / (sa - sb);
-    const double px = point[0] + t * (qx - point[0]), py = point[1] + t * (qy - point[1]),
-                 pz = point[2] + t * (qz - point[2]);
-    bool pass = (sign * sb >= side) & (l < n);
-    for (int k = 0; k < 4; ++k) pass &= o.u[k][0] * px + o.u[k][1] * py + o.u[k][2] * pz - o.o[k] >= inside;
+    const double abs_d = abs_sa + sign * sb;
+    bool pass = sign * sb >= side;
+    for (int k = 0; k < 4; ++k)
+      pass &= rest[k] * abs_d + abs_sa * (o.u[k][0] * qx + o.u[k][1] * qy + o.u[k][2] * qz - ua[k]) >= 0;
     ok[l] = pass ? 1 : 0;
   }
   std::uint32_t blocked = 0;
   for (int l = 0; l < 16; ++l) blocked |= static_cast<std::uint32_t>(ok[l]) << l;
-  return blocked;
+  return blocked & ((1u << lines.n) - 1u);
 }
 
-void bound_lines(PacketLines& lines) {
+void set_lines(PacketLines& lines, const double* point, const double* x, const double* y, const double* z, int n) {
+  lines.point = point;
+  lines.n = n;
+  for (int l = 0; l < 16; ++l) {
+    const int j = l < n ? l : 0;
+    lines.x[l] = x[j], lines.y[l] = y[j], lines.z[l] = z[j];
+  }
   Box3& b = lines.box;
-  b.lo[0] = b.hi[0] = lines.x[0], b.lo[1] = b.hi[1] = lines.y[0], b.lo[2] = b.hi[2] = lines.z[0];
+  b.lo[0] = b.hi[0] = x[0], b.lo[1] = b.hi[1] = y[0], b.lo[2] = b.hi[2] = z[0];
   double longest = 0;
-  for (int l = 0; l < lines.n; ++l) {
-    const double q[3] = {lines.x[l], lines.y[l], lines.z[l]};
+  for (int l = 0; l < n; ++l) {
+    const double q[3] = {x[l], y[l], z[l]};
     for (int c = 0; c < 3; ++c) b.lo[c] = std::min(b.lo[c], q[c]), b.hi[c] = std::max(b.hi[c], q[c]);
-    const V3 d = sub(q, lines.point);
+    const V3 d = sub(q, point);
     longest = std::max(longest, dot(d.data(), d.data()));
   }
   lines.longest = std::sqrt(longest);
@@ -413,7 +433,7 @@ std::uint32_t CullGeometry::lanes_blocked(std::uint32_t triangle, const PacketLi
   if (o.edges > 0 && std::abs(sa) >= side && far_side >= side) {
     const double inside =
         margin + (o.depth > 0 ? o.depth + o.depth * lines.longest / (std::abs(sa) + side) : 0.0);
-    blocked = occluder_lanes(o, sa, side, inside, point, lines.x, lines.y, lines.z, n);
+    blocked = occluder_lanes(o, sa, side, inside, lines);
   }
   const std::uint32_t all = (1u << n) - 1u;
   if (blocked == all || !with_solid || solid_of_[triangle] < 0) return blocked;

@@ -24,14 +24,18 @@ struct Box3 {
 
 // The sight lines of one packet: from `point` to partners (x[l], y[l],
 // z[l]), l < n <= 16, their bounding box and the length of the longest.
+// The partners are copied into 16 aligned lanes, the idle ones repeating
+// partner 0, so that every lane test loads whole vectors and needs no
+// bounds (each test masks the idle lanes out of its answer).
 struct PacketLines {
-  const double *point, *x, *y, *z;
+  const double* point = nullptr;
+  alignas(64) double x[16], y[16], z[16];
   int n = 0;
   Box3 box;
   double longest = 0;
 };
-// Fills box and longest from point, x, y, z, n.
-void bound_lines(PacketLines& lines);
+// The lines from `point` to partners (x[l], y[l], z[l]), l < n, 1 <= n <= 16.
+void set_lines(PacketLines& lines, const double* point, const double* x, const double* y, const double* z, int n);
 
 class CullGeometry {
  public:
@@ -84,8 +88,8 @@ class CullGeometry {
     double centre[3];
     double slack = 0;  // largest distance of a vertex beyond a face plane (non-planar quads)
   };
-  static std::uint32_t occluder_lanes(const Occluder& o, double sa, double side, double inside, const double* point,
-                                      const double* x, const double* y, const double* z, int n);
+  static std::uint32_t occluder_lanes(const Occluder& o, double sa, double side, double inside,
+                                      const PacketLines& lines);
   // The lanes whose segment `solid` blocks (lanes_blocked's solid test).
   static std::uint32_t solid_lanes(const Solid& solid, double margin, const PacketLines& lines);
   std::uint32_t build(std::uint32_t first, std::uint32_t count, std::vector<double>& centroid);

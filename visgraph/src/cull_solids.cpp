@@ -182,11 +182,7 @@ std::uint32_t CullGeometry::solid_lanes(const Solid& solid, double margin, const
   for (const auto& f : solid.faces) a_outside |= f[0] * a[0] + f[1] * a[1] + f[2] * a[2] - f[3] >= m;
   if (!a_outside) return 0;
   const int n = lines.n;
-  alignas(64) double qx[16], qy[16], qz[16];
-  for (int l = 0; l < 16; ++l) {
-    const int j = l < n ? l : 0;
-    qx[l] = lines.x[j], qy[l] = lines.y[j], qz[l] = lines.z[j];
-  }
+  const double *qx = lines.x, *qy = lines.y, *qz = lines.z;
   alignas(64) double px[16], py[16], pz[16];
   int ok[16];
   for (int l = 0; l < 16; ++l) {

@@ -43,8 +43,7 @@ Verdict PacketCulling::decide(const double* point, const double* x, const double
                               Hints& hints, Hints& near) const {
   if (!geometry_ || n <= 0) return Verdict::cast;
   PacketLines p;
-  p.point = point, p.x = x, p.y = y, p.z = z, p.n = n;
-  bound_lines(p);
+  set_lines(p, point, x, y, z, n);
   const std::uint32_t all = (1u << n) - 1u;
   std::uint32_t open = all;
   TriedSolids tried;
