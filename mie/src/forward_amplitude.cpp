@@ -6,10 +6,12 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "attenuvis/mie/detail/complex_ops.hpp"
 #include "attenuvis/mie/detail/lentz.hpp"
+#include "instruction_set_clones.hpp"
 
 namespace attenuvis::mie {
 namespace {
@@ -69,22 +71,69 @@ struct ForwardTables {
   std::vector<Lanes<R, L>> d_x, psi_up, d_mx;
 };
 
+// ψ_{N−1}/ψ_N at the L arguments z = 1/inv_z: Lentz's continued fraction
+// (detail/lentz.hpp) run on all lanes at once, each lane frozen once its own
+// test passes, so that every lane gets the bits of riccati_psi_ratio (the
+// same operations in the same order).  For N below |z|, which is the case of
+// Dₙ(mx) (the tables stop near |x| < |mx|), the fraction takes about |z| − N
+// steps: side by side they vectorise instead of running lane after lane.
+template <class R, int L>
+Lanes<R, L> psi_ratio_lanes(std::size_t N, const Lanes<R, L>& inv_z) {
+  const R eps = std::numeric_limits<R>::epsilon();
+  const R eps2 = eps * eps;
+  const R tiny = (std::numeric_limits<R>::min)() * R(1e20);
+  Lanes<R, L> f, c, d{};
+  bool done[L] = {};
+  const R b0 = detail::index_real<R>(2 * N + 1);
+  for (int j = 0; j < L; ++j) {
+    f.re[j] = b0 * inv_z.re[j], f.im[j] = b0 * inv_z.im[j];
+    if (f.re[j] == 0 && f.im[j] == 0) f.re[j] = tiny, f.im[j] = 0;
+    c.re[j] = f.re[j], c.im[j] = f.im[j];
+  }
+  int left = L;
+  const std::size_t max_iterations = 400000000;
+  for (std::size_t k = 1; k <= max_iterations && left > 0; ++k) {
+    const R bk = detail::index_real<R>(2 * N + 1 + 2 * k);
+    bool passed[L];
+    for (int j = 0; j < L; ++j) {
+      const R br = bk * inv_z.re[j], bi = bk * inv_z.im[j];
+      R dr = br - d.re[j], di = bi - d.im[j];
+      if (dr == 0 && di == 0) dr = tiny, di = 0;
+      const R sc = 1 / (c.re[j] * c.re[j] + c.im[j] * c.im[j]);
+      R cr = br - c.re[j] * sc, ci = bi - (-c.im[j] * sc);
+      if (cr == 0 && ci == 0) cr = tiny, ci = 0;
+      const R sd = 1 / (dr * dr + di * di);
+      dr = dr * sd, di = -di * sd;
+      const R er = cr * dr - ci * di, ei = cr * di + ci * dr;  // delta = c d
+      const R fr = f.re[j] * er - f.im[j] * ei, fi = f.re[j] * ei + f.im[j] * er;
+      const R gr = er - 1, gi = ei - 0;
+      passed[j] = gr * gr + gi * gi < eps2;
+      if (!done[j]) {
+        d.re[j] = dr, d.im[j] = di, c.re[j] = cr, c.im[j] = ci, f.re[j] = fr, f.im[j] = fi;
+      }
+    }
+    for (int j = 0; j < L; ++j)
+      if (!done[j] && passed[j]) done[j] = true, --left;
+  }
+  if (left > 0)
+    throw std::runtime_error("attenuvis::mie: Lentz continued fraction did not converge for n=" + std::to_string(N));
+  return f;
+}
+
 // Dₙ(z) by the downward recurrence D_{n−1} = n/z − 1/(Dₙ + n/z) (B&H eq. 4.89),
 // started from Lentz's continued fraction for ψ_{N−1}/ψ_N = D_N + N/z.  The
 // reciprocal 1/(Dₙ(x) + n/x) = ψₙ/ψ_{n−1} is kept: the upward loop needs it.
 template <class R, int L>
 void downward_log_derivatives(const ForwardProblem<R, L>& p, std::size_t N, ForwardTables<R, L>& t) {
-  using C = std::complex<R>;
   using V = Lanes<R, L>;
   const V &inv_x = p.inv_x, &inv_mx = p.inv_mx;
   t.d_x.resize(N + 1);
   t.psi_up.resize(N + 1);
   t.d_mx.resize(N + 1);
+  const V start_x = psi_ratio_lanes(N, inv_x), start_mx = psi_ratio_lanes(N, inv_mx);
   for (int j = 0; j < L; ++j) {
-    const C ix(inv_x.re[j], inv_x.im[j]), imx(inv_mx.re[j], inv_mx.im[j]);
-    const C a = detail::riccati_psi_ratio<C, R>(N, [&](R k) { return k * ix; }) - R(N) * ix;
-    const C b = detail::riccati_psi_ratio<C, R>(N, [&](R k) { return k * imx; }) - R(N) * imx;
-    t.d_x[N].re[j] = a.real(), t.d_x[N].im[j] = a.imag(), t.d_mx[N].re[j] = b.real(), t.d_mx[N].im[j] = b.imag();
+    t.d_x[N].re[j] = start_x.re[j] - R(N) * inv_x.re[j], t.d_x[N].im[j] = start_x.im[j] - R(N) * inv_x.im[j];
+    t.d_mx[N].re[j] = start_mx.re[j] - R(N) * inv_mx.re[j], t.d_mx[N].im[j] = start_mx.im[j] - R(N) * inv_mx.im[j];
   }
   for (std::size_t n = N; n >= 1; --n) {
     const R rn = R(n);
@@ -172,10 +221,13 @@ bool sum_forward_series(const std::complex<double>* x_in, const ForwardProblem<R
     const C t0 = i * std::sin(x) * std::exp(-i * x), q = detail::recip(C(p.inv_x.re[j], p.inv_x.im[j]) - i);
     s.t.re[j] = t0.real(), s.t.im[j] = t0.imag(), s.xi_down.re[j] = q.real(), s.xi_down.im[j] = q.imag();
   }
+  // No lane can stop at orders up to the smallest |x|: the tests start above it.
+  const R first_test = *std::min_element(p.ax, p.ax + L);
   for (std::size_t n = 1; n <= N; ++n) {
     const R rn = R(n);
     R term2[L], sum2[L];
     add_forward_order(p, tables, n, s, term2, sum2);
+    if (!(rn > first_test)) continue;
     for (int j = 0; j < L; ++j) {
       if (s.done[j]) continue;
       if (rn > p.ax[j] && term2[j] <= eps * eps * sum2[j]) {
@@ -208,7 +260,17 @@ void evaluate(const std::complex<double>* x_in, std::complex<double> m_in, Forwa
   }
 }
 
-constexpr int kBatch = 4;
+constexpr int kBatch = 16;
+
+// The double series of one batch, compiled once per instruction set (the
+// series are inlined into each clone, flatten): the lane loops above then run
+// four lanes to a vector with AVX2 and AVX-512 instead of two.  The library is
+// built without contraction, so every clone returns the same bits.
+ATTENUVIS_MIE_CLONES __attribute__((flatten)) void evaluate_batch_double(const std::complex<double>* x,
+                                                                         std::complex<double> m,
+                                                                         ForwardAmplitude* out) {
+  evaluate<double, kBatch>(x, m, out);
+}
 
 }  // namespace
 
@@ -234,7 +296,7 @@ void forward_amplitudes(const std::complex<double>* x, std::size_t count, std::c
     ForwardAmplitude res[kBatch];
     for (int j = 0; j < kBatch; ++j) xs[j] = x[std::min(k + j, count - 1)];
     if (precision == Precision::extended) evaluate<long double, kBatch>(xs, m, res);
-    else evaluate<double, kBatch>(xs, m, res);
+    else evaluate_batch_double(xs, m, res);
     for (int j = 0; j < kBatch && k + j < count; ++j) out[k + j] = res[j];
   }
 }

@@ -62,9 +62,12 @@ ForwardAmplitude forward_amplitude(std::complex<double> x, std::complex<double> 
                                    Precision precision = Precision::extended);
 
 // S(0) at x[0..count) for one m, the same values as forward_amplitude() one by
-// one, about 2x faster in double: four series run side by side (their
-// divisions overlap and vectorise).  Points of similar |x| batch best (the
-// tables run to the largest).  Same argument checks, before any work.
+// one (within their rounding bounds), about 4.5x faster in double on a CPU
+// with AVX-512: sixteen series run side by side, compiled per instruction
+// set, so that their divisions overlap and vectorise, and the continued
+// fractions that start them run side by side too.  Points of similar |x|
+// batch best (the tables run to the largest).  Same argument checks, before
+// any work.
 void forward_amplitudes(const std::complex<double>* x, std::size_t count, std::complex<double> m,
                         Precision precision, ForwardAmplitude* out);
 
