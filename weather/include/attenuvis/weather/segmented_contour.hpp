@@ -44,7 +44,9 @@
 // (as contour_extinction.cpp), or when asked, every converged panel is split
 // once and the change is charged too.
 //
-// Cost: one panel per piece and ~2 per leg; a 200-point log-normal table in
+// Cost: one panel per piece and ~2 per leg (a piece spanning four panels or
+// more, a raindrop bin, takes the 31-point rule at least: the ripple left at
+// height H then needs a third of the evaluations); a 200-point log-normal table in
 // water at 550 nm takes 9,735 evaluations of S(0) at 1e-9, the analytic
 // log-normal 625 (validation/bench/bulk_optics_speed table).  The near-axis
 // bound, not the path, sets the cost: it stands 1e5-1e6 times above the actual
