@@ -16,7 +16,7 @@ import pytest
 # same function called after the interruption, at the interrupted wavelength
 # (the table: at 20 times it, where the same fog takes a fraction of a second).
 WORKLOADS = {
-    # Rain drops at optical wavelengths: the real-axis Mie quadrature up to x = 2000.
+    # Rain drops at optical wavelengths: the contour up to x ~ 7e4, seconds a call.
     "sigma": ("lambda lam: w.sigma('rain:8:mie', lam).value",
               "lambda lam: w.sigma('rain:8:mie', lam).value",
               [550e-9 + i * 1e-9 for i in range(40)]),

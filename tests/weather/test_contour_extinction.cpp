@@ -79,8 +79,12 @@ TEST_CASE("contour extinction declines what it cannot do", "[weather][contour]")
   const auto tab = SizeDistribution::tabulated({{1e-6, 2e-6, 1e9, 1e9}}, "test");
   CHECK_FALSE(contour_extinction(tab, 550e-9, kWater550));
   CHECK_FALSE(contour_extinction(SizeDistribution::power_law(1.0, 3.0, 1e-7, 1e-5), 550e-9, kWater550));
-  // Rain at 550 nm reaches x ~ 1e5, beyond max_x: left to the real-axis rule.
-  CHECK_FALSE(contour_extinction(SizeDistribution::marshall_palmer(8.0), 550e-9, kWater550));
+  // Rain at 8 mm/h reaches x = 6.8e4 at 550 nm and 1.16e5 at 355 nm, beyond
+  // S(0)'s range (max_x = 1e5): left to the real-axis rule there.
+  CHECK_FALSE(contour_extinction(SizeDistribution::marshall_palmer(8.0), 355e-9, kWater550));
+  ContourSettings short_reach;
+  short_reach.max_x = 5e4;
+  CHECK_FALSE(contour_extinction(SizeDistribution::marshall_palmer(8.0), 550e-9, kWater550, short_reach));
   // analytic_density continues the real density.
   const auto d = preset_distribution("advection");
   for (double r : {1e-6, 1e-5, 5e-5}) CHECK(detail::analytic_density(d, r)->real() == Approx(d.density(r)).epsilon(1e-13));
