@@ -260,7 +260,7 @@ void evaluate(const std::complex<double>* x_in, std::complex<double> m_in, Forwa
   }
 }
 
-constexpr int kBatch = 16;
+constexpr int kBatch = 8;
 
 // The double series of one batch, compiled once per instruction set (the
 // series are inlined into each clone, flatten): the lane loops above then run

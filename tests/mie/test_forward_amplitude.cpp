@@ -56,7 +56,7 @@ TEST_CASE("forward amplitude at complex x: 60-digit mpmath table", "[mie][comple
 }
 
 TEST_CASE("forward amplitudes in batches agree with one-by-one calls", "[mie][complex-x]") {
-  // forward_amplitudes runs sixteen series side by side on tables as long as the
+  // forward_amplitudes runs eight series side by side on tables as long as the
   // largest |x| needs; 7 points (a short last batch) spanning |x| 0.5...1500
   // in one batch must give the single-call values within their rounding bounds.
   const std::vector<std::complex<double>> x{{0.5, 0.1}, {1500.0, 4.0}, {5.0, 1.0}, {80.0, 4.0},
