@@ -265,7 +265,7 @@ void rain_rate_chart(Context& ctx, Section& s) {
   // the contour to 1e-9 up to x = 1e5, i.e. 1 and 10 mm/h here; beyond, the
   // real axis with the large-x expansion's ~0.7 %, as the error column says):
   // fewer rates, and one in quick mode.
-  const std::vector<double> mie_rates = ctx.options.quick ? std::vector<double>{10} : std::vector<double>{1, 10, 100};
+  const std::vector<double> mie_rates = ctx.options.quick ? std::vector<double>{1} : std::vector<double>{1, 10, 100};
   Table t{"weather_rain_rate", "Rain attenuation at 550 nm against rain rate [dB/km]",
           {"rain rate [mm/h]", "seed (k=1.17, a=0.65)", "carbonneau", "p1814", "mie (Marshall-Palmer)",
            "mie error estimate [dB/km]", "seed law read as 1/km, in dB/km"}, {}, "ITU-R P.1817-1 rain power laws as named by the weather module; Mie over Marshall & Palmer (1948)."};
