@@ -25,6 +25,7 @@ Checks, reported as warnings (the build runs with -W, so they fail it):
 * the HTML loads nothing from the network (no script, style sheet, font or
   image from another host).
 """
+import concurrent.futures
 import os
 import re
 import shutil
@@ -231,19 +232,25 @@ def run_examples(app):
         return
     out = examples_output(app)
     shutil.rmtree(out, ignore_errors=True)
-    for script in sorted(os.listdir(os.path.join(SOURCE_ROOT, "examples"))):
-        if not script.endswith(".py"):
-            continue
+    scripts = sorted(s for s in os.listdir(os.path.join(SOURCE_ROOT, "examples")) if s.endswith(".py"))
+
+    def run_one(script):
         target = os.path.join(out, script[: -len(".py")])
         os.makedirs(target)
-        logger.info(f"running examples/{script}")
         result = subprocess.run([sys.executable, os.path.join(SOURCE_ROOT, "examples", script), target],
                                 capture_output=True, text=True, timeout=600,
                                 env={**os.environ, "MPLBACKEND": "Agg"})
-        if result.returncode != 0:
-            raise ExtensionError(f"examples/{script} failed ({result.returncode}):\n{result.stderr}")
-        with open(os.path.join(target, "stdout.txt"), "w") as f:
-            f.write(result.stdout.replace(target, "OUTDIR"))
+        return script, target, result
+
+    # The scripts are independent processes: side by side, as many as there
+    # are cores (each writes only its own directory).
+    logger.info(f"running examples/{', '.join(scripts)}")
+    with concurrent.futures.ThreadPoolExecutor(max_workers=os.cpu_count() or 1) as pool:
+        for script, target, result in pool.map(run_one, scripts):
+            if result.returncode != 0:
+                raise ExtensionError(f"examples/{script} failed ({result.returncode}):\n{result.stderr}")
+            with open(os.path.join(target, "stdout.txt"), "w") as f:
+                f.write(result.stdout.replace(target, "OUTDIR"))
 
 
 class ExampleDirective(Directive):
