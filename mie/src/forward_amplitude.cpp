@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "attenuvis/mie/detail/complex_ops.hpp"
-#include "attenuvis/mie/detail/lentz.hpp"
 #include "instruction_set_clones.hpp"
 
 namespace attenuvis::mie {
@@ -72,9 +71,9 @@ struct ForwardTables {
 };
 
 // ψ_{N−1}/ψ_N at the L arguments z = 1/inv_z: Lentz's continued fraction
-// (detail/lentz.hpp) run on all lanes at once, each lane frozen once its own
-// test passes, so that every lane gets the bits of riccati_psi_ratio (the
-// same operations in the same order).  For N below |z|, which is the case of
+// of detail/lentz.hpp (riccati_psi_ratio, with the same operations in the
+// same order, written out on separate real and imaginary lanes) run on all
+// lanes at once, each lane frozen once its own test passes.  For N below |z|, which is the case of
 // Dₙ(mx) (the tables stop near |x| < |mx|), the fraction takes about |z| − N
 // steps: side by side they vectorise instead of running lane after lane.
 template <class R, int L>
@@ -264,7 +263,7 @@ constexpr int kBatch = 8;
 
 // The double series of one batch, compiled once per instruction set (the
 // series are inlined into each clone, flatten): the lane loops above then run
-// four lanes to a vector with AVX2 and AVX-512 instead of two.  The library is
+// on the vectors of AVX2 or AVX-512 instead of the baseline's two lanes.  The library is
 // built without contraction, so every clone returns the same bits.
 ATTENUVIS_MIE_CLONES __attribute__((flatten)) void evaluate_batch_double(const std::complex<double>* x,
                                                                          std::complex<double> m,

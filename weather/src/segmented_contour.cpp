@@ -114,8 +114,6 @@ struct Panel {
   double charged() const { return quad.error + near_axis; }
 };
 
-// |S(0)| on the real axis: <= 1/2 sum (2n+1)(|a_n| + |b_n|) <= (N + 1)^2, the
-// series cut where Wiscombe's (1980) criterion ends it.
 // Pieces whose path spans at least this many panels take a Gauss-Kronrod
 // rule of at least this order (Integrand::path_rule).  Measured at 1e-9 on
 // raindrop bins (0.5-1 mm, water): 14,115 -> 4,743 evaluations at 550 nm and
@@ -124,6 +122,8 @@ struct Panel {
 constexpr double kLongPiecePanels = 4;
 constexpr int kLongPieceKronrodPoints = 31;
 
+// |S(0)| on the real axis: <= 1/2 sum (2n+1)(|a_n| + |b_n|) <= (N + 1)^2, the
+// series cut where Wiscombe's (1980) criterion ends it.
 double forward_amplitude_bound(double x) {
   const double terms = x + 4.05 * std::cbrt(x) + 2;
   return (terms + 1) * (terms + 1);

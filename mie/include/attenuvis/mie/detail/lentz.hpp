@@ -2,8 +2,8 @@
 // evaluated by the modified Lentz algorithm.
 //
 // Template detail of the Mie core: the start of the downward recurrences of
-// the series (log_derivative.hpp) and of forward_amplitude()
-// (mie/src/forward_amplitude.cpp).
+// the series (log_derivative.hpp); forward_amplitude()
+// (mie/src/forward_amplitude.cpp) runs the same fraction on vector lanes.
 //
 // From the recurrence J_{ν-1}(z) + J_{ν+1}(z) = (2ν/z) J_ν(z):
 //     J_{ν-1}/J_ν = b₀ − 1/(b₁ − 1/(b₂ − …)),   b_j = 2(ν+j)/z.
