@@ -318,7 +318,10 @@ Verdict PairCulling::classify_boxes(const Box3& A, const Box3& B) const {
       tried_solid = solid;
     }
     if (g.occluder_blocks(rh.hit.primID, A, B, margin_)) return Verdict::blocked;
-    if (attempt + 1 == kOccluderTries) break;
+    // Only a solid is worth a further ray: a lone planar surface blocks every line between two
+    // boxes too rarely to pay for one (Delfshaven at 5 m: 0.3 % of such surfaces; solids on the
+    // generated city: 7-13 %).  Its own ray was cast anyway, to find it.
+    if (solid < 0 || attempt + 1 == kOccluderTries) break;
     rh.ray.tnear = rh.ray.tfar + static_cast<float>(margin_ / length);
     rh.ray.tfar = 1.0f;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;

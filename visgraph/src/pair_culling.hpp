@@ -21,7 +21,8 @@
 //     those crossings (the cross-section of H with the plane is their convex
 //     hull), so every sight line passes through the polygon's interior, at
 //     least m from both ends.  The occluders tried are the surfaces hit by
-//     the ray between the two boxes' centres (up to kOccluderTries of them).
+//     the ray between the two boxes' centres: the first, then further ones
+//     while the surfaces met belong to solids (up to kOccluderTries of them).
 // Otherwise the larger cluster is split; a pair of leaves still undecided is
 // cast.
 //
