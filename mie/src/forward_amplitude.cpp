@@ -73,9 +73,10 @@ struct ForwardTables {
 // ψ_{N−1}/ψ_N at the L arguments z = 1/inv_z: Lentz's continued fraction
 // of detail/lentz.hpp (riccati_psi_ratio, with the same operations in the
 // same order, written out on separate real and imaginary lanes) run on all
-// lanes at once, each lane frozen once its own test passes.  For N below |z|, which is the case of
-// Dₙ(mx) (the tables stop near |x| < |mx|), the fraction takes about |z| − N
-// steps: side by side they vectorise instead of running lane after lane.
+// lanes at once, each lane frozen once its own test passes.  For N below
+// |z|, which is the case of Dₙ(mx) (the tables stop near |x| < |mx|), the
+// fraction takes about |z| − N steps: side by side they vectorise instead of
+// running lane after lane.
 template <class R, int L>
 Lanes<R, L> psi_ratio_lanes(std::size_t N, const Lanes<R, L>& inv_z) {
   const R eps = std::numeric_limits<R>::epsilon();
@@ -263,8 +264,8 @@ constexpr int kBatch = 8;
 
 // The double series of one batch, compiled once per instruction set (the
 // series are inlined into each clone, flatten): the lane loops above then run
-// on the vectors of AVX2 or AVX-512 instead of the baseline's two lanes.  The library is
-// built without contraction, so every clone returns the same bits.
+// on the vectors of AVX2 or AVX-512 instead of the baseline's two lanes.  The
+// library is built without contraction, so every clone returns the same bits.
 ATTENUVIS_MIE_CLONES __attribute__((flatten)) void evaluate_batch_double(const std::complex<double>* x,
                                                                          std::complex<double> m,
                                                                          ForwardAmplitude* out) {
