@@ -83,37 +83,43 @@ Lanes<R, L> psi_ratio_lanes(std::size_t N, const Lanes<R, L>& inv_z) {
   const R eps2 = eps * eps;
   const R tiny = (std::numeric_limits<R>::min)() * R(1e20);
   Lanes<R, L> f, c, d{};
-  bool done[L] = {};
   const R b0 = detail::index_real<R>(2 * N + 1);
   for (int j = 0; j < L; ++j) {
     f.re[j] = b0 * inv_z.re[j], f.im[j] = b0 * inv_z.im[j];
     if (f.re[j] == 0 && f.im[j] == 0) f.re[j] = tiny, f.im[j] = 0;
     c.re[j] = f.re[j], c.im[j] = f.im[j];
   }
+  // The zero tests and the freezing of finished lanes are selects, not
+  // branches, so that the lane loop vectorises; each lane performs the
+  // operations of the scalar fraction in the same order.
+  R frozen[L] = {};  // 1 once a lane has converged
   int left = L;
   const std::size_t max_iterations = 400000000;
   for (std::size_t k = 1; k <= max_iterations && left > 0; ++k) {
     const R bk = detail::index_real<R>(2 * N + 1 + 2 * k);
-    bool passed[L];
+    R passed[L];
     for (int j = 0; j < L; ++j) {
       const R br = bk * inv_z.re[j], bi = bk * inv_z.im[j];
       R dr = br - d.re[j], di = bi - d.im[j];
-      if (dr == 0 && di == 0) dr = tiny, di = 0;
+      const bool d_zero = dr == 0 && di == 0;
+      dr = d_zero ? tiny : dr, di = d_zero ? R(0) : di;
       const R sc = 1 / (c.re[j] * c.re[j] + c.im[j] * c.im[j]);
       R cr = br - c.re[j] * sc, ci = bi - (-c.im[j] * sc);
-      if (cr == 0 && ci == 0) cr = tiny, ci = 0;
+      const bool c_zero = cr == 0 && ci == 0;
+      cr = c_zero ? tiny : cr, ci = c_zero ? R(0) : ci;
       const R sd = 1 / (dr * dr + di * di);
       dr = dr * sd, di = -di * sd;
       const R er = cr * dr - ci * di, ei = cr * di + ci * dr;  // delta = c d
       const R fr = f.re[j] * er - f.im[j] * ei, fi = f.re[j] * ei + f.im[j] * er;
       const R gr = er - 1, gi = ei - 0;
-      passed[j] = gr * gr + gi * gi < eps2;
-      if (!done[j]) {
-        d.re[j] = dr, d.im[j] = di, c.re[j] = cr, c.im[j] = ci, f.re[j] = fr, f.im[j] = fi;
-      }
+      passed[j] = gr * gr + gi * gi < eps2 ? R(1) : R(0);
+      const bool keep = frozen[j] != 0;
+      d.re[j] = keep ? d.re[j] : dr, d.im[j] = keep ? d.im[j] : di;
+      c.re[j] = keep ? c.re[j] : cr, c.im[j] = keep ? c.im[j] : ci;
+      f.re[j] = keep ? f.re[j] : fr, f.im[j] = keep ? f.im[j] : fi;
     }
     for (int j = 0; j < L; ++j)
-      if (!done[j] && passed[j]) done[j] = true, --left;
+      if (frozen[j] == 0 && passed[j] != 0) frozen[j] = 1, --left;
   }
   if (left > 0)
     throw std::runtime_error("attenuvis::mie: Lentz continued fraction did not converge for n=" + std::to_string(N));
@@ -135,18 +141,22 @@ void downward_log_derivatives(const ForwardProblem<R, L>& p, std::size_t N, Forw
     t.d_x[N].re[j] = start_x.re[j] - R(N) * inv_x.re[j], t.d_x[N].im[j] = start_x.im[j] - R(N) * inv_x.im[j];
     t.d_mx[N].re[j] = start_mx.re[j] - R(N) * inv_mx.re[j], t.d_mx[N].im[j] = start_mx.im[j] - R(N) * inv_mx.im[j];
   }
+  // The running Dₙ are carried in locals, not read back from the tables: the
+  // recurrence is a chain of dependent divisions, and a store-to-load round
+  // trip per order would lengthen it.
+  V dx = t.d_x[N], dmx = t.d_mx[N];
   for (std::size_t n = N; n >= 1; --n) {
     const R rn = R(n);
-    const V &dx = t.d_x[n], &dmx = t.d_mx[n];
-    V &up = t.psi_up[n], &dx_down = t.d_x[n - 1], &dmx_down = t.d_mx[n - 1];
+    V up;
     for (int j = 0; j < L; ++j) {
       const R ar = dx.re[j] + rn * inv_x.re[j], ai = dx.im[j] + rn * inv_x.im[j];
       const R br = dmx.re[j] + rn * inv_mx.re[j], bi = dmx.im[j] + rn * inv_mx.im[j];
       const R sa = 1 / (ar * ar + ai * ai), sb = 1 / (br * br + bi * bi);
       up.re[j] = ar * sa, up.im[j] = -ai * sa;
-      dx_down.re[j] = rn * inv_x.re[j] - ar * sa, dx_down.im[j] = rn * inv_x.im[j] + ai * sa;
-      dmx_down.re[j] = rn * inv_mx.re[j] - br * sb, dmx_down.im[j] = rn * inv_mx.im[j] + bi * sb;
+      dx.re[j] = rn * inv_x.re[j] - ar * sa, dx.im[j] = rn * inv_x.im[j] + ai * sa;
+      dmx.re[j] = rn * inv_mx.re[j] - br * sb, dmx.im[j] = rn * inv_mx.im[j] + bi * sb;
     }
+    t.psi_up[n] = up, t.d_x[n - 1] = dx, t.d_mx[n - 1] = dmx;
   }
 }
 
@@ -163,8 +173,9 @@ struct ForwardSums {
 
 // Order n of every lane: ψₙ/ξₙ = (ψ_{n−1}/ξ_{n−1}) (ψₙ/ψ_{n−1}) (ξ_{n−1}/ξₙ),
 // then aₙ + bₙ added to the sums; term2, sum2: |term|², |sum|² for the
-// convergence test.
-template <class R, int L>
+// convergence test (only computed when `test`: none is made below the
+// smallest |x|).
+template <bool test, class R, int L>
 void add_forward_order(const ForwardProblem<R, L>& p, const ForwardTables<R, L>& tables, std::size_t n,
                        ForwardSums<R, L>& s, R* term2, R* sum2) {
   const R m_re = p.m.real(), m_im = p.m.imag(), im_re = p.inv_m.real(), im_im = p.inv_m.imag();
@@ -195,8 +206,10 @@ void add_forward_order(const ForwardProblem<R, L>& p, const ForwardTables<R, L>&
     // |aₙ| + |bₙ| <= |t| |1/(UV)| (|aV| + |bU|), each |z| <= |Re z| + |Im z|.
     s.magnitude[j] += weight * (std::abs(tr) + std::abs(ti)) * (std::abs(ir) + std::abs(ii)) *
                       (std::abs(aVr) + std::abs(aVi) + std::abs(bUr) + std::abs(bUi));
-    term2[j] = er * er + ei * ei;
-    sum2[j] = s.sum.re[j] * s.sum.re[j] + s.sum.im[j] * s.sum.im[j];
+    if constexpr (test) {
+      term2[j] = er * er + ei * ei;
+      sum2[j] = s.sum.re[j] * s.sum.re[j] + s.sum.im[j] * s.sum.im[j];
+    }
     // ξₙ/ξ_{n+1} = 1/((2(n+1)−1)/x − ξ_{n−1}/ξₙ) for the next order.
     const R ur = weight * inv_x.re[j] - qr, ui = weight * inv_x.im[j] - qi, s2 = 1 / (ur * ur + ui * ui);
     s.xi_down.re[j] = ur * s2, s.xi_down.im[j] = -ui * s2;
@@ -223,11 +236,12 @@ bool sum_forward_series(const std::complex<double>* x_in, const ForwardProblem<R
   }
   // No lane can stop at orders up to the smallest |x|: the tests start above it.
   const R first_test = *std::min_element(p.ax, p.ax + L);
-  for (std::size_t n = 1; n <= N; ++n) {
+  std::size_t n = 1;
+  for (; n <= N && !(R(n) > first_test); ++n) add_forward_order<false>(p, tables, n, s, static_cast<R*>(nullptr), static_cast<R*>(nullptr));
+  for (; n <= N; ++n) {
     const R rn = R(n);
     R term2[L], sum2[L];
-    add_forward_order(p, tables, n, s, term2, sum2);
-    if (!(rn > first_test)) continue;
+    add_forward_order<true>(p, tables, n, s, term2, sum2);
     for (int j = 0; j < L; ++j) {
       if (s.done[j]) continue;
       if (rn > p.ax[j] && term2[j] <= eps * eps * sum2[j]) {
@@ -260,7 +274,14 @@ void evaluate(const std::complex<double>* x_in, std::complex<double> m_in, Forwa
   }
 }
 
-constexpr int kBatch = 8;
+// Series per batch.  Sixteen side by side hide more of the latency of each
+// recurrence's divisions than eight (47 against 54 us per point at |x| = 1e4,
+// validation/bench/forward_amplitude_speed), but their tables (3 x 16 bytes
+// per series and order, kept per thread) no longer stay in cache at large |x|,
+// where sixteen gain nothing: batches whose |x| all lie below kWideBatchMaxX
+// take sixteen (<= 15 MB of tables), others eight (38 MB at |x| = 1e5).
+constexpr int kBatch = 8, kWideBatch = 16;
+constexpr double kWideBatchMaxX = 2e4;
 
 // The double series of one batch, compiled once per instruction set (the
 // series are inlined into each clone, flatten): the lane loops above then run
@@ -270,6 +291,22 @@ ATTENUVIS_MIE_CLONES __attribute__((flatten)) void evaluate_batch_double(const s
                                                                          std::complex<double> m,
                                                                          ForwardAmplitude* out) {
   evaluate<double, kBatch>(x, m, out);
+}
+ATTENUVIS_MIE_CLONES __attribute__((flatten)) void evaluate_wide_batch_double(const std::complex<double>* x,
+                                                                              std::complex<double> m,
+                                                                              ForwardAmplitude* out) {
+  evaluate<double, kWideBatch>(x, m, out);
+}
+
+// x[k, k + L) in one batch of L (a short last batch repeats its last point).
+template <int L, class Evaluate>
+void run_batch(const std::complex<double>* x, std::size_t k, std::size_t count, std::complex<double> m,
+               Evaluate&& evaluate_batch, ForwardAmplitude* out) {
+  std::complex<double> xs[L];
+  ForwardAmplitude res[L];
+  for (int j = 0; j < L; ++j) xs[j] = x[std::min(k + j, count - 1)];
+  evaluate_batch(xs, m, res);
+  for (int j = 0; j < L && k + j < count; ++j) out[k + j] = res[j];
 }
 
 }  // namespace
@@ -290,14 +327,17 @@ ForwardAmplitude forward_amplitude(std::complex<double> x, std::complex<double> 
 void forward_amplitudes(const std::complex<double>* x, std::size_t count, std::complex<double> m,
                         Precision precision, ForwardAmplitude* out) {
   for (std::size_t k = 0; k < count; ++k) check(x[k], m);
-  for (std::size_t k = 0; k < count; k += kBatch) {
-    // A short last batch repeats its last point.
-    std::complex<double> xs[kBatch];
-    ForwardAmplitude res[kBatch];
-    for (int j = 0; j < kBatch; ++j) xs[j] = x[std::min(k + j, count - 1)];
-    if (precision == Precision::extended) evaluate<long double, kBatch>(xs, m, res);
-    else evaluate_batch_double(xs, m, res);
-    for (int j = 0; j < kBatch && k + j < count; ++j) out[k + j] = res[j];
+  if (precision == Precision::extended) {  // scalar arithmetic: no gain from wider batches
+    for (std::size_t k = 0; k < count; k += kBatch)
+      run_batch<kBatch>(x, k, count, m, evaluate<long double, kBatch>, out);
+    return;
+  }
+  for (std::size_t k = 0; k < count;) {
+    const std::size_t end = std::min(k + kWideBatch, count);
+    const bool wide = std::all_of(x + k, x + end, [](std::complex<double> z) { return std::abs(z) <= kWideBatchMaxX; });
+    if (wide) run_batch<kWideBatch>(x, k, count, m, evaluate_wide_batch_double, out);
+    else run_batch<kBatch>(x, k, count, m, evaluate_batch_double, out);
+    k += wide ? kWideBatch : kBatch;
   }
 }
 

@@ -56,11 +56,13 @@ TEST_CASE("forward amplitude at complex x: 60-digit mpmath table", "[mie][comple
 }
 
 TEST_CASE("forward amplitudes in batches agree with one-by-one calls", "[mie][complex-x]") {
-  // forward_amplitudes runs eight series side by side on tables as long as the
-  // largest |x| needs; 7 points (a short last batch) spanning |x| 0.5...1500
-  // in one batch must give the single-call values within their rounding bounds.
-  const std::vector<std::complex<double>> x{{0.5, 0.1}, {1500.0, 4.0}, {5.0, 1.0}, {80.0, 4.0},
-                                            {300.0, 0.0}, {20.0, 2.0}, {700.0, 3.0}};
+  // forward_amplitudes runs up to sixteen series side by side on tables as long
+  // as the largest |x| needs (eight where some |x| > 2e4); points spanning |x|
+  // 0.5...25000 must give the single-call values within their rounding
+  // bounds: the first eight (with 25000) in a batch of eight, the ninth alone
+  // in a batch of sixteen (a short last batch).
+  const std::vector<std::complex<double>> x{{0.5, 0.1},   {1500.0, 4.0}, {5.0, 1.0},     {80.0, 4.0}, {300.0, 0.0},
+                                            {20.0, 2.0},  {700.0, 3.0},  {25000.0, 4.0}, {10.0, 0.5}};
   for (std::complex<double> m : {std::complex<double>(1.333, 1.96e-9), {1.5, 0.1}, {10.0, 10.0}})
     for (Precision a : {Precision::extended, Precision::double_precision}) {
       std::vector<attenuvis::mie::ForwardAmplitude> batch(x.size());

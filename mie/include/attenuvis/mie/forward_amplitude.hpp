@@ -62,13 +62,13 @@ ForwardAmplitude forward_amplitude(std::complex<double> x, std::complex<double> 
                                    Precision precision = Precision::extended);
 
 // S(0) at x[0..count) for one m, the same values as forward_amplitude() one by
-// one (within their rounding bounds), about 4x faster in double on a CPU
-// with AVX-512: eight series run side by side, compiled per instruction set,
-// so that their divisions overlap and vectorise, and the continued fractions
-// that start them run side by side too.  (Sixteen gain 3 % more and double
-// the per-thread tables: 38 MB at |x| = 1e5 with eight.)  Points of similar |x|
-// batch best (the tables run to the largest).  Same argument checks, before
-// any work.
+// one (within their rounding bounds), about 5x faster in double on a CPU
+// with AVX-512: sixteen series run side by side (eight where |x| > 2e4, whose
+// tables would not stay in cache: 38 MB per thread at |x| = 1e5 with eight),
+// compiled per instruction set, so that their divisions overlap and
+// vectorise, and the continued fractions that start them run side by side
+// too.  Points of similar |x| batch best (the tables run to the largest).
+// Same argument checks, before any work.
 void forward_amplitudes(const std::complex<double>* x, std::size_t count, std::complex<double> m,
                         Precision precision, ForwardAmplitude* out);
 
