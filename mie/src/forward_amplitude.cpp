@@ -136,11 +136,30 @@ void downward_log_derivatives(const ForwardProblem<R, L>& p, std::size_t N, Forw
   t.d_x.resize(N + 1);
   t.psi_up.resize(N + 1);
   t.d_mx.resize(N + 1);
-  const V start_x = psi_ratio_lanes(N, inv_x), start_mx = psi_ratio_lanes(N, inv_mx);
+  // Dₙ(mx) starts at N_mx >= N past |mx| (m > 1 puts |mx| beyond the tables),
+  // where the continued fraction takes a few dozen steps instead of the
+  // ~|mx| − N it needs at N, and runs down to N by the recurrence: one
+  // division per order instead of the fraction's two.
+  std::size_t N_mx = N;
+  for (int j = 0; j < L; ++j) {
+    const R amx = 1 / std::hypot(inv_mx.re[j], inv_mx.im[j]);
+    N_mx = std::max(N_mx, static_cast<std::size_t>(amx + 8 * std::cbrt(amx) + 24));
+  }
+  const V start_x = psi_ratio_lanes(N, inv_x), start_mx = psi_ratio_lanes(N_mx, inv_mx);
+  V d_mx;
   for (int j = 0; j < L; ++j) {
     t.d_x[N].re[j] = start_x.re[j] - R(N) * inv_x.re[j], t.d_x[N].im[j] = start_x.im[j] - R(N) * inv_x.im[j];
-    t.d_mx[N].re[j] = start_mx.re[j] - R(N) * inv_mx.re[j], t.d_mx[N].im[j] = start_mx.im[j] - R(N) * inv_mx.im[j];
+    d_mx.re[j] = start_mx.re[j] - R(N_mx) * inv_mx.re[j], d_mx.im[j] = start_mx.im[j] - R(N_mx) * inv_mx.im[j];
   }
+  for (std::size_t n = N_mx; n > N; --n) {
+    const R rn = R(n);
+    for (int j = 0; j < L; ++j) {
+      const R br = d_mx.re[j] + rn * inv_mx.re[j], bi = d_mx.im[j] + rn * inv_mx.im[j];
+      const R sb = 1 / (br * br + bi * bi);
+      d_mx.re[j] = rn * inv_mx.re[j] - br * sb, d_mx.im[j] = rn * inv_mx.im[j] + bi * sb;
+    }
+  }
+  t.d_mx[N] = d_mx;
   // The running Dₙ are carried in locals, not read back from the tables: the
   // recurrence is a chain of dependent divisions, and a store-to-load round
   // trip per order would lengthen it.
