@@ -1,6 +1,7 @@
 // The bulk optics and sigma of aerosol conditions (aerosol_optics.hpp).
 #include "attenuvis/weather/aerosol_optics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -46,9 +47,11 @@ class PerParticleMemo {
   std::map<std::string, BulkOptics> values_;
 };
 
-QuadratureSettings population_settings(const Settings& s, const OpticsRequest& r) {
+// `looser` >= 1 multiplies both tolerances (tolerance_factors).
+QuadratureSettings population_settings(const Settings& s, const OpticsRequest& r, double looser) {
   QuadratureSettings q;
-  q.rel_tolerance = s.rel_tolerance;
+  q.rel_tolerance = s.rel_tolerance * looser;
+  if (looser > 1) q.angular_tolerance = std::max(s.rel_tolerance, 1e-6) * looser;
   q.max_evaluations = s.max_evaluations;
   q.cancel = s.cancel;
   q.backscatter = r.backscatter;
@@ -71,8 +74,9 @@ std::string request_key(const OpticsRequest& r, double wavelength_m, const Setti
 // see: for the smallest components at long wavelengths the quadrature
 // converges to ~1e-15 of sigma, below what double-precision efficiencies
 // promise.  Counted as each integral's rounding error, and in g's error.
+constexpr double kEfficiencyRelative = 1e-10;
 void add_efficiency_accuracy(BulkOptics& b) {
-  constexpr double kRelative = 1e-10, kFloor = 1e-14;
+  constexpr double kRelative = kEfficiencyRelative, kFloor = 1e-14;
   const double ext = b.extinction.value;
   for (IntegralEstimate* e : {&b.extinction, &b.scattering, &b.absorption, &b.backscatter})
     e->rounding_error += kRelative * std::abs(e->value) + kFloor * ext;
@@ -84,11 +88,11 @@ void add_efficiency_accuracy(BulkOptics& b) {
 }
 
 BulkOptics per_particle_optics(const AerosolPopulation& p, double wavelength_m, const Settings& s,
-                               const OpticsRequest& r) {
+                               const OpticsRequest& r, double looser = 1) {
   static PerParticleMemo memo;
-  return memo.get(p.key() + "|" + request_key(r, wavelength_m, s), [&] {
+  return memo.get(p.key() + "|" + request_key(r, wavelength_m, s) + "|x" + io::shortest(looser), [&] {
     BulkOptics b = mie_bulk_optics(population_distribution(p, 1.0), wavelength_m, p.index_at(wavelength_m),
-                                   population_settings(s, r));
+                                   population_settings(s, r, looser));
     add_efficiency_accuracy(b);
     return b;
   });
@@ -127,22 +131,129 @@ BulkOptics per_particle_extinction(const AerosolPopulation& p, double wavelength
                   });
 }
 
-// The mixture of c's parts as given (unscaled), from per-particle optics, or
-// sigma_ext alone when `extinction_only`.
-BulkOptics unscaled_optics(const std::vector<AerosolPart>& parts, double wavelength_m, const Settings& s,
-                           const OpticsRequest& r, bool extinction_only = false) {
-  std::vector<BulkOptics> each;
-  each.reserve(parts.size());
+// The loosest tolerance a population of a mixture is given.
+constexpr double kLoosestTolerance = 0.5;
+
+// How much looser than the mixture's own tolerance each population's may
+// be.  A population adds to every quantity of the mixture about its share
+// of the mixture's sigma_ext (sigma_sca, beta_pi and the moments of these
+// scattering-dominated particles follow it), so with P populations one
+// holding a share e may carry 1/(P e) times the relative error: each then
+// spends at most about 1/P of the mixture's budget, and a minor mode of
+// nearly lossless particles (coarse sea salt in maritime air, <1 % of
+// sigma_ext) no longer resolves its own resonances to the mixture's
+// tolerance.  At least 1 (the dominant populations keep the tolerance), at
+// most what keeps the tolerances <= kLoosestTolerance.  The shares come from
+// sigma_ext by the contour (milliseconds); whether the mixture meets its
+// tolerance is checked on its reported errors (mixture_missed).
+std::vector<double> tolerance_factors(const std::vector<AerosolPart>& parts, double wavelength_m, const Settings& s) {
+  std::vector<double> factors(parts.size(), 1.0);
+  const double most = kLoosestTolerance / std::max(s.rel_tolerance, 1e-6);
+  if (parts.size() < 2 || !(most > 1)) return factors;
+  std::vector<double> ext(parts.size());
+  double total = 0;
+  for (std::size_t j = 0; j < parts.size(); ++j) {
+    ext[j] = parts[j].per_cm3 * per_particle_extinction(parts[j].population, wavelength_m, s).extinction.value;
+    total += ext[j];
+  }
+  if (!(total > 0) || !std::isfinite(total)) return factors;
+  const double P = static_cast<double>(parts.size());
+  for (std::size_t j = 0; j < parts.size(); ++j)
+    factors[j] = ext[j] > 0 ? std::clamp(total / (P * ext[j]), 1.0, most) : most;
+  return factors;
+}
+
+// Which quantity of a mixture misses its tolerance by its reported error, the
+// worst, in words; empty when none does.  The tolerances of bulk_optics.hpp:
+// sigma_ext, sigma_sca, sigma_abs relative to sigma_ext; g and chi_l absolute,
+// beta_pi and p(theta) relative, to max(tolerance, 1e-6).
+std::string mixture_missed(const BulkOptics& b, const Settings& s) {
+  const double tol = s.rel_tolerance, angular = std::max(tol, 1e-6), ext = b.extinction.value;
+  std::string worst;
+  double worst_ratio = 1, worst_tol = tol;
+  const auto check = [&](const std::string& name, double error, double allowed, double t) {
+    const double ratio = allowed > 0 ? error / allowed : 0;
+    if (ratio > worst_ratio) worst = name, worst_ratio = ratio, worst_tol = t;
+  };
+  check("sigma_ext", b.extinction.error(), tol * ext, tol);
+  if (b.scattering_computed) {
+    check("sigma_sca", b.scattering.error(), tol * ext, tol);
+    check("sigma_abs", b.absorption.error(), tol * ext, tol);
+    check("asymmetry g", b.asymmetry_error, angular, angular);
+  }
+  if (b.backscatter_computed) check("backscatter beta_pi", b.backscatter.error(), angular * b.backscatter.value, angular);
+  for (std::size_t l = 1; l < b.moments_error.size(); ++l)
+    check("Legendre moment chi_" + std::to_string(l), b.moments_error[l], angular, angular);
+  for (std::size_t i = 0; i < b.phase_error.size() && i < b.angles_deg.size(); ++i)
+    check("phase function at " + g4(b.angles_deg[i]) + " deg", b.phase_error[i], angular * b.phase[i], angular);
+  if (worst.empty()) return {};
+  return worst + " of the aerosol: relative tolerance " + io::significant(worst_tol, 3) +
+         " not met (error reached " + io::significant(worst_ratio, 3) + " times that, as reported)";
+}
+
+// The external mixture of `each`, population j's optics per particle, in
+// parts[j]'s numbers.
+BulkOptics mixture_of(const std::vector<AerosolPart>& parts, const std::vector<BulkOptics>& each) {
   std::vector<const BulkOptics*> optics;
   std::vector<double> numbers;
-  for (const AerosolPart& part : parts)
-    each.push_back(extinction_only ? per_particle_extinction(part.population, wavelength_m, s)
-                                   : per_particle_optics(part.population, wavelength_m, s, r));
   for (std::size_t j = 0; j < parts.size(); ++j) {
     optics.push_back(&each[j]);
     numbers.push_back(parts[j].per_cm3);
   }
   return external_mixture(optics, numbers);
+}
+
+// The mixture of the per-particle optics of `parts`, population j's to its
+// tolerance times factors[j] (`each`: the populations' own results).
+BulkOptics mixed(const std::vector<AerosolPart>& parts, double wavelength_m, const Settings& s, const OpticsRequest& r,
+                 const std::vector<double>& factors, std::vector<BulkOptics>& each) {
+  each.clear();
+  for (std::size_t j = 0; j < parts.size(); ++j)
+    each.push_back(per_particle_optics(parts[j].population, wavelength_m, s, r, factors[j]));
+  return mixture_of(parts, each);
+}
+
+// The mixture of c's parts as given (unscaled), from per-particle optics, or
+// sigma_ext alone when `extinction_only`.  With several populations, each
+// takes a tolerance by its share (tolerance_factors); if the mixture then
+// misses its tolerance by its reported errors, every population is computed
+// again to the mixture's own tolerance, and the mixture's verdict (not the
+// populations') is the result's shortfall.
+BulkOptics unscaled_optics(const std::vector<AerosolPart>& parts, double wavelength_m, const Settings& s,
+                           const OpticsRequest& r, bool extinction_only = false) {
+  std::vector<BulkOptics> each;
+  if (extinction_only) {
+    for (const AerosolPart& part : parts) each.push_back(per_particle_extinction(part.population, wavelength_m, s));
+    return mixture_of(parts, each);
+  }
+  std::vector<double> factors = tolerance_factors(parts, wavelength_m, s);
+  BulkOptics out = mixed(parts, wavelength_m, s, r, factors, each);
+  std::string missed = mixture_missed(out, s);
+  // Tighter tolerances help only the loosened populations that met theirs
+  // (one that fell short, its resonances beyond the budget, would again),
+  // and only above the efficiencies' own accuracy, which is in every error.
+  bool tighten = s.rel_tolerance > 2 * kEfficiencyRelative;
+  bool loosened = false;
+  for (std::size_t j = 0; j < parts.size(); ++j)
+    if (factors[j] > 1 && each[j].shortfall.empty()) loosened = true;
+  if (!missed.empty() && tighten && loosened) {
+    for (std::size_t j = 0; j < parts.size(); ++j)
+      if (each[j].shortfall.empty()) factors[j] = 1;
+    out = mixed(parts, wavelength_m, s, r, factors, each);
+    missed = mixture_missed(out, s);
+  }
+  if (!missed.empty())
+    for (std::size_t j = 0; j < parts.size(); ++j)
+      if (!each[j].shortfall.empty()) missed += "; " + parts[j].population.describe() + ": " + each[j].shortfall;
+  out.shortfall = missed;
+  if (std::any_of(factors.begin(), factors.end(), [](double f) { return f > 1; })) {
+    std::string words;
+    for (std::size_t j = 0; j < parts.size(); ++j)
+      words += (j ? ", " : "") + parts[j].population.describe() + " x" + g4(factors[j]);
+    out.method += "; population tolerances loosened by their share of sigma_ext (" + words + ")";
+  }
+  if (!missed.empty()) out.method += "; tolerance not met: " + missed;
+  return out;
 }
 
 struct Scale {

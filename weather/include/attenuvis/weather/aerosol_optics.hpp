@@ -18,6 +18,16 @@
 // Populations smaller than the wavelength cost what their series costs: at
 // 10.6 um waso's x stays below 12 and its Mie series ends after a few terms.
 //
+// The tolerance (Settings::rel_tolerance, and the angular one of
+// bulk_optics.hpp) is the mixture's.  Of P populations, one holding a share
+// e of the mixture's sigma_ext (by the contour below, milliseconds) is
+// integrated to max(1, 1/(P e)) times it, at most 0.5: a minor mode (coarse
+// sea salt, <1 % of maritime sigma_ext) need not resolve its own resonances
+// to the mixture's tolerance.  The mixture's reported errors then decide:
+// if some quantity misses its tolerance, the loosened populations that met
+// theirs are integrated again to the mixture's, and BulkOptics::shortfall
+// names what the mixture (not a population) missed, and by how much.
+//
 // sigma_ext alone (aerosol_sigma of a condition, and the 550 nm integral of
 // a visibility scaling) takes the segmented contour instead
 // (segmented_contour.hpp: the cut log-normal is one analytic piece with a
