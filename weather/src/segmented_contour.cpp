@@ -121,6 +121,17 @@ struct Panel {
 // wider panels gain no more.
 constexpr double kLongPiecePanels = 4;
 constexpr int kLongPieceKronrodPoints = 31;
+// The ripple that height H leaves of S(0) on such a piece has the period
+// pi / (Re m - 1) in x (the interference of the central ray with the
+// diffracted wave, 2 x (m - 1) in phase, van de Hulst 1957 Sec. 11.22); the
+// 31-point rule's Gauss part resolves ~5 of its periods per panel and fails
+// abruptly beyond (water at 1e-9: 5.3 periods pass at 550 nm, 6.3 fail at
+// 200 nm), so the first panels span 5, and no fewer than 40 units of x,
+// nor more than twice that (absorbing drops, whose ripple is damped).
+// Measured at 1e-9 on the 0.5-1 mm bin: 4,613 -> 3,962 evaluations at 550 nm,
+// 1,761 -> 1,482 at 1.55 um, 428 -> 304 at 10.6 um, 12,333 at 200 nm (40 wide).
+constexpr double kLongPieceRipplePeriods = 5;
+constexpr double kLongPieceMaxWidths = 2;
 
 // |S(0)| on the real axis: <= 1/2 sum (2n+1)(|a_n| + |b_n|) <= (N + 1)^2, the
 // series cut where Wiscombe's (1980) criterion ends it.
@@ -177,8 +188,16 @@ class Integrand {
   // evaluations (and its |K - G| is nearer its error), while the narrow
   // pieces of a table keep the settings' rule (one panel each: fewer nodes).
   const detail::Rule& path_rule(std::size_t i) const {
-    const double span = k_ * (pieces_[i].r1 - pieces_[i].r0);
-    return span >= kLongPiecePanels * s_.panel_width ? long_rule_ : rule_;
+    return long_piece(i) ? long_rule_ : rule_;
+  }
+  bool long_piece(std::size_t i) const { return k_ * (pieces_[i].r1 - pieces_[i].r0) >= kLongPiecePanels * s_.panel_width; }
+  // The width of the first panels over piece i: on a long piece, as many
+  // periods of the ripple as its rule resolves (kLongPieceRipplePeriods),
+  // between panel_width and kLongPieceMaxWidths times that.
+  double panel_width(std::size_t i) const {
+    if (!long_piece(i) || !(m_.real() > 1)) return s_.panel_width;
+    const double period = kPi / (m_.real() - 1);
+    return std::clamp(kLongPieceRipplePeriods * period, s_.panel_width, kLongPieceMaxWidths * s_.panel_width);
   }
 
   Panel path_panel(std::size_t i, double a, double b) const {
@@ -291,7 +310,7 @@ std::vector<Task> path_tasks(const Integrand& f, const SegmentedContourSettings&
     for (double g : grid)
       if (g > a && g < b) edges.push_back(g);
     const double from = edges.back();
-    const int n = std::max(1, static_cast<int>(std::ceil((b - from) / s.panel_width)));
+    const int n = std::max(1, static_cast<int>(std::ceil((b - from) / f.panel_width(i))));
     for (int j = 1; j <= n; ++j) edges.push_back(j == n ? b : from + (b - from) * j / n);
     for (std::size_t j = 0; j + 1 < edges.size(); ++j) tasks.push_back({Where::path, i, edges[j], edges[j + 1]});
   }
