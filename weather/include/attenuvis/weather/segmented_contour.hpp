@@ -71,7 +71,11 @@ struct SegmentedContourSettings {
   double panel_width = 40;      // initial path panels at most this wide in Re x
   int kronrod_points = 15;      // Gauss-Kronrod order of every panel (15, 21, 31, 41, 51, 61)
   bool verify = false;          // split every converged panel once and charge the change
+  // The budget of S(0) evaluations: at least this, and twice the estimate
+  // (segmented_contour_cost) for a distribution whose estimate stays within
+  // max_seconds of one core, which a table of many rows needs.
   std::size_t max_evaluations = 400000;
+  double max_seconds = 8;       // refused up front when the estimate exceeds this (CPU seconds, one core)
   const std::atomic<bool>* cancel = nullptr;  // checked once per panel: Cancelled when set (cancel.hpp)
   // Also a log-normal cut at r_min, r_max: one analytic piece with a leg at
   // each cut.  Off by default, so that sigma() keeps the real axis for the
@@ -83,18 +87,23 @@ struct SegmentedContourSettings {
 
 // Nothing (no throw) when the route does not apply: the distribution is not a
 // table or a power law, or it reaches beyond s.max_x; sigma() then takes the
-// real axis (bulk_optics.hpp).  Throws std::runtime_error if the tolerance
-// cannot be met within s.max_evaluations, and before any work when the
-// estimate of segmented_contour_cost() already exceeds it.
+// real axis (bulk_optics.hpp).  Throws std::runtime_error before any work
+// when the estimate of segmented_contour_cost() exceeds s.max_seconds, and if
+// the tolerance cannot be met within the budget (s.max_evaluations, or twice
+// the estimate).
 //
-// Cost.  At height 4 the path's integrand still carries the ripple of
-// S(0) at frequency 2n (period ~2.4 in x), damped to ~e^{-2 H n} ~ 2e-5, which
-// a 1e-9 tolerance must resolve: ~3 evaluations per unit of x, each ~16 ns x x
-// (the series has ~x terms); each leg ~100.  Two bins of raindrops at 550 nm
-// (0.1-0.5 and 0.5-1 mm: x up to 11,424) take 24,570 evaluations, ~2 s of one
-// core, against a failure after 38 s on the real axis; fog-drop bins (x < 500)
-// milliseconds.  A table of N rows costs ~100 N evaluations: ~1e5 rows and
-// more are refused up front with the estimate.
+// Cost.  At height 4 the path's integrand still carries the ripple of S(0)
+// of period pi/(Re m - 1) (~9.4 in x for water), damped to ~e^{-2 H (m-1)},
+// which a 1e-9 tolerance must resolve: ~0.7 evaluations per unit of x on a
+// long piece (the 31-point rule on panels five periods wide), each ~5 ns x x
+// (the series has ~x terms, sixteen side by side); 15 per short piece; a
+// leg ~40 where a table's slope changes and ~120 at a jump (a bin edge).
+// Two bins of raindrops at 550 nm (0.1-0.5 and 0.5-1 mm: x up to 11,424) take
+// 7,029 evaluations, 0.11 s on two cores, against a failure after 38 s on the
+// real axis; fog-drop bins (x < 500) milliseconds.  A table of N rows of fog
+// drops costs ~55 N evaluations, ~2.5 s per 1e5 rows on two cores at 550 nm
+// (~5 s of CPU); about 1.6e5 rows and more exceed max_seconds and are refused
+// up front with the estimate.
 // The result's resonance_error holds the near-axis bounds; tail_error is 0.
 // The evaluations and CPU seconds (one core) the rule is estimated to take
 // over `d` (0 for a distribution it does not apply to).
