@@ -73,10 +73,9 @@ struct ForwardTables {
 // ψ_{N−1}/ψ_N at the L arguments z = 1/inv_z: Lentz's continued fraction
 // of detail/lentz.hpp (riccati_psi_ratio, with the same operations in the
 // same order, written out on separate real and imaginary lanes) run on all
-// lanes at once, each lane frozen once its own test passes.  For N below
-// |z|, which is the case of Dₙ(mx) (the tables stop near |x| < |mx|), the
-// fraction takes about |z| − N steps: side by side they vectorise instead of
-// running lane after lane.
+// lanes at once, each lane frozen once its own test passes.  The fraction
+// takes about |z| − N steps for N below |z| (two divisions each), a few dozen
+// past it: downward_log_derivatives starts Dₙ(mx) past |mx| for that reason.
 template <class R, int L>
 Lanes<R, L> psi_ratio_lanes(std::size_t N, const Lanes<R, L>& inv_z) {
   const R eps = std::numeric_limits<R>::epsilon();
@@ -256,7 +255,8 @@ bool sum_forward_series(const std::complex<double>* x_in, const ForwardProblem<R
   // No lane can stop at orders up to the smallest |x|: the tests start above it.
   const R first_test = *std::min_element(p.ax, p.ax + L);
   std::size_t n = 1;
-  for (; n <= N && !(R(n) > first_test); ++n) add_forward_order<false>(p, tables, n, s, static_cast<R*>(nullptr), static_cast<R*>(nullptr));
+  R* const untested = nullptr;
+  for (; n <= N && !(R(n) > first_test); ++n) add_forward_order<false>(p, tables, n, s, untested, untested);
   for (; n <= N; ++n) {
     const R rn = R(n);
     R term2[L], sum2[L];
