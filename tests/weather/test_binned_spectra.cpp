@@ -63,8 +63,8 @@ TEST_CASE("raindrop bins at 550 nm: within the tolerance and the evaluation budg
 }
 
 TEST_CASE("a table too long for its time limit is refused up front with the estimate", "[weather][bins]") {
-  // 100,000 rows: ~55 evaluations each on the segmented contour (~5 s of one core, which it would
-  // run under its default limit of 8 s: here the limit is 1 s), one 31-point panel each on the real
+  // 100,000 rows: ~55 evaluations each on the segmented contour (~4 s of one core, which it would
+  // run under its default limit of 5 s: here the limit is 1 s), one 31-point panel each on the real
   // axis (beyond its budget); both refuse before evaluating anything.
   std::ostringstream csv;
   csv << "radius_um,dNdr_per_cm3_per_um\n";

@@ -75,7 +75,7 @@ struct SegmentedContourSettings {
   // (segmented_contour_cost) for a distribution whose estimate stays within
   // max_seconds of one core, which a table of many rows needs.
   std::size_t max_evaluations = 400000;
-  double max_seconds = 8;       // refused up front when the estimate exceeds this (CPU seconds, one core)
+  double max_seconds = 5;       // refused up front when the estimate exceeds this (CPU seconds, one core)
   const std::atomic<bool>* cancel = nullptr;  // checked once per panel: Cancelled when set (cancel.hpp)
   // Also a log-normal cut at r_min, r_max: one analytic piece with a leg at
   // each cut.  Off by default, so that sigma() keeps the real axis for the
@@ -102,8 +102,9 @@ struct SegmentedContourSettings {
 // 7,029 evaluations, 0.11 s on two cores, against a failure after 38 s on the
 // real axis; fog-drop bins (x < 500) milliseconds.  A table of N rows of fog
 // drops costs ~55 N evaluations, ~2.5 s per 1e5 rows on two cores at 550 nm
-// (~5 s of CPU); about 1.6e5 rows and more exceed max_seconds and are refused
-// up front with the estimate.
+// (~5 s of CPU); about 1.1e5 rows and more exceed max_seconds and are refused
+// up front with the estimate, so that no run is silent for more than a few
+// seconds.
 // The result's resonance_error holds the near-axis bounds; tail_error is 0.
 // The evaluations and CPU seconds (one core) the rule is estimated to take
 // over `d` (0 for a distribution it does not apply to).
