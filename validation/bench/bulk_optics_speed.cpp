@@ -223,8 +223,8 @@ int bins_benchmark() {
         if (t < wall) wall = t, cpu = cpu_now() - c0;
       }
       if (!r) return std::printf("the segmented contour declined %s\n", name), 1;
-      std::printf("%-26s %6.0f nm %18.10e %10.2e %11zu %9.3f %9.3f\n", name, wavelength * 1e9, r->extinction.value, r->extinction.error(),
-                  r->evaluations, wall, cpu);
+      std::printf("%-26s %6.0f nm %18.10e %10.2e %11zu %9.3f %9.3f\n", name, wavelength * 1e9, r->extinction.value,
+                  r->extinction.error(), r->evaluations, wall, cpu);
       std::fflush(stdout);
     }
   }

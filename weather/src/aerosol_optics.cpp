@@ -182,7 +182,8 @@ std::string mixture_missed(const BulkOptics& b, const Settings& s) {
     check("sigma_abs", b.absorption.error(), tol * ext, tol);
     check("asymmetry g", b.asymmetry_error, angular, angular);
   }
-  if (b.backscatter_computed) check("backscatter beta_pi", b.backscatter.error(), angular * b.backscatter.value, angular);
+  if (b.backscatter_computed)
+    check("backscatter beta_pi", b.backscatter.error(), angular * b.backscatter.value, angular);
   for (std::size_t l = 1; l < b.moments_error.size(); ++l)
     check("Legendre moment chi_" + std::to_string(l), b.moments_error[l], angular, angular);
   for (std::size_t i = 0; i < b.phase_error.size() && i < b.angles_deg.size(); ++i)
