@@ -238,7 +238,7 @@ BulkOptics unscaled_optics(const std::vector<AerosolPart>& parts, double wavelen
   // Tighter tolerances help only the loosened populations that met theirs
   // (one that fell short, its resonances beyond the budget, would again),
   // and only above the efficiencies' own accuracy, which is in every error.
-  bool tighten = s.rel_tolerance > 2 * kEfficiencyRelative;
+  const bool tighten = s.rel_tolerance > 2 * kEfficiencyRelative;
   bool loosened = false;
   for (std::size_t j = 0; j < parts.size(); ++j)
     if (factors[j] > 1 && each[j].shortfall.empty()) loosened = true;

@@ -57,6 +57,22 @@ struct Piece {
   }
 };
 
+// The jump and the change of slope (both in SI, the slope per metre) of the
+// density at breakpoint k of `pieces` (k = pieces.size(): the far end), at
+// radius r, right minus left.  Between two straight pieces of a table the
+// jump is exact (n1 of the left segment against n0 of the right one) rather
+// than a difference of two rounded evaluations.
+struct Difference {
+  double jump = 0, slope_change = 0;
+};
+Difference difference_at(const std::vector<Piece>& pieces, std::size_t k, double r) {
+  const Piece* right = k < pieces.size() ? &pieces[k] : nullptr;
+  const Piece* left = k > 0 ? &pieces[k - 1] : nullptr;
+  const double left_value = left ? (left->curved() ? left->value_at(r) : left->n1) : 0.0;
+  const double right_value = right ? right->value_at(r) : 0.0;
+  return {right_value - left_value, (right ? right->slope_at(r) : 0.0) - (left ? left->slope_at(r) : 0.0)};
+}
+
 // A table's segment from (r0, n0) to (r1, n1).
 Piece straight(double r0, double r1, double n0, double n1) {
   Piece p;
@@ -162,16 +178,8 @@ class Integrand {
   // the density at breakpoint k, right minus left.
   void difference_at(std::size_t k, double& jump, double& slope_change) const {
     ATTENUVIS_CHECK_LT(k, breakpoints());
-    const double r = x_at(k) / k_;
-    const Piece* right = k < pieces_.size() ? &pieces_[k] : nullptr;
-    const Piece* left = k > 0 ? &pieces_[k - 1] : nullptr;
-    // Between two straight pieces of a table the jump is exact (n1 of the
-    // left segment against n0 of the right one) rather than a difference of
-    // two rounded evaluations.
-    const double left_value = left ? (left->curved() ? left->value_at(r) : left->n1) : 0.0;
-    const double right_value = right ? right->value_at(r) : 0.0;
-    jump = right_value - left_value;
-    slope_change = (right ? right->slope_at(r) : 0.0) - (left ? left->slope_at(r) : 0.0);
+    const Difference d = weather::difference_at(pieces_, k, x_at(k) / k_);
+    jump = d.jump, slope_change = d.slope_change;
   }
   bool curved_at(std::size_t k) const {
     return (k < pieces_.size() && pieces_[k].curved()) || (k > 0 && pieces_[k - 1].curved());
@@ -190,7 +198,9 @@ class Integrand {
   const detail::Rule& path_rule(std::size_t i) const {
     return long_piece(i) ? long_rule_ : rule_;
   }
-  bool long_piece(std::size_t i) const { return k_ * (pieces_[i].r1 - pieces_[i].r0) >= kLongPiecePanels * s_.panel_width; }
+  bool long_piece(std::size_t i) const {
+    return k_ * (pieces_[i].r1 - pieces_[i].r0) >= kLongPiecePanels * s_.panel_width;
+  }
   // The width of the first panels over piece i: on a long piece, as many
   // periods of the ripple as its rule resolves (kLongPieceRipplePeriods),
   // between panel_width and kLongPieceMaxWidths times that.
@@ -497,11 +507,8 @@ ContourCost segmented_contour_cost(const SizeDistribution& d, double wavelength_
     add(std::max<double>(s.kronrod_points, (xb - xa) * kEvaluationsPerX), 0.5 * (xa + xb));
   }
   for (std::size_t i = 0; i <= pieces->size(); ++i) {
-    const Piece* right = i < pieces->size() ? &(*pieces)[i] : nullptr;
-    const Piece* left = i > 0 ? &(*pieces)[i - 1] : nullptr;
-    const double r = right ? right->r0 : left->r1;
-    const double jump = (right ? right->value_at(r) : 0.0) - (left ? (left->curved() ? left->value_at(r) : left->n1) : 0.0);
-    add(jump != 0 ? kEvaluationsPerJumpLeg : kEvaluationsPerLeg, k * r);
+    const double r = i < pieces->size() ? (*pieces)[i].r0 : pieces->back().r1;
+    add(difference_at(*pieces, i, r).jump != 0 ? kEvaluationsPerJumpLeg : kEvaluationsPerLeg, k * r);
   }
   return cost;
 }
