@@ -7,9 +7,10 @@
 //  - nearly lossless water (Hale & Querry 1973 via refractive_index_table):
 //    the real axis cannot resolve the resonances, so the reference is the
 //    same route along an independent path (height 6 instead of 4, slope 0.15
-//    instead of 0.25, so other legs and other path points), S(0) in long
-//    double, rel. tol. 1e-12, every panel verified by halving.  The real-axis
-//    value must lie within its own (resonance) error of it as well.
+//    instead of 0.25, so other legs and other path points; one Gauss-Kronrod
+//    panel per row at least instead of product-integrated spans across rows),
+//    S(0) in long double, rel. tol. 1e-12, every panel verified by halving.
+//    The real-axis value must lie within its own (resonance) error of it as well.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -82,6 +83,7 @@ double independent_path_reference(const SizeDistribution& d, double wavelength, 
   r.height = 6;
   r.angle = 0.15;
   r.verify = true;
+  r.spans = false;
   r.max_evaluations = 2000000;
   return route(d, wavelength, m, r).extinction.value;
 }
@@ -206,4 +208,36 @@ TEST_CASE("segmented contour declines what is not a table or reaches too far", "
   // range of forward_amplitude (cost ~ x^2).
   CHECK_FALSE(segmented_contour_extinction(table_through({{100, 1e-3}, {10000, 1e-6}}, "hail-sized"), 550e-9,
                                            kAbsorbing));
+}
+
+TEST_CASE("segmented contour: spans across rows equal one panel per row, with jumps and kinks", "[weather][segmented]") {
+  // Reference: the same route with spans off (each row its own Gauss-Kronrod panels: no
+  // product integration), at 1e-11.  Cases: 150 fog-drop bins 0.2 um wide from 2 to 32 um
+  // (a jump at every edge, count falling as r^-3) and an 800-row log-normal table (a kink
+  // at every row), at 550 nm and 10.6 um.
+  std::vector<TabulatedSegment> bins;
+  for (int i = 0; i < 150; ++i) {
+    const double r0 = 2e-6 + 2e-7 * i, n = 1e12 * std::pow(r0 / 2e-6, -3.0) * (1 + 0.3 * (i % 3));
+    bins.push_back({r0, 2e-6 + 2e-7 * (i + 1), n, n});
+  }
+  const std::vector<SizeDistribution> cases = {SizeDistribution::tabulated(bins, "150 fog-drop bins"),
+                                               log_normal_table(800)};
+  for (const auto& d : cases)
+    for (double wavelength : {550e-9, 10.6e-6}) {
+      const auto m = refractive_index_table("water").at(wavelength);
+      const auto spans = route(d, wavelength, m);
+      SegmentedContourSettings rows;
+      rows.spans = false;
+      rows.rel_tolerance = 1e-11;
+      rows.max_evaluations = 2000000;
+      rows.max_seconds = 60;
+      const auto reference = route(d, wavelength, m, rows);
+      const double actual = std::abs(spans.extinction.value - reference.extinction.value);
+      INFO(std::setprecision(13) << d.describe() << " at " << wavelength << " m: spans " << spans.extinction.value
+                                 << " +- " << spans.extinction.error() << " (" << spans.evaluations
+                                 << " evaluations), rows " << reference.extinction.value << " +- "
+                                 << reference.extinction.error() << " (" << reference.evaluations << ")");
+      CHECK(actual <= spans.extinction.error() + reference.extinction.error());
+      CHECK(spans.extinction.error() <= 1.1e-9 * spans.extinction.value);
+    }
 }

@@ -20,6 +20,7 @@
 
 #include "attenuvis/mie/forward_amplitude.hpp"
 #include "gauss_kronrod_rule.hpp"
+#include "product_rule.hpp"
 
 namespace attenuvis::weather::detail {
 
@@ -100,6 +101,47 @@ PathPanel evaluate_path_panel(const Rule& rule, double a, double b, const Point&
   // vanish by accident while the real part of the error does not.
   p.error = half * std::abs(k - g);
   p.rounding = (b - a) * worst_rounding;  // width x largest sampled bound
+  return p;
+}
+
+// The same panel by product integration (product_rule.hpp): S(0; x(t)) x'(t)
+// against a weight that is linear in x on each of `segments` and may jump
+// between them.  The segments are given in t, {t0, t1, alpha, beta}, with the
+// weight alpha + beta (x - c) about the panel's centre c = (a + b) / 2 (so
+// that a steep, short segment far from x = 0 loses no digits to alpha).
+template <class Point, class Jacobian>
+PathPanel evaluate_product_panel(const ProductRule& rule, double a, double b,
+                                 const std::vector<ProductRule::Segment>& segments, const Point& point,
+                                 const Jacobian& jacobian, std::complex<double> m, mie::Precision arithmetic) {
+  using Complex = std::complex<double>;
+  PathPanel p;
+  p.a = a;
+  p.b = b;
+  const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+  const std::size_t count = rule.size();
+  std::vector<Complex> x(count), centred(count);
+  for (std::size_t j = 0; j < count; ++j) x[j] = point(mid + rule.node(j) * half), centred[j] = x[j] - mid;
+  std::vector<ProductRule::Segment> in_u(segments);
+  for (auto& s : in_u) s.u0 = (s.u0 - mid) / half, s.u1 = (s.u1 - mid) / half;
+  std::vector<Complex> kronrod_w, gauss_w;
+  rule.weights(in_u, centred, kronrod_w, gauss_w);
+  std::vector<mie::ForwardAmplitude> fa(count);
+  mie::forward_amplitudes(x.data(), count, m, arithmetic, fa.data());
+  Complex k{}, g{};
+  double rounding = 0;
+  for (std::size_t j = 0; j < count; ++j) {
+    const Complex jac = jacobian(mid + rule.node(j) * half);
+    const Complex v = fa[j].s0 * jac;
+    k += kronrod_w[j] * v;
+    g += gauss_w[j] * v;
+    rounding += fa[j].rounding_bound() * std::abs(kronrod_w[j] * jac);
+    p.q_max = std::max(p.q_max, 4 * std::abs(fa[j].s0) / std::norm(x[j]));
+    p.magnitude_max = std::max(p.magnitude_max, fa[j].magnitude);
+  }
+  p.evaluations = count;
+  p.kronrod = half * k;
+  p.error = half * std::abs(k - g);  // the modulus, as evaluate_path_panel
+  p.rounding = half * rounding;      // the linear functional's own bound: sum |omega_j| x bound_j
   return p;
 }
 

@@ -34,8 +34,15 @@
 // |a_n|, |b_n| <= 1; N = x + 4.05 x^(1/3) + 2 terms, Wiscombe 1980), grown by
 // e^{2 y} at most above it (the growth of the Mie terms, forward_amplitude.hpp);
 // twice that is charged (the rule's own extrapolation over [0, y_1] as well) as
-// the "resonance" error.  The path's pieces are Gauss-Kronrod panels that never
-// cross a breakpoint (the density switches there).
+// the "resonance" error.  The path over a long piece (a raindrop bin) or a
+// curved one is Gauss-Kronrod panels that never cross a breakpoint (the
+// density switches there, and off the axis its straight pieces do not join:
+// they differ by (s_k - s_{k-1}) i h / k).  Over a run of short straight
+// pieces (a table's rows) the path is one stretch of 31-point panels across
+// the breakpoints, each integrating every row's own line against the
+// polynomial that interpolates S(0) at its nodes (product integration,
+// weather/src/product_rule.hpp; |K - G| from the Gauss nodes' interpolant):
+// ~2 evaluations per unit of x instead of a panel per row.
 //
 // Reported error: sum |K - G| over every panel (path and legs), the near-axis
 // bounds, the rounding bound of S(0) integrated along the path and legs
@@ -70,6 +77,10 @@ struct SegmentedContourSettings {
   double max_x = 1e5;           // forward_amplitude's range; cost ~ x_max^2 (see the estimate below)
   double panel_width = 40;      // initial path panels at most this wide in Re x
   int kronrod_points = 15;      // Gauss-Kronrod order of every panel (15, 21, 31, 41, 51, 61)
+  // A table's runs of short rows in panels across their breakpoints, by
+  // product integration (weather/src/product_rule.hpp); off: one panel per
+  // row (the independent route of the tests).
+  bool spans = true;
   bool verify = false;          // split every converged panel once and charge the change
   // The budget of S(0) evaluations: at least this, and twice the estimate
   // (segmented_contour_cost) for a distribution whose estimate stays within
@@ -96,15 +107,16 @@ struct SegmentedContourSettings {
 // of period pi/(Re m - 1) (~9.4 in x for water), damped to ~e^{-2 H (m-1)},
 // which a 1e-9 tolerance must resolve: ~0.7 evaluations per unit of x on a
 // long piece (the 31-point rule on panels five periods wide), each ~5 ns x x
-// (the series has ~x terms, sixteen side by side); 15 per short piece; a
-// leg ~40 where a table's slope changes and ~120 at a jump (a bin edge).
+// (the series has ~x terms, sixteen side by side); ~2 per unit of x over a
+// table's rows (spans); a leg ~36 where a table's slope changes and ~120 at
+// a jump (a bin edge).
 // Two bins of raindrops at 550 nm (0.1-0.5 and 0.5-1 mm: x up to 11,424) take
 // 7,029 evaluations, 0.11 s on two cores, against a failure after 38 s on the
 // real axis; fog-drop bins (x < 500) milliseconds.  A table of N rows of fog
-// drops costs ~55 N evaluations, ~2.5 s per 1e5 rows on two cores at 550 nm
-// (~5 s of CPU); about 1.1e5 rows and more exceed max_seconds and are refused
-// up front with the estimate, so that no run is silent for more than a few
-// seconds.
+// drops costs ~37 N evaluations, all but ~1,000 of them on the legs: 2.2 s
+// per 1e5 rows on two cores at 550 nm (~4.6 s of CPU); about 1.1e5 rows and
+// more exceed max_seconds and are refused up front with the estimate, so
+// that no run is silent for more than a few seconds.
 // The result's resonance_error holds the near-axis bounds; tail_error is 0.
 // The evaluations and CPU seconds (one core) the rule is estimated to take
 // over `d` (0 for a distribution it does not apply to).

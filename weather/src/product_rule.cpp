@@ -1,0 +1,98 @@
+// Gauss-Kronrod product integration: see product_rule.hpp.
+#include "product_rule.hpp"
+
+#include <algorithm>
+
+#include <Eigen/Dense>
+#include <boost/math/special_functions/legendre.hpp>
+
+#include "attenuvis/io/check.hpp"
+
+namespace attenuvis::weather::detail {
+namespace {
+
+// P_0(u) ... P_{count-1}(u) by Bonnet's recurrence (Boost.Math's legendre_next).
+void legendre_values(double u, std::size_t count, double* p) {
+  p[0] = 1;
+  if (count > 1) p[1] = u;
+  for (std::size_t l = 1; l + 1 < count; ++l)
+    p[l + 1] = boost::math::legendre_next(static_cast<unsigned>(l), u, p[l], p[l - 1]);
+}
+
+// C = V^-1, V_jl = P_l(u_j) on the given nodes, row-major by degree l.
+std::vector<double> legendre_inverse(const std::vector<double>& nodes) {
+  const auto n = static_cast<Eigen::Index>(nodes.size());
+  Eigen::MatrixXd v(n, n);
+  std::vector<double> p(nodes.size());
+  for (Eigen::Index j = 0; j < n; ++j) {
+    legendre_values(nodes[static_cast<std::size_t>(j)], nodes.size(), p.data());
+    for (Eigen::Index l = 0; l < n; ++l) v(j, l) = p[static_cast<std::size_t>(l)];
+  }
+  const Eigen::MatrixXd c = v.fullPivLu().inverse();
+  std::vector<double> out(nodes.size() * nodes.size());
+  for (Eigen::Index l = 0; l < n; ++l)
+    for (Eigen::Index j = 0; j < n; ++j) out[static_cast<std::size_t>(l * n + j)] = c(l, j);
+  return out;
+}
+
+// int_{-1}^{u} P_l for l = 0 ... count - 1: u + 1, and (P_{l+1} - P_{l-1}) / (2l + 1).
+void legendre_antiderivatives(double u, std::size_t count, double* out) {
+  std::vector<double> p(count + 1);
+  legendre_values(u, count + 1, p.data());
+  out[0] = u + 1;
+  for (std::size_t l = 1; l < count; ++l) out[l] = (p[l + 1] - p[l - 1]) / static_cast<double>(2 * l + 1);
+}
+
+}  // namespace
+
+ProductRule::ProductRule(const Rule& rule) {
+  const std::size_t n = rule.abscissa.size(), count = 2 * n - 1;
+  node_.resize(count);
+  std::vector<bool> is_gauss(count);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t slot : {n - 1 - i, n - 1 + i}) {
+      node_[slot] = slot < n - 1 ? -rule.abscissa[i] : rule.abscissa[i];
+      is_gauss[slot] = rule.gauss_weight[i] != 0;
+    }
+  std::vector<double> gauss_nodes;
+  for (std::size_t j = 0; j < count; ++j)
+    if (is_gauss[j]) gauss_slot_.push_back(j), gauss_nodes.push_back(node_[j]);
+  kronrod_inverse_ = legendre_inverse(node_);
+  gauss_inverse_ = legendre_inverse(gauss_nodes);
+}
+
+void ProductRule::weights(const std::vector<Segment>& segments, const std::vector<std::complex<double>>& x,
+                          std::vector<std::complex<double>>& kronrod,
+                          std::vector<std::complex<double>>& gauss) const {
+  using Complex = std::complex<double>;
+  const std::size_t count = node_.size(), ng = gauss_slot_.size();
+  ATTENUVIS_CHECK_EQ(x.size(), count);
+  // A_l and B_l: the segments' alpha and beta against int_s P_l du.
+  std::vector<Complex> a(count), b(count);
+  std::vector<double> lo(count), hi(count);
+  for (const Segment& s : segments) {
+    if (!(s.u1 > s.u0)) continue;
+    legendre_antiderivatives(std::max(s.u0, -1.0), count, lo.data());
+    legendre_antiderivatives(std::min(s.u1, 1.0), count, hi.data());
+    for (std::size_t l = 0; l < count; ++l) {
+      const double d = hi[l] - lo[l];
+      a[l] += s.alpha * d;
+      b[l] += s.beta * d;
+    }
+  }
+  kronrod.assign(count, Complex{});
+  gauss.assign(count, Complex{});
+  for (std::size_t j = 0; j < count; ++j) {
+    Complex w{};
+    for (std::size_t l = 0; l < count; ++l) w += kronrod_inverse_[l * count + j] * (a[l] + x[j] * b[l]);
+    kronrod[j] = w;
+  }
+  for (std::size_t g = 0; g < ng; ++g) {
+    const std::size_t j = gauss_slot_[g];
+    Complex w{};
+    for (std::size_t l = 0; l < ng; ++l) w += gauss_inverse_[l * ng + g] * (a[l] + x[j] * b[l]);
+    gauss[j] = w;
+  }
+}
+
+}  // namespace attenuvis::weather::detail
