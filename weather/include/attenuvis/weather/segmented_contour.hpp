@@ -44,6 +44,22 @@
 // weather/src/product_rule.hpp; |K - G| from the Gauss nodes' interpolant):
 // ~2 evaluations per unit of x instead of a panel per row.
 //
+// Leg windows.  Where rows lie closer together than the first cut c of their
+// legs (a dense table), the parts of their legs above a common height
+// y_w <= c are joined: by Cauchy on the rectangle between leg k and a shared
+// leg at x = a_w (the anchor, amid the window's breakpoints),
+//
+//   int_{x_k + i y_w}^{x_k + i h} D_k = int_{x_k + i y_w}^{a_w + i y_w} D_k
+//       + int_{a_w + i y_w}^{a_w + i h} D_k - int_{P: x_k -> a_w} D_k,
+//
+// so each leg keeps its near-axis panel [0, y_w] alone, the line Im x = y_w
+// across the window carries sum_k D_k from each x_k to the anchor (a
+// piecewise-linear weight: product integration again), one shared leg rises
+// from the line to the path with sum_k D_k, and on the path the density
+// switches from piece to piece at the anchor instead of at each breakpoint.
+// A window spans at most 8 y_w in x and is taken where it costs fewer
+// panels than the legs' upper parts (~15 evaluations per row instead of ~36).
+//
 // Reported error: sum |K - G| over every panel (path and legs), the near-axis
 // bounds, the rounding bound of S(0) integrated along the path and legs
 // (ForwardAmplitude::rounding_bound).  No tail: a table is zero outside its
@@ -54,7 +70,7 @@
 // Cost: one panel per piece and ~2 per leg (a piece spanning four panels or
 // more, a raindrop bin, takes the 31-point rule at least: the ripple left at
 // height H then needs a third of the evaluations); a 200-point log-normal table in
-// water at 550 nm takes 9,735 evaluations of S(0) at 1e-9, the analytic
+// water at 550 nm takes 8,854 evaluations of S(0) at 1e-9, the analytic
 // log-normal 625 (validation/bench/bulk_optics_speed table).  The near-axis
 // bound, not the path, sets the cost: it stands 1e5-1e6 times above the actual
 // error in tests/weather/test_segmented_contour.cpp.
@@ -108,15 +124,16 @@ struct SegmentedContourSettings {
 // which a 1e-9 tolerance must resolve: ~0.7 evaluations per unit of x on a
 // long piece (the 31-point rule on panels five periods wide), each ~5 ns x x
 // (the series has ~x terms, sixteen side by side); ~2 per unit of x over a
-// table's rows (spans); a leg ~36 where a table's slope changes and ~120 at
-// a jump (a bin edge).
+// table's rows (spans); a leg ~36 where a table's slope changes (~16 among
+// dense rows: leg windows) and ~120 at a jump (a bin edge).
 // Two bins of raindrops at 550 nm (0.1-0.5 and 0.5-1 mm: x up to 11,424) take
 // 7,029 evaluations, 0.11 s on two cores, against a failure after 38 s on the
 // real axis; fog-drop bins (x < 500) milliseconds.  A table of N rows of fog
-// drops costs ~37 N evaluations, all but ~1,000 of them on the legs: 2.2 s
-// per 1e5 rows on two cores at 550 nm (~4.6 s of CPU); about 1.1e5 rows and
-// more exceed max_seconds and are refused up front with the estimate, so
-// that no run is silent for more than a few seconds.
+// drops costs ~19 N evaluations at 1e4 rows and ~15 N at 1e5 (the legs'
+// near-axis panels, one per row): ~1.2 s per 1e5 rows on two cores at
+// 550 nm (~2.3 s of CPU); a table whose estimate exceeds max_seconds (about
+// 2.7e5 such rows) is refused up front with the estimate, so that no run is
+// silent for more than a few seconds.
 // The result's resonance_error holds the near-axis bounds; tail_error is 0.
 // The evaluations and CPU seconds (one core) the rule is estimated to take
 // over `d` (0 for a distribution it does not apply to).
