@@ -2,6 +2,7 @@
 #include "product_rule.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include <Eigen/Dense>
 #include <boost/math/special_functions/legendre.hpp>
@@ -70,10 +71,14 @@ void ProductRule::weights(const std::vector<Segment>& segments, const std::vecto
   // A_l and B_l: the segments' alpha and beta against int_s P_l du.
   std::vector<Complex> a(count), b(count);
   std::vector<double> lo(count), hi(count);
+  double hi_at = std::numeric_limits<double>::quiet_NaN();  // where hi was taken: segments are usually contiguous
   for (const Segment& s : segments) {
     if (!(s.u1 > s.u0)) continue;
-    legendre_antiderivatives(std::max(s.u0, -1.0), count, lo.data());
-    legendre_antiderivatives(std::min(s.u1, 1.0), count, hi.data());
+    const double u0 = std::max(s.u0, -1.0), u1 = std::min(s.u1, 1.0);
+    if (u0 == hi_at) lo.swap(hi);
+    else legendre_antiderivatives(u0, count, lo.data());
+    legendre_antiderivatives(u1, count, hi.data());
+    hi_at = u1;
     for (std::size_t l = 0; l < count; ++l) {
       const double d = hi[l] - lo[l];
       a[l] += s.alpha * d;

@@ -111,17 +111,20 @@ std::vector<LegWindow> leg_windows(const Integrand& f, const std::vector<double>
     std::size_t end = run;
     while (end < pieces && f.spanned_piece(end)) ++end;
     if (end < run + 2) continue;
-    // Interior breakpoints run + 1 ... end - 1.
+    // Interior breakpoints run + 1 ... end - 1; a vanishing leg's cut is infinite.
+    std::vector<int> panels(end - run);  // each leg's now, at breakpoint run + i
+    for (std::size_t i = run + 1; i < end; ++i)
+      panels[i - run] = std::isfinite(cut[i]) ? 1 + graded_panels(cut[i], f.height(f.x_at(i))) : 0;
     for (std::size_t i = run + 1; i < end;) {
-      if (f.leg_vanishes(i)) { ++i; continue; }
+      if (!std::isfinite(cut[i])) { ++i; continue; }
       double height = cut[i];
       std::size_t last = i, legs = 1;
-      int now = 1 + graded_panels(cut[i], f.height(f.x_at(i)));
+      int now = panels[i - run];
       for (std::size_t n = i + 1; n < end; ++n) {
         const double h = std::min(height, cut[n]);
         if (f.x_at(n) - f.x_at(i) > kWindowWidths * h) break;
         height = h, last = n;
-        if (!f.leg_vanishes(n)) ++legs, now += 1 + graded_panels(cut[n], f.height(f.x_at(n)));
+        if (std::isfinite(cut[n])) ++legs, now += panels[n - run];
       }
       const double anchor = 0.5 * (f.x_at(i) + f.x_at(last));
       const int windowed = static_cast<int>(legs) + kLinePanels + graded_panels(height, f.height(anchor));

@@ -392,22 +392,29 @@ class Integrand {
   // along the leg: twice the slope at r_k covers it for y_1 << x_k (for the
   // log-normal, y_1 << x_k / (1 + |z_k| / s): n'' / n' ~ (1 + |z| / s) / r).
   double lowest_node(double height) const { return 0.5 * height * (1 - rule_.abscissa.back()); }
-  double near_axis_bound(std::size_t k, double y1) const {
+  // The bound at breakpoint k as a function of y_1 (what does not depend on
+  // y_1 taken once: axis_cut evaluates it ~40 times per leg).
+  auto near_axis_bound_of(std::size_t k) const {
     double jump = 0, slope_change = 0;
     difference_at(k, jump, slope_change);
-    const double s_max = forward_amplitude_bound(x_at(k)) * std::exp(2 * y1);
+    const double fa_bound = forward_amplitude_bound(x_at(k));
     const double slope = (curved_at(k) ? 2.0 : 1.0) * std::abs(slope_change);
-    return 2 * scale_ * s_max * (std::abs(jump) * y1 + slope * y1 * y1 / (2 * k_));
+    return [=, scale = scale_, k = k_](double y1) {
+      const double s_max = fa_bound * std::exp(2 * y1);
+      return 2 * scale * s_max * (std::abs(jump) * y1 + slope * y1 * y1 / (2 * k));
+    };
   }
+  double near_axis_bound(std::size_t k, double y1) const { return near_axis_bound_of(k)(y1); }
   // Where to cut a leg's panel [0, b] on the axis so that the lower part's
   // bound is about `allowed`: between b/4096 and `largest` (the upper part is
   // split again at its middle if its |K - G| asks).
   double axis_cut(std::size_t k, double b, double allowed, double largest) const {
+    const auto bound = near_axis_bound_of(k);
     double lo = b / 4096, hi = largest;
-    if (near_axis_bound(k, lowest_node(hi)) <= allowed) return hi;
+    if (bound(lowest_node(hi)) <= allowed) return hi;
     for (int i = 0; i < 40; ++i) {  // bisection in log: the bound grows with the height
       const double mid = std::sqrt(lo * hi);
-      (near_axis_bound(k, lowest_node(mid)) <= allowed ? lo : hi) = mid;
+      (bound(lowest_node(mid)) <= allowed ? lo : hi) = mid;
     }
     return lo;
   }
