@@ -307,7 +307,7 @@ std::string method_text(const SizeDistribution& d, const SegmentedContourSetting
 // which the path's spans ~1,400), and the CPU cost of one evaluation
 // (validation/bench/forward_amplitude_speed: 0.9 us at x = 100, 46 us at
 // 1e4), from the runs quoted in segmented_contour.hpp, rounded up.
-constexpr double kEvaluationsPerX = 0.85, kEvaluationsPerLeg = 40, kEvaluationsPerJumpLeg = 120;
+constexpr double kEvaluationsPerX = 0.7, kEvaluationsPerLeg = 40, kEvaluationsPerJumpLeg = 120;
 constexpr double kEvaluationsPerSpanX = 2, kEvaluationsPerSpan = 31;
 // A leg between rows closer than this in x is taken as windowed, at this
 // cost: the first cut c is ~0.03-0.06 at 1e-9 on fog tables, and a window

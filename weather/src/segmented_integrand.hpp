@@ -132,26 +132,38 @@ struct Panel {
 // Pieces whose path spans at least this many panels take a Gauss-Kronrod
 // rule of at least this order (Integrand::path_rule).  Measured at 1e-9 on
 // raindrop bins (0.5-1 mm, water): 14,115 -> 4,743 evaluations at 550 nm and
-// 39,525 -> 12,431 at 200 nm against the 15-point rule; orders 41-61 on
-// wider panels gain no more.
+// 39,525 -> 12,431 at 200 nm with the 31-point rule against the 15-point one
+// on panels 40 wide.
 constexpr double kLongPiecePanels = 4;
-constexpr int kLongPieceKronrodPoints = 31;
+constexpr int kLongPieceKronrodPoints = 61;
 // The ripple that height H leaves of S(0) on such a piece has the period
 // pi / (Re m - 1) in x (the interference of the central ray with the
-// diffracted wave, 2 x (m - 1) in phase, van de Hulst 1957 Sec. 11.22); the
-// 31-point rule's Gauss part resolves ~5 of its periods per panel and fails
-// abruptly beyond (water at 1e-9: 5.3 periods pass at 550 nm, 6.3 fail at
-// 200 nm), so the first panels span 5, and no fewer than 40 units of x,
-// nor more than twice that (absorbing drops, whose ripple is damped).
-// Measured at 1e-9 on the 0.5-1 mm bin: 4,613 -> 3,962 evaluations at 550 nm,
-// 1,761 -> 1,482 at 1.55 um, 428 -> 304 at 10.6 um, 12,333 at 200 nm (40 wide).
-constexpr double kLongPieceRipplePeriods = 5;
-constexpr double kLongPieceMaxWidths = 2;
+// diffracted wave, 2 x (m - 1) in phase, van de Hulst 1957 Sec. 11.22).  A
+// Gauss-Kronrod rule resolves a number of its periods per panel set by its
+// Gauss part and fails abruptly beyond: the 31-point rule ~5 (water at 1e-9:
+// 5.3 pass at 550 nm, 6.3 fail at 200 nm), the 61-point rule ~13 (14 fail
+// in part at 1.55 um, 15 everywhere: the evaluations double).  Per period
+// the 61-point rule needs fewer nodes (its Gauss part nearer the two per
+// period of the asymptotic limit), and 61 nodes fill four batches of sixteen
+// S(0) series where 41 or 51 leave 7 or 13 lanes idle.  So the first panels
+// span 12 periods, no fewer than 40 units of x, nor more than 160 (absorbing
+// drops, whose ripple is damped).  Measured at 1e-9, bins of 0.5-1 mm and
+// of 0.1-0.5 + 0.5-1 mm (bulk_optics_speed bins), evaluations:
+//   rule, periods   200 nm          550 nm         1.55 um       10.6 um
+//   31, 5           12,333 / 22,188  3,962 / 7,029  1,482 / 2,595  304 / 487
+//   41, 7           11,753 / 21,150  3,747 / 6,677
+//   51, 9           11,370 / 20,436  3,648 / 6,462
+//   61, 12          10,215 / 18,357  3,291 / 5,852  (see below)
+// and the wall time of the two bins at 550 nm 0.109 -> 0.093 s (41 and 51:
+// 0.117, 0.125 s, their idle lanes).
+constexpr double kLongPieceRipplePeriods = 12;
+constexpr double kLongPieceMaxWidths = 4;
 // Runs of a table's short rows are integrated in spans by product
-// integration with the same 31-point rule (product_rule.hpp), whose
-// interpolant is exact to degree 30 rather than the rule's 46: panels start
-// at this fraction of panel_width.
+// integration with the 31-point rule (product_rule.hpp), whose interpolant
+// is exact to degree 30 rather than the rule's 46: panels start at this
+// fraction of panel_width.
 constexpr double kSpanPanelWidths = 0.5;
+constexpr int kSpanKronrodPoints = 31;
 // A leg window (LegWindow) spans at most this many times its line's height,
 // and its line costs about this many 15-point leg panels.  Measured at 1e-9 on
 // a 10,000-row log-normal fog table at 550 nm (373,881 evaluations without
@@ -192,7 +204,7 @@ class Integrand {
         s_(s),
         rule_(detail::rule_for(s.kronrod_points)),
         long_rule_(detail::rule_for(std::max(s.kronrod_points, kLongPieceKronrodPoints))),
-        span_rule_(long_rule_),
+        span_rule_(detail::rule_for(std::max(s.kronrod_points, kSpanKronrodPoints))),
         arithmetic_(arithmetic) {
     set_windows({});
   }

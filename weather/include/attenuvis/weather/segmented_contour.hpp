@@ -67,9 +67,9 @@
 // (as contour_extinction.cpp), or when asked, every converged panel is split
 // once and the change is charged too.
 //
-// Cost: one panel per piece and ~2 per leg (a piece spanning four panels or
-// more, a raindrop bin, takes the 31-point rule at least: the ripple left at
-// height H then needs a third of the evaluations); a 200-point log-normal table in
+// Cost: a panel per piece or span and ~2 per leg (a piece spanning four
+// panels or more, a raindrop bin, takes the 61-point rule: the ripple left at
+// height H then needs a third of the 15-point rule's evaluations or fewer); a 200-point log-normal table in
 // water at 550 nm takes 8,854 evaluations of S(0) at 1e-9, the analytic
 // log-normal 625 (validation/bench/bulk_optics_speed table).  The near-axis
 // bound, not the path, sets the cost: it stands 1e5-1e6 times above the actual
@@ -121,14 +121,14 @@ struct SegmentedContourSettings {
 //
 // Cost.  At height 4 the path's integrand still carries the ripple of S(0)
 // of period pi/(Re m - 1) (~9.4 in x for water), damped to ~e^{-2 H (m-1)},
-// which a 1e-9 tolerance must resolve: ~0.7 evaluations per unit of x on a
-// long piece (the 31-point rule on panels five periods wide), each ~5 ns x x
+// which a 1e-9 tolerance must resolve: ~0.55 evaluations per unit of x on a
+// long piece (the 61-point rule on panels twelve periods wide), each ~5 ns x x
 // (the series has ~x terms, sixteen side by side); ~2 per unit of x over a
 // table's rows (spans); a leg ~36 where a table's slope changes (~16 among
 // dense rows: leg windows) and ~120 at a jump (a bin edge).
 // Two bins of raindrops at 550 nm (0.1-0.5 and 0.5-1 mm: x up to 11,424) take
-// 7,029 evaluations, 0.11 s on two cores, against a failure after 38 s on the
-// real axis; fog-drop bins (x < 500) milliseconds.  A table of N rows of fog
+// 5,852 evaluations, 0.098 s on two cores, against a failure after 38 s on
+// the real axis; fog-drop bins (x < 500) milliseconds.  A table of N rows of fog
 // drops costs ~19 N evaluations at 1e4 rows and ~15 N at 1e5 (the legs'
 // near-axis panels, one per row): ~1.2 s per 1e5 rows on two cores at
 // 550 nm (~2.3 s of CPU); a table whose estimate exceeds max_seconds (about
