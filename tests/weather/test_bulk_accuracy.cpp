@@ -181,7 +181,7 @@ TEST_CASE("bulk optics within their tolerance of brute force: 550 nm", "[weather
   }
 }
 
-TEST_CASE("the issue's table: radiation fog, 1.55 um, m = 1.3109 + 1.35e-4i, tolerance 1e-6",
+TEST_CASE("radiation fog, 1.55 um, m = 1.3109 + 1.35e-4i, tolerance 1e-6: every quantity against brute force",
           "[weather][bulk][accuracy]") {
   // bulk_brute_force radiation 1550 1.3109 1.35e-4 0.004 8: h = 0.004 and 0.002 agree to 1e-16; the
   // same numbers as the brute-force column of the table that motivated this rule (sigma_ext

@@ -4,7 +4,7 @@
 //   1. What one component costs per wavelength: waso (x << 1 at 10.6 um) and
 //      coarse sea salt, dry and at 99 %, at 355 nm, 550 nm and 10.6 um:
 //      evaluations, time, and time per evaluation (small x: a short series).
-//   2. The table the issue names: haze:urban:rh=0..99/9 (12 humidities) over
+//   2. A humidity table: haze:urban:rh=0..99/9 (12 humidities) over
 //      81 wavelengths (400:800:5nm), every table quantity, on 2 threads and
 //      on 1, from a cold process (no per-particle optics kept).
 //   3. Error against time: urban haze at 0, 50, 95, 99 % RH at 355, 550 and
