@@ -242,7 +242,9 @@ TEST_CASE("segmented contour: spans across rows equal one panel per row, with ju
     }
 }
 
-TEST_CASE("segmented contour: leg windows over dense bins, a jump at every edge", "[weather][segmented]") {
+// [slow]: 16 s under ASan; the sanitizer tree checks windows on the 10,000-row table
+// (test_binned_spectra.cpp) and spans in the test above.
+TEST_CASE("segmented contour: leg windows over dense bins, a jump at every edge", "[weather][segmented][slow]") {
   // 6,000 bins 1/3 nm wide from 5 to 7 um (x spacing 0.0038 at 550 nm), the count varying
   // from bin to bin and a slope inside every other one: at a loose tolerance the legs'
   // first cuts are wide enough that windows form across the jumps.  Reference: the same
