@@ -69,16 +69,11 @@ PathPanel evaluate_path_panel(const Rule& rule, double a, double b, const Point&
   p.a = a;
   p.b = b;
   const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
-  const std::size_t n = rule.abscissa.size();
-  const std::size_t count = 2 * n - 1;
-  std::vector<double> t(count), kronrod_w(count), gauss_w(count);
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t slot : {n - 1 - i, n - 1 + i}) {
-      t[slot] = mid + (slot < n - 1 ? -rule.abscissa[i] : rule.abscissa[i]) * half;
-      kronrod_w[slot] = rule.kronrod_weight[i];
-      gauss_w[slot] = rule.gauss_weight[i];
-    }
-  }
+  const OrderedNodes nodes = ordered_nodes(rule);
+  const std::vector<double>&kronrod_w = nodes.kronrod_weight, &gauss_w = nodes.gauss_weight;
+  const std::size_t count = nodes.u.size();
+  std::vector<double> t(count);
+  for (std::size_t j = 0; j < count; ++j) t[j] = mid + nodes.u[j] * half;
   std::vector<Complex> x(count);
   for (std::size_t j = 0; j < count; ++j) x[j] = point(t[j]);
   std::vector<mie::ForwardAmplitude> fa(count);

@@ -39,6 +39,24 @@ Rule make_rule() {
   return r;
 }
 
+// The rule's 2n - 1 nodes on [-1, 1] in increasing order, each with its
+// Kronrod and Gauss weight (0 at the Kronrod-only nodes): the layout the
+// panel integrators visit (so S(0) is batched over neighbouring |x|).
+struct OrderedNodes {
+  std::vector<double> u, kronrod_weight, gauss_weight;
+};
+inline OrderedNodes ordered_nodes(const Rule& rule) {
+  const std::size_t n = rule.abscissa.size(), count = 2 * n - 1;
+  OrderedNodes out{std::vector<double>(count), std::vector<double>(count), std::vector<double>(count)};
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t slot : {n - 1 - i, n - 1 + i}) {
+      out.u[slot] = slot < n - 1 ? -rule.abscissa[i] : rule.abscissa[i];
+      out.kronrod_weight[slot] = rule.kronrod_weight[i];
+      out.gauss_weight[slot] = rule.gauss_weight[i];
+    }
+  return out;
+}
+
 inline Rule rule_for(int points) {
   switch (points) {
     case 15: return make_rule<15>();

@@ -47,17 +47,11 @@ void legendre_antiderivatives(double u, std::size_t count, double* out) {
 }  // namespace
 
 ProductRule::ProductRule(const Rule& rule) {
-  const std::size_t n = rule.abscissa.size(), count = 2 * n - 1;
-  node_.resize(count);
-  std::vector<bool> is_gauss(count);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t slot : {n - 1 - i, n - 1 + i}) {
-      node_[slot] = slot < n - 1 ? -rule.abscissa[i] : rule.abscissa[i];
-      is_gauss[slot] = rule.gauss_weight[i] != 0;
-    }
+  const OrderedNodes nodes = ordered_nodes(rule);
+  node_ = nodes.u;
   std::vector<double> gauss_nodes;
-  for (std::size_t j = 0; j < count; ++j)
-    if (is_gauss[j]) gauss_slot_.push_back(j), gauss_nodes.push_back(node_[j]);
+  for (std::size_t j = 0; j < node_.size(); ++j)
+    if (nodes.gauss_weight[j] != 0) gauss_slot_.push_back(j), gauss_nodes.push_back(node_[j]);
   kronrod_inverse_ = legendre_inverse(node_);
   gauss_inverse_ = legendre_inverse(gauss_nodes);
 }
@@ -85,19 +79,16 @@ void ProductRule::weights(const std::vector<Segment>& segments, const std::vecto
       b[l] += s.beta * d;
     }
   }
+  // omega at node `slot`, column i of an inverse of size n (degrees 0 ... n - 1).
+  const auto omega = [&](const std::vector<double>& inverse, std::size_t n, std::size_t i, std::size_t slot) {
+    Complex w{};
+    for (std::size_t l = 0; l < n; ++l) w += inverse[l * n + i] * (a[l] + x[slot] * b[l]);
+    return w;
+  };
   kronrod.assign(count, Complex{});
   gauss.assign(count, Complex{});
-  for (std::size_t j = 0; j < count; ++j) {
-    Complex w{};
-    for (std::size_t l = 0; l < count; ++l) w += kronrod_inverse_[l * count + j] * (a[l] + x[j] * b[l]);
-    kronrod[j] = w;
-  }
-  for (std::size_t g = 0; g < ng; ++g) {
-    const std::size_t j = gauss_slot_[g];
-    Complex w{};
-    for (std::size_t l = 0; l < ng; ++l) w += gauss_inverse_[l * ng + g] * (a[l] + x[j] * b[l]);
-    gauss[j] = w;
-  }
+  for (std::size_t j = 0; j < count; ++j) kronrod[j] = omega(kronrod_inverse_, count, j, j);
+  for (std::size_t g = 0; g < ng; ++g) gauss[gauss_slot_[g]] = omega(gauss_inverse_, ng, g, gauss_slot_[g]);
 }
 
 }  // namespace attenuvis::weather::detail

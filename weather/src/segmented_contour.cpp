@@ -59,8 +59,7 @@ std::vector<Task> path_tasks(const Integrand& f, const SegmentedContourSettings&
   };
   const std::size_t pieces = f.breakpoints() - 1;
   for (std::size_t i = 0; i < pieces; ++i) {
-    std::size_t end = i;
-    while (end < pieces && f.spanned_piece(end)) ++end;
+    const std::size_t end = run_end(i, pieces, [&](std::size_t j) { return f.spanned_piece(j); });
     if (s.spans && end >= i + 2) {
       add(Where::span, i, f.x_at(i), f.x_at(end), kSpanPanelWidths * s.panel_width);
       i = end - 1;
@@ -108,8 +107,7 @@ std::vector<LegWindow> leg_windows(const Integrand& f, const std::vector<double>
   std::vector<LegWindow> windows;
   const std::size_t pieces = f.breakpoints() - 1;
   for (std::size_t run = 0; run < pieces; ++run) {
-    std::size_t end = run;
-    while (end < pieces && f.spanned_piece(end)) ++end;
+    const std::size_t end = run_end(run, pieces, [&](std::size_t j) { return f.spanned_piece(j); });
     if (end < run + 2) continue;
     // Interior breakpoints run + 1 ... end - 1; a vanishing leg's cut is infinite.
     std::vector<int> panels(end - run);  // each leg's now, at breakpoint run + i
@@ -328,13 +326,9 @@ ContourCost segmented_contour_cost(const SizeDistribution& d, double wavelength_
     cost.seconds += evaluations * (kSecondsPerEvaluation + kSecondsPerTerm * x);
   };
   // As path_tasks: runs of two or more short straight pieces in spans.
-  const auto spanned = [&](std::size_t i) {
-    const Piece& p = (*pieces)[i];
-    return !p.curved() && k * (p.r1 - p.r0) < kLongPiecePanels * s.panel_width;
-  };
+  const auto spanned = [&](std::size_t i) { return spanned_piece((*pieces)[i], k, s); };
   for (std::size_t i = 0; i < pieces->size(); ++i) {
-    std::size_t end = i;
-    while (end < pieces->size() && spanned(end)) ++end;
+    const std::size_t end = run_end(i, pieces->size(), spanned);
     const Piece& p = (*pieces)[i];
     if (s.spans && end >= i + 2) {
       const double xa = k * p.r0, xb = k * (*pieces)[end - 1].r1;
@@ -392,18 +386,19 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
   if (spans) {
     f.set_windows(leg_windows(f, cut));
     // Only the span panels across a window's breakpoints change.
-    const auto moved = [&](const Task& t) {
-      if (t.where != Where::span) return false;
-      for (const LegWindow& w : f.windows())
-        if (t.a < f.x_at(w.last) && t.b > f.x_at(w.first)) return true;
-      return false;
-    };
+    std::vector<std::size_t> moved;
     std::vector<Task> again;
-    for (const Task& t : path)
-      if (moved(t)) again.push_back(t);
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      const Task& t = path[i];
+      if (t.where != Where::span) continue;
+      for (const LegWindow& w : f.windows())
+        if (t.a < f.x_at(w.last) && t.b > f.x_at(w.first)) {
+          moved.push_back(i), again.push_back(t);
+          break;
+        }
+    }
     std::vector<Panel> redone = quadrature.evaluate_all(again);
-    for (std::size_t i = 0, r = 0; i < path.size(); ++i)
-      if (moved(path[i])) panels[i] = std::move(redone[r++]);
+    for (std::size_t r = 0; r < moved.size(); ++r) panels[moved[r]] = std::move(redone[r]);
   }
   for (Panel& p : quadrature.evaluate_all(leg_tasks(f, cut))) panels.push_back(std::move(p));
   // Verification by halving, as contour_extinction.cpp: |K - G| stalls where

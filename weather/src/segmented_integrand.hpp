@@ -174,6 +174,24 @@ constexpr int kSpanKronrodPoints = 31;
 constexpr double kWindowWidths = 8;
 constexpr int kLinePanels = 2;
 
+// A piece whose path spans kLongPiecePanels panels or more (k: the wave number).
+inline bool long_piece(const Piece& p, double k, const SegmentedContourSettings& s) {
+  return k * (p.r1 - p.r0) >= kLongPiecePanels * s.panel_width;
+}
+// Pieces whose path is taken in spans (span_panel): a table's short rows.
+inline bool spanned_piece(const Piece& p, double k, const SegmentedContourSettings& s) {
+  return !p.curved() && !long_piece(p, k, s);
+}
+// The end of the run of spanned pieces from piece i (i itself if it is not
+// spanned): a span needs two of them or more (path_tasks, leg_windows and the
+// cost estimate take the same runs).
+template <class Spanned>
+std::size_t run_end(std::size_t i, std::size_t pieces, const Spanned& spanned) {
+  std::size_t end = i;
+  while (end < pieces && spanned(end)) ++end;
+  return end;
+}
+
 // |S(0)| on the real axis: <= 1/2 sum (2n+1)(|a_n| + |b_n|) <= (N + 1)^2, the
 // series cut where Wiscombe's (1980) criterion ends it.
 inline double forward_amplitude_bound(double x) {
@@ -241,6 +259,12 @@ class Integrand {
   double x_at(std::size_t k) const { return k_ * (k < pieces_.size() ? pieces_[k].r0 : pieces_.back().r1); }
   bool zero_piece(std::size_t i) const { return pieces_[i].zero(); }
   double height(double t) const { return s_.height * std::tanh(s_.angle * t / s_.height); }
+  // The path x(t) = t + i h(t) and its tangent x'(t).
+  Complex path_point(double t) const { return {t, height(t)}; }
+  Complex path_tangent(double t) const {
+    const double c = 1 / std::cosh(s_.angle * t / s_.height);
+    return {1.0, s_.angle * c * c};
+  }
 
   // The jump and the change of slope (both in SI, the slope per metre) of
   // the density at breakpoint k, right minus left.
@@ -266,11 +290,8 @@ class Integrand {
   const detail::Rule& path_rule(std::size_t i) const {
     return long_piece(i) ? long_rule_ : rule_;
   }
-  bool long_piece(std::size_t i) const {
-    return k_ * (pieces_[i].r1 - pieces_[i].r0) >= kLongPiecePanels * s_.panel_width;
-  }
-  // Pieces whose path is taken in spans (span_panel): a table's short rows.
-  bool spanned_piece(std::size_t i) const { return !pieces_[i].curved() && !long_piece(i); }
+  bool long_piece(std::size_t i) const { return segmented::long_piece(pieces_[i], k_, s_); }
+  bool spanned_piece(std::size_t i) const { return segmented::spanned_piece(pieces_[i], k_, s_); }
   // The width of the first panels over piece i: on a long piece, as many
   // periods of the ripple as its rule resolves (kLongPieceRipplePeriods),
   // between panel_width and kLongPieceMaxWidths times that.
@@ -282,16 +303,12 @@ class Integrand {
 
   Panel path_panel(std::size_t i, double a, double b) const {
     const Piece& piece = pieces_[i];
-    const double H = s_.height, theta = s_.angle;
     Panel p;
     p.where = Where::path;
     p.index = i;
     p.quad = detail::evaluate_path_panel(
-        path_rule(i), a, b, [&](double t) { return Complex(t, height(t)); },
-        [&](double t) {
-          const double c = 1 / std::cosh(theta * t / H);
-          return Complex(1.0, theta * c * c);
-        },
+        path_rule(i), a, b, [&](double t) { return path_point(t); },
+        [&](double t) { return path_tangent(t); },
         [&](Complex x) { return scale_ * piece.at(x / k_); }, m_, arithmetic_);
     return p;
   }
@@ -301,7 +318,7 @@ class Integrand {
   // slope change x i h at each breakpoint), so the panel integrates each
   // piece's line against the interpolant of S(0) (product_rule.hpp).
   Panel span_panel(double a, double b) const {
-    const double H = s_.height, theta = s_.angle, centre = 0.5 * (a + b);
+    const double centre = 0.5 * (a + b);
     std::vector<detail::ProductRule::Segment> segments;
     std::size_t i =
         static_cast<std::size_t>(std::upper_bound(switch_x_.begin(), switch_x_.end(), a) - switch_x_.begin());
@@ -315,11 +332,8 @@ class Integrand {
     Panel p;
     p.where = Where::span;
     p.quad = detail::evaluate_product_panel(
-        span_rule_, a, b, segments, [&](double t) { return Complex(t, height(t)); },
-        [&](double t) {
-          const double c = 1 / std::cosh(theta * t / H);
-          return Complex(1.0, theta * c * c);
-        },
+        span_rule_, a, b, segments, [&](double t) { return path_point(t); },
+        [&](double t) { return path_tangent(t); },
         m_, arithmetic_);
     return p;
   }
