@@ -8,8 +8,9 @@
 //    the real axis cannot resolve the resonances, so the reference is the
 //    same route along an independent path (height 6 instead of 4, slope 0.15
 //    instead of 0.25, so other legs and other path points; one Gauss-Kronrod
-//    panel per row at least instead of product-integrated spans across rows),
-//    S(0) in long double, rel. tol. 1e-12, every panel verified by halving.
+//    panel per row at least instead of product-integrated spans across rows,
+//    the legs' panels on the axis by the 15-point rule in y instead of the
+//    7-point rule in sqrt(y)), S(0) in long double, rel. tol. 1e-12, every panel verified by halving.
 //    The real-axis value must lie within its own (resonance) error of it as well.
 #include <catch2/catch.hpp>
 
@@ -84,6 +85,7 @@ double independent_path_reference(const SizeDistribution& d, double wavelength, 
   r.angle = 0.15;
   r.verify = true;
   r.spans = false;
+  r.sqrt_axis_panels = false;
   r.max_evaluations = 2000000;
   return route(d, wavelength, m, r).extinction.value;
 }
@@ -212,7 +214,7 @@ TEST_CASE("segmented contour declines what is not a table or reaches too far", "
 
 TEST_CASE("segmented contour: spans across rows equal one panel per row, with jumps and kinks", "[weather][segmented]") {
   // Reference: the same route with spans off (each row its own Gauss-Kronrod panels: no
-  // product integration), at 1e-11.  Cases: 150 fog-drop bins 0.2 um wide from 2 to 32 um
+  // product integration) and the axis panels in y, at 1e-11.  Cases: 150 fog-drop bins 0.2 um wide from 2 to 32 um
   // (a jump at every edge, count falling as r^-3) and an 800-row log-normal table (a kink
   // at every row), at 550 nm and 10.6 um.
   std::vector<TabulatedSegment> bins;
@@ -228,6 +230,7 @@ TEST_CASE("segmented contour: spans across rows equal one panel per row, with ju
       const auto spans = route(d, wavelength, m);
       SegmentedContourSettings rows;
       rows.spans = false;
+      rows.sqrt_axis_panels = false;
       rows.rel_tolerance = 1e-11;
       rows.max_evaluations = 2000000;
       rows.max_seconds = 60;
@@ -248,7 +251,8 @@ TEST_CASE("segmented contour: leg windows over dense bins, a jump at every edge"
   // 6,000 bins 1/3 nm wide from 5 to 7 um (x spacing 0.0038 at 550 nm), the count varying
   // from bin to bin and a slope inside every other one: at a loose tolerance the legs'
   // first cuts are wide enough that windows form across the jumps.  Reference: the same
-  // table with spans and windows off (one panel per row, every leg up to the path) at 1e-8.
+  // table with spans and windows off (one panel per row, every leg up to the path, the axis
+  // panels in y) at 1e-8.
   std::vector<TabulatedSegment> bins;
   const int n = 6000;
   for (int i = 0; i < n; ++i) {
@@ -263,6 +267,7 @@ TEST_CASE("segmented contour: leg windows over dense bins, a jump at every edge"
   const auto windows = route(d, 550e-9, m, loose);
   SegmentedContourSettings rows;
   rows.spans = false;
+  rows.sqrt_axis_panels = false;
   rows.rel_tolerance = 1e-8;
   rows.max_seconds = 60;
   const auto reference = route(d, 550e-9, m, rows);

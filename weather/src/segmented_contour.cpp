@@ -290,7 +290,8 @@ std::string method_text(const SizeDistribution& d, const SegmentedContourSetting
          << (windows ? " (those of dense rows joined above the axis in " + std::to_string(windows) + " windows)" : "")
          << ", near-axis parts bounded (segmented_contour.hpp), Gauss-Kronrod "
          << s.kronrod_points << " (Boost.Math; on pieces spanning " << kLongPiecePanels << " panels or more, "
-         << std::max(s.kronrod_points, kLongPieceKronrodPoints) << ")"
+         << std::max(s.kronrod_points, kLongPieceKronrodPoints)
+         << (s.sqrt_axis_panels ? "; legs' panels on the axis, 7 in sqrt(y)" : "") << ")"
          << (spans ? ", short rows' path in spans across them by product integration" : "")
          << (verify ? ", verified by halving" : "")
          << ", S(0) in "
@@ -301,17 +302,20 @@ std::string method_text(const SizeDistribution& d, const SegmentedContourSetting
 
 // Evaluations per unit of x on a long piece's path, per short piece, per leg
 // at a change of slope and at a jump, per unit of x and at least on a span
-// of short rows (10,000 log-normal rows at 550 nm: 373,881 evaluations, of
-// which the path's spans ~1,400), and the CPU cost of one evaluation
-// (validation/bench/forward_amplitude_speed: 0.9 us at x = 100, 46 us at
-// 1e4), from the runs quoted in segmented_contour.hpp, rounded up.
-constexpr double kEvaluationsPerX = 0.7, kEvaluationsPerLeg = 40, kEvaluationsPerJumpLeg = 120;
+// of short rows (10,000 log-normal rows at 550 nm without windows: 373,881
+// evaluations with 15-point panels on the axis, of which the path's spans
+// ~1,400; the 7-point panel in sqrt(y) saves 8 a leg), and the CPU cost of
+// one evaluation (validation/bench/forward_amplitude_speed: 0.9 us at
+// x = 100, 46 us at 1e4), from the runs quoted in segmented_contour.hpp,
+// rounded up.
+constexpr double kEvaluationsPerX = 0.7, kEvaluationsPerLeg = 32, kEvaluationsPerJumpLeg = 112;
 constexpr double kEvaluationsPerSpanX = 2, kEvaluationsPerSpan = 31;
 // A leg between rows closer than this in x is taken as windowed, at this
-// cost: the first cut c is ~0.03-0.06 at 1e-9 on fog tables, and a window
-// of kWindowWidths c pays when it holds three rows or more.  100,000
-// log-normal rows at 550 nm: 1,544,802 evaluations (15.4 per row).
-constexpr double kDenseRowSpacing = kWindowWidths * 0.05 / 3, kEvaluationsPerWindowedLeg = 16;
+// cost (its panel on the axis alone, 7 points in a batch of 8): the first
+// cut c is ~0.03-0.06 at 1e-9 on fog tables, and a window of kWindowWidths c
+// pays when it holds three rows or more.  100,000 log-normal rows at 550 nm:
+// 744,461 evaluations (7.4 per row).
+constexpr double kDenseRowSpacing = kWindowWidths * 0.05 / 3, kEvaluationsPerWindowedLeg = 8;
 constexpr double kSecondsPerTerm = 5e-9, kSecondsPerEvaluation = 0.45e-6;
 
 }  // namespace

@@ -34,7 +34,20 @@
 // |a_n|, |b_n| <= 1; N = x + 4.05 x^(1/3) + 2 terms, Wiscombe 1980), grown by
 // e^{2 y} at most above it (the growth of the Mie terms, forward_amplitude.hpp);
 // twice that is charged (the rule's own extrapolation over [0, y_1] as well) as
-// the "resonance" error.  The path over a long piece (a raindrop bin) or a
+// the "resonance" error.
+//
+// The panel on the axis.  Its height c is where that bound, for the
+// 15-point rule in y (y_1 = 0.0043 c), meets the leg's budget.  It is then
+// integrated by the 7-point rule in t = sqrt(y / c): i int_0^1 D_k(x_k + i c t^2)
+// 2 c t dt, still analytic and smooth in t, whose lowest node lies at
+// y_1 = c (0.0198)^2 = 3.9e-4 c, eleven times nearer the axis, so the bound
+// charged falls 11-fold at a jump and 120-fold at a kink (it grows like y_1
+// and y_1^2).  Seven nodes fill one batch of eight S(0) series instead of
+// sixteen.  Sizing c by the lower node instead (11 times taller panels) fails
+// the 7-point rule's |K - G|: 1.79 M evaluations on 10^5 rows against 0.74 M.
+// Measured at 1e-9 on log-normal fog tables at 550 nm: 10^4 rows 190,024 ->
+// 110,024 evaluations, 10^5 rows 1,544,461 -> 744,461, the reported error
+// 6.8e-12 -> 2.7e-12 1/m (the near-axis part 4.5e-12 -> 3.8e-14).  The path over a long piece (a raindrop bin) or a
 // curved one is Gauss-Kronrod panels that never cross a breakpoint (the
 // density switches there, and off the axis its straight pieces do not join:
 // they differ by (s_k - s_{k-1}) i h / k).  Over a run of short straight
@@ -58,7 +71,7 @@
 // from the line to the path with sum_k D_k, and on the path the density
 // switches from piece to piece at the anchor instead of at each breakpoint.
 // A window spans at most 8 y_w in x and is taken where it costs fewer
-// panels than the legs' upper parts (~15 evaluations per row instead of ~36).
+// panels than the legs' upper parts (~7 evaluations per row instead of ~28).
 //
 // Reported error: sum |K - G| over every panel (path and legs), the near-axis
 // bounds, the rounding bound of S(0) integrated along the path and legs
@@ -70,7 +83,7 @@
 // Cost: a panel per piece or span and ~2 per leg (a piece spanning four
 // panels or more, a raindrop bin, takes the 61-point rule: the ripple left at
 // height H then needs a third of the 15-point rule's evaluations or fewer); a 200-point log-normal table in
-// water at 550 nm takes 8,854 evaluations of S(0) at 1e-9, the analytic
+// water at 550 nm takes 7,254 evaluations of S(0) at 1e-9, the analytic
 // log-normal 625 (validation/bench/bulk_optics_speed table).  The near-axis
 // bound, not the path, sets the cost: it stands 1e5-1e6 times above the actual
 // error in tests/weather/test_segmented_contour.cpp.
@@ -97,6 +110,10 @@ struct SegmentedContourSettings {
   // product integration (weather/src/product_rule.hpp); off: one panel per
   // row (the independent route of the tests).
   bool spans = true;
+  // A leg's panel [0, c] on the axis by the 7-point Gauss-Kronrod rule in
+  // t = sqrt(y / c) (half the evaluations, the lowest node 11 times nearer the
+  // axis); off: the rule above in y (the independent route of the tests).
+  bool sqrt_axis_panels = true;
   bool verify = false;          // split every converged panel once and charge the change
   // The budget of S(0) evaluations: at least this, and twice the estimate
   // (segmented_contour_cost) for a distribution whose estimate stays within
@@ -124,15 +141,15 @@ struct SegmentedContourSettings {
 // which a 1e-9 tolerance must resolve: ~0.55 evaluations per unit of x on a
 // long piece (the 61-point rule on panels twelve periods wide), each ~5 ns x x
 // (the series has ~x terms, sixteen side by side); ~2 per unit of x over a
-// table's rows (spans); a leg ~36 where a table's slope changes (~16 among
-// dense rows: leg windows) and ~120 at a jump (a bin edge).
+// table's rows (spans); a leg ~28 where a table's slope changes (~8 among
+// dense rows: leg windows) and ~110 at a jump (a bin edge).
 // Two bins of raindrops at 550 nm (0.1-0.5 and 0.5-1 mm: x up to 11,424) take
-// 5,852 evaluations, 0.098 s on two cores, against a failure after 38 s on
+// 5,768 evaluations, 0.09 s on two cores, against a failure after 38 s on
 // the real axis; fog-drop bins (x < 500) milliseconds.  A table of N rows of fog
-// drops costs ~19 N evaluations at 1e4 rows and ~15 N at 1e5 (the legs'
-// near-axis panels, one per row): ~1.2 s per 1e5 rows on two cores at
-// 550 nm (~2.3 s of CPU); a table whose estimate exceeds max_seconds (about
-// 2.7e5 such rows) is refused up front with the estimate, so that no run is
+// drops costs ~11 N evaluations at 1e4 rows and ~7.4 N at 1e5 (the legs'
+// panels on the axis, one per row): ~0.65 s per 1e5 rows on two cores at
+// 550 nm (~1.2 s of CPU); a table whose estimate exceeds max_seconds (about
+// 5e5 such rows) is refused up front with the estimate, so that no run is
 // silent for more than a few seconds.
 // The result's resonance_error holds the near-axis bounds; tail_error is 0.
 // The evaluations and CPU seconds (one core) the rule is estimated to take
