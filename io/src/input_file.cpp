@@ -1,5 +1,7 @@
 #include "attenuvis/io/input_file.hpp"
 
+#include "attenuvis/io/number_text.hpp"
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -10,7 +12,8 @@
 namespace attenuvis::io {
 namespace {
 
-std::string megabytes(std::size_t bytes) { return std::to_string(bytes / (1024 * 1024)) + " MiB"; }
+// Three digits, so that a file just over the limit does not read as the limit itself.
+std::string megabytes(std::size_t bytes) { return significant(static_cast<double>(bytes) / (1024 * 1024), 3) + " MiB"; }
 
 std::size_t checked_size(const std::string& path, std::size_t max_bytes) {
   struct stat st {};

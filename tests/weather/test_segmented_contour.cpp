@@ -252,7 +252,8 @@ TEST_CASE("segmented contour: leg windows over dense bins, a jump at every edge"
   // from bin to bin and a slope inside every other one: at a loose tolerance the legs'
   // first cuts are wide enough that windows form across the jumps.  Reference: the same
   // table with spans and windows off (one panel per row, every leg up to the path, the axis
-  // panels in y) at 1e-8.
+  // panels in y) at 1e-7 (at 1e-8 its rounding bound exceeds the tolerance and it runs in long
+  // double, 14 s).
   std::vector<TabulatedSegment> bins;
   const int n = 6000;
   for (int i = 0; i < n; ++i) {
@@ -268,7 +269,7 @@ TEST_CASE("segmented contour: leg windows over dense bins, a jump at every edge"
   SegmentedContourSettings rows;
   rows.spans = false;
   rows.sqrt_axis_panels = false;
-  rows.rel_tolerance = 1e-8;
+  rows.rel_tolerance = 1e-7;
   rows.max_seconds = 60;
   const auto reference = route(d, 550e-9, m, rows);
   INFO(std::setprecision(13) << windows.extinction.value << " +- " << windows.extinction.error() << " ("
@@ -278,4 +279,26 @@ TEST_CASE("segmented contour: leg windows over dense bins, a jump at every edge"
   CHECK(std::abs(windows.extinction.value - reference.extinction.value) <=
         windows.extinction.error() + reference.extinction.error());
   CHECK(windows.extinction.error() <= 1e-3 * windows.extinction.value);
+}
+
+TEST_CASE("segmented contour: legs that cancel beyond double precision are taken in long double",
+          "[weather][segmented]") {
+  // A step of 1 % over 1e-9 um at 5 um: two kinks whose slope changes, +-1e7 times the table's
+  // n / r, give legs ~1e4 times sigma_ext that cancel to the step's jump.  Splitting panels does
+  // not lower the rounding bound of their S(0) in double (2.2e-10 1/m against the tolerance
+  // 2.2e-12, measured), so the route repeats the run in long double.  Reference: the same
+  // density with a true jump at 5 um (bins: jump legs, double), which differs from the steep
+  // ramp by less than 0.005 x 1e12 m^-4 x 1e-15 m x Q_ext <= 4 x pi (5 um)^2 = 1.6e-15 1/m.
+  const auto steep = table_through({{1, 1}, {5, 1}, {5 + 1e-9, 1.01}, {10, 1.01}}, "a steep step");
+  const auto jump = SizeDistribution::tabulated({{1e-6, 5e-6, 1e12, 1e12}, {5e-6, 10e-6, 1.01e12, 1.01e12}}, "a jump");
+  const auto m = refractive_index_table("water").at(550e-9);
+  const auto a = segmented_contour_extinction(steep, 550e-9, m);
+  const auto b = segmented_contour_extinction(jump, 550e-9, m);
+  REQUIRE(a);
+  REQUIRE(b);
+  INFO(std::setprecision(13) << a->extinction.value << " +- " << a->extinction.error() << "; " << b->extinction.value
+                             << " +- " << b->extinction.error() << "; " << a->method);
+  CHECK(a->method.find("long double") != std::string::npos);
+  CHECK(a->extinction.error() <= 1e-9 * a->extinction.value);
+  CHECK(std::abs(a->extinction.value - b->extinction.value) <= a->extinction.error() + b->extinction.error() + 1.6e-15);
 }

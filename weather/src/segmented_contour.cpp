@@ -300,84 +300,64 @@ std::string method_text(const SizeDistribution& d, const SegmentedContourSetting
   return method.str();
 }
 
-// Evaluations per unit of x on a long piece's path, per short piece, per leg
-// at a change of slope and at a jump, per unit of x and at least on a span
-// of short rows (10,000 log-normal rows at 550 nm without windows: 373,881
-// evaluations with 15-point panels on the axis, of which the path's spans
-// ~1,400; the 7-point panel in sqrt(y) saves 8 a leg), and the CPU cost of
-// one evaluation (validation/bench/forward_amplitude_speed: 0.9 us at
+// Evaluations per unit of x on a long piece's path, per short piece, and
+// per unit of x and at least on a span of short rows (10,000 log-normal rows
+// at 550 nm: the path's spans ~1,400 evaluations); a panel on the axis (7
+// points in a batch of 8), one above it, a window's line; and the CPU cost
+// of one evaluation (validation/bench/forward_amplitude_speed: 0.9 us at
 // x = 100, 46 us at 1e4), from the runs quoted in segmented_contour.hpp,
 // rounded up.
-constexpr double kEvaluationsPerX = 0.7, kEvaluationsPerLeg = 32, kEvaluationsPerJumpLeg = 112;
-constexpr double kEvaluationsPerSpanX = 2, kEvaluationsPerSpan = 31;
-// A leg between rows closer than this in x is taken as windowed, at this
-// cost (its panel on the axis alone, 7 points in a batch of 8): the first
-// cut c is ~0.03-0.06 at 1e-9 on fog tables, and a window of kWindowWidths c
-// pays when it holds three rows or more.  100,000 log-normal rows at 550 nm:
-// 744,461 evaluations (7.4 per row).
-constexpr double kDenseRowSpacing = kWindowWidths * 0.05 / 3, kEvaluationsPerWindowedLeg = 8;
+constexpr double kEvaluationsPerX = 0.7, kEvaluationsPerSpanX = 2, kEvaluationsPerSpan = 31;
+constexpr double kEvaluationsPerAxisPanel = 8, kEvaluationsPerLegPanel = 15, kEvaluationsPerLine = 31 * kLinePanels;
 constexpr double kSecondsPerTerm = 5e-9, kSecondsPerEvaluation = 0.45e-6;
 
-}  // namespace
-
-ContourCost segmented_contour_cost(const SizeDistribution& d, double wavelength_m, const SegmentedContourSettings& s) {
-  ContourCost cost;
-  const auto pieces = pieces_of(d, s.truncated_log_normal);
-  if (!pieces) return cost;
-  const double k = 2 * kPi / wavelength_m;
-  auto add = [&](double evaluations, double x) {
-    cost.evaluations += evaluations;
-    cost.seconds += evaluations * (kSecondsPerEvaluation + kSecondsPerTerm * x);
-  };
-  // As path_tasks: runs of two or more short straight pieces in spans.
-  const auto spanned = [&](std::size_t i) { return spanned_piece((*pieces)[i], k, s); };
-  for (std::size_t i = 0; i < pieces->size(); ++i) {
-    const std::size_t end = run_end(i, pieces->size(), spanned);
-    const Piece& p = (*pieces)[i];
-    if (s.spans && end >= i + 2) {
-      const double xa = k * p.r0, xb = k * (*pieces)[end - 1].r1;
-      add(std::max(kEvaluationsPerSpan, (xb - xa) * kEvaluationsPerSpanX), 0.5 * (xa + xb));
-      i = end - 1;
-    } else if (!p.zero()) {
-      const double xa = k * p.r0, xb = k * p.r1;
-      add(std::max<double>(s.kronrod_points, (xb - xa) * kEvaluationsPerX), 0.5 * (xa + xb));
-    }
+// sigma_ext with Q_ext = 2 (the pieces at their middles): the scale of the
+// legs' budget before the path's sum is known.
+double geometric_extinction(const std::vector<Piece>& pieces) {
+  double sum = 0;
+  for (const Piece& p : pieces) {
+    const double r = 0.5 * (p.r0 + p.r1);
+    sum += 2 * kPi * r * r * std::abs(p.value_at(r)) * (p.r1 - p.r0);
   }
-  // A leg where the density jumps or changes slope, or a curved piece ends
-  // (Integrand::leg_vanishes); between dense rows of a span (leg_windows), a
-  // windowed one.
-  const auto r_at = [&](std::size_t i) { return i < pieces->size() ? (*pieces)[i].r0 : pieces->back().r1; };
-  for (std::size_t i = 0; i <= pieces->size(); ++i) {
-    const double r = r_at(i);
-    const Difference d = difference_at(*pieces, i, r);
-    const bool curved = (i < pieces->size() && (*pieces)[i].curved()) || (i > 0 && (*pieces)[i - 1].curved());
-    const bool dense = s.spans && i > 0 && i < pieces->size() && spanned(i - 1) && spanned(i) &&
-                       k * (r_at(i + 1) - r_at(i - 1)) < 2 * kDenseRowSpacing;
-    if (d.jump != 0) add(kEvaluationsPerJumpLeg, k * r);
-    else if (d.slope_change != 0 || curved) add(dense ? kEvaluationsPerWindowedLeg : kEvaluationsPerLeg, k * r);
-  }
-  return cost;
+  return sum;
 }
 
-std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribution& d, double wavelength_m,
-                                                              Complex m, const SegmentedContourSettings& s) {
-  auto pieces = pieces_of(d, s.truncated_log_normal);
-  if (!pieces) return std::nullopt;
-  const double k = 2 * kPi / wavelength_m;
-  const double x_min = k * pieces->front().r0, x_max = k * pieces->back().r1;
-  if (!(x_max <= s.max_x) || !(x_min > 0)) return std::nullopt;
-  const ContourCost cost = segmented_contour_cost(d, wavelength_m, s);
-  if (cost.seconds > s.max_seconds)
-    throw std::runtime_error("sigma_ext by segmented contour over " + d.describe() + ": " +
-                             std::to_string(pieces->size()) + " pieces up to x = " + significant(x_max, 3) +
-                             " are estimated to take " + significant(cost.evaluations, 2) + " Mie evaluations (~" +
-                             significant(cost.seconds, 2) + " s of one core), beyond the limit of " +
-                             significant(s.max_seconds, 3) + " s; merge rows or bins of the table");
-  // The budget: the settings', or twice the estimate (a table of many rows).
-  SegmentedContourSettings run = s;
-  run.max_evaluations = std::max(s.max_evaluations, static_cast<std::size_t>(2 * cost.evaluations));
-  const mie::Precision arithmetic = detail::contour_arithmetic(run.rel_tolerance, run.height);
-  Integrand f(std::move(*pieces), wavelength_m, m, run, arithmetic);
+// The legs as the run will take them: cut where their near-axis bound meets
+// the budget (found as deep as it lies: the run splits a panel whose bound
+// stays above it), graded by 16 up to the path, or windowed.  The bound
+// holds for any passive sphere, so the index does not enter.
+template <class Add>
+void add_legs(std::vector<Piece> pieces, double wavelength_m, const SegmentedContourSettings& s, const Add& add) {
+  const double sigma = geometric_extinction(pieces);
+  Integrand f(std::move(pieces), wavelength_m, Complex(1.5, 0), s, mie::Precision::double_precision);
+  const std::size_t legs = leg_count(f);
+  if (legs == 0 || !(sigma > 0)) return;
+  const double allowed = 0.25 * s.rel_tolerance * sigma / static_cast<double>(legs);
+  const std::vector<double> cut = axis_cuts(f, allowed);
+  const std::vector<LegWindow> windows = s.spans ? leg_windows(f, cut) : std::vector<LegWindow>{};
+  std::size_t w = 0;
+  for (std::size_t kb = 0; kb < f.breakpoints(); ++kb) {
+    while (w < windows.size() && windows[w].last < kb) ++w;
+    if (f.leg_vanishes(kb)) continue;
+    const double x = f.x_at(kb), h = f.height(x);
+    if (w < windows.size() && kb >= windows[w].first) {
+      add(kEvaluationsPerAxisPanel, x);
+      continue;
+    }
+    const bool clamped = cut[kb] <= h / 4096 * (1 + 1e-12);  // axis_cut's lowest cut
+    const double deepest = clamped ? f.axis_cut(kb, h * 0x1p-36, allowed, h) : cut[kb];
+    add(kEvaluationsPerAxisPanel + kEvaluationsPerLegPanel * graded_panels(deepest, h), x);
+  }
+  for (const LegWindow& lw : windows)
+    add(kEvaluationsPerLine + kEvaluationsPerLegPanel * graded_panels(lw.height, f.height(lw.anchor)), lw.anchor);
+}
+
+// One run of the route over `pieces` with S(0) in `arithmetic`; `spent`:
+// the evaluations of an earlier run, counted in the result.
+ContourExtinction route_in(std::vector<Piece> pieces, const SizeDistribution& d, double wavelength_m, Complex m,
+                           const SegmentedContourSettings& s, const SegmentedContourSettings& run,
+                           mie::Precision arithmetic, double x_max, std::size_t spent) {
+  Integrand f(std::move(pieces), wavelength_m, m, run, arithmetic);
 
   // The path first, then the legs, whose budget the path's sum sets; where
   // rows are dense, leg windows, and the spans again with the density
@@ -416,13 +396,83 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
   out.extinction.quadrature_error = fine.error;
   out.extinction.resonance_error = fine.near_axis;
   out.extinction.rounding_error = fine.rounding;
-  out.evaluations = quadrature.evaluations();
+  out.evaluations = spent + quadrature.evaluations();
   out.max_size_parameter = x_max;
   out.height = s.height;
   out.angle = s.angle;
   out.verified = verify;
   out.method = method_text(d, s, f.breakpoints() - 1, leg_count(f), f.windows().size(), spans, verify, arithmetic,
                            out.evaluations, x_max);
+  return out;
+}
+
+}  // namespace
+
+ContourCost segmented_contour_cost(const SizeDistribution& d, double wavelength_m, const SegmentedContourSettings& s) {
+  ContourCost cost;
+  auto pieces = pieces_of(d, s.truncated_log_normal);
+  if (!pieces) return cost;
+  const double k = 2 * kPi / wavelength_m;
+  auto add = [&](double evaluations, double x) {
+    cost.evaluations += evaluations;
+    cost.seconds += evaluations * (kSecondsPerEvaluation + kSecondsPerTerm * x);
+  };
+  // As path_tasks: runs of two or more short straight pieces in spans.
+  const auto spanned = [&](std::size_t i) { return spanned_piece((*pieces)[i], k, s); };
+  for (std::size_t i = 0; i < pieces->size(); ++i) {
+    const std::size_t end = run_end(i, pieces->size(), spanned);
+    const Piece& p = (*pieces)[i];
+    if (s.spans && end >= i + 2) {
+      const double xa = k * p.r0, xb = k * (*pieces)[end - 1].r1;
+      add(std::max(kEvaluationsPerSpan, (xb - xa) * kEvaluationsPerSpanX), 0.5 * (xa + xb));
+      i = end - 1;
+    } else if (!p.zero()) {
+      const double xa = k * p.r0, xb = k * p.r1;
+      add(std::max<double>(s.kronrod_points, (xb - xa) * kEvaluationsPerX), 0.5 * (xa + xb));
+    }
+  }
+  add_legs(std::move(*pieces), wavelength_m, s, add);
+  return cost;
+}
+
+std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribution& d, double wavelength_m,
+                                                              Complex m, const SegmentedContourSettings& s) {
+  auto pieces = pieces_of(d, s.truncated_log_normal);
+  if (!pieces) return std::nullopt;
+  const double k = 2 * kPi / wavelength_m;
+  const double x_min = k * pieces->front().r0, x_max = k * pieces->back().r1;
+  if (!(x_max <= s.max_x) || !(x_min > 0)) return std::nullopt;
+  const ContourCost cost = segmented_contour_cost(d, wavelength_m, s);
+  if (cost.seconds > s.max_seconds)
+    throw std::runtime_error("sigma_ext by segmented contour over " + d.describe() + ": " +
+                             std::to_string(pieces->size()) + " pieces up to x = " + significant(x_max, 3) +
+                             " are estimated to take " + significant(cost.evaluations, 2) + " Mie evaluations (~" +
+                             significant(cost.seconds, 2) + " s of one core), beyond the limit of " +
+                             significant(s.max_seconds, 3) + " s; merge rows or bins of the table");
+  // The budget: the settings', or twice the estimate (a table of many rows).
+  SegmentedContourSettings run = s;
+  run.max_evaluations = std::max(s.max_evaluations, static_cast<std::size_t>(2 * cost.evaluations));
+  const mie::Precision arithmetic = detail::contour_arithmetic(run.rel_tolerance, run.height);
+  ContourExtinction out = route_in(*pieces, d, wavelength_m, m, s, run, arithmetic, x_max, 0);
+  // Splitting panels does not lower the rounding bound.  It stays far below
+  // the tolerance unless the legs carry contributions many times sigma_ext
+  // that cancel (as at a table's steep steps, two kinks close together);
+  // long double lowers it ~2000-fold, at ~10 times the time (scalar series
+  // against sixteen on vectors: a 10^6-row table with such steps, 2.4 s
+  // and 24 s), so the run is repeated in it if that stays within the limit.
+  const auto over = [&] { return out.extinction.rounding_error > s.rel_tolerance * std::abs(out.extinction.value); };
+  const double again_seconds = 10 * cost.seconds * static_cast<double>(out.evaluations) / std::max(cost.evaluations, 1.0);
+  const bool again = over() && arithmetic == mie::Precision::double_precision && again_seconds <= s.max_seconds;
+  if (again)
+    out = route_in(std::move(*pieces), d, wavelength_m, m, s, run, mie::Precision::extended, x_max, out.evaluations);
+  if (over())
+    throw std::runtime_error(
+        "sigma_ext by segmented contour over " + d.describe() + ": the rounding bound of S(0) (" +
+        significant(out.extinction.rounding_error, 3) + " 1/m) exceeds the tolerance (" +
+        significant(s.rel_tolerance * std::abs(out.extinction.value), 3) + " 1/m)" +
+        (again ? " in long double" : " in double, and long double would take ~" + significant(again_seconds, 2) + " s of one core") +
+        ": its legs carry contributions many times sigma_ext that cancel, as at a table's steep steps; smooth the "
+        "table (more digits in its densities) or loosen the tolerance");
   return out;
 }
 
