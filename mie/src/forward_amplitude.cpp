@@ -353,7 +353,9 @@ void forward_amplitudes(const std::complex<double>* x, std::size_t count, std::c
   }
   for (std::size_t k = 0; k < count;) {
     const std::size_t end = std::min(k + kWideBatch, count);
-    const bool wide = end - k > kBatch && std::all_of(x + k, x + end, [](std::complex<double> z) { return std::abs(z) <= kWideBatchMaxX; });
+    // Eight points or fewer (a 7-point panel) fill a batch of eight.
+    const bool wide = end - k > kBatch &&
+                      std::all_of(x + k, x + end, [](std::complex<double> z) { return std::abs(z) <= kWideBatchMaxX; });
     if (wide) run_batch<kWideBatch>(x, k, count, m, evaluate_wide_batch_double, out);
     else run_batch<kBatch>(x, k, count, m, evaluate_batch_double, out);
     k += wide ? kWideBatch : kBatch;

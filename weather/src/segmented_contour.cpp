@@ -329,7 +329,8 @@ double geometric_extinction(const std::vector<Piece>& pieces) {
 template <class Add>
 void add_legs(std::vector<Piece> pieces, double wavelength_m, const SegmentedContourSettings& s, const Add& add) {
   const double sigma = geometric_extinction(pieces);
-  Integrand f(std::move(pieces), wavelength_m, Complex(1.5, 0), s, mie::Precision::double_precision);
+  const Complex any_index(1.5, 0);  // never evaluated: the estimate needs no S(0)
+  Integrand f(std::move(pieces), wavelength_m, any_index, s, mie::Precision::double_precision);
   const std::size_t legs = leg_count(f);
   if (legs == 0 || !(sigma > 0)) return;
   const double allowed = 0.25 * s.rel_tolerance * sigma / static_cast<double>(legs);
@@ -470,7 +471,8 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
         "sigma_ext by segmented contour over " + d.describe() + ": the rounding bound of S(0) (" +
         significant(out.extinction.rounding_error, 3) + " 1/m) exceeds the tolerance (" +
         significant(s.rel_tolerance * std::abs(out.extinction.value), 3) + " 1/m)" +
-        (again ? " in long double" : " in double, and long double would take ~" + significant(again_seconds, 2) + " s of one core") +
+        (again ? " in long double"
+               : " in double, and long double would take ~" + significant(again_seconds, 2) + " s of one core") +
         ": its legs carry contributions many times sigma_ext that cancel, as at a table's steep steps; smooth the "
         "table (more digits in its densities) or loosen the tolerance");
   return out;

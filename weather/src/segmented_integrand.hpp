@@ -436,7 +436,7 @@ class Integrand {
   // the panel on the axis either way (axis_cut).
   double lowest_node_in_y(double height) const { return 0.5 * height * (1 - rule_.abscissa.back()); }
   // The bound at breakpoint k as a function of y_1 (what does not depend on
-  // y_1 taken once: axis_cut evaluates it ~40 times per leg).
+  // y_1 taken once: axis_cut evaluates it ~25 times per leg).
   auto near_axis_bound_of(std::size_t k) const {
     double jump = 0, slope_change = 0;
     difference_at(k, jump, slope_change);
