@@ -156,7 +156,7 @@ struct SegmentedContourSettings {
 // 5e5 such rows) is refused up front with the estimate, so that no run is
 // silent for more than a few seconds.  The estimate cuts the legs as the run
 // will (their near-axis bounds against a budget from Q_ext = 2) and forms the
-// same windows: within 0.98-1.3 times the evaluations of log-normal tables
+// same windows: within 0.98-1.5 times the evaluations of log-normal tables
 // of 10^3-10^5 rows, dense bins and raindrop bins from 200 nm to 10.6 um
 // (0.6 times on 10^6 rows whose densities, given to three digits, make
 // steep steps: the run then splits legs the estimate does not foresee).
