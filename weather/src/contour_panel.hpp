@@ -58,34 +58,33 @@ struct PathPanel {
   std::size_t evaluations = 0;
 };
 
-// Gauss-Kronrod on [a, b] of S(0; x(t)) w(x(t)) x'(t) dt, x(t) = point(t),
-// x'(t) = jacobian(t), w = weight(x) (complex).  The nodes are visited in
-// increasing t, so S(0) is batched over neighbouring |x|.
-template <class Point, class Jacobian, class Weight>
-PathPanel evaluate_path_panel(const Rule& rule, double a, double b, const Point& point, const Jacobian& jacobian,
-                              const Weight& weight, std::complex<double> m, mie::Precision arithmetic) {
+// The nodes of `nodes` (ordered_nodes) mapped to [a, b], and the path's
+// points there: x[j] = point(t_j).
+template <class Point>
+void path_points(const OrderedNodes& nodes, double a, double b, const Point& point, std::complex<double>* x) {
+  const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+  for (std::size_t j = 0; j < nodes.u.size(); ++j) x[j] = point(mid + nodes.u[j] * half);
+}
+
+// The panel's Gauss-Kronrod sums from S(0) at its points (path_points):
+// of S(0; x(t)) w(x(t)) x'(t) over [a, b], x'(t) = jacobian(t), w = weight(x).
+template <class Jacobian, class Weight>
+PathPanel path_panel_sums(const OrderedNodes& nodes, double a, double b, const std::complex<double>* x,
+                          const mie::ForwardAmplitude* fa, const Jacobian& jacobian, const Weight& weight) {
   using Complex = std::complex<double>;
   PathPanel p;
   p.a = a;
   p.b = b;
   const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
-  const OrderedNodes nodes = ordered_nodes(rule);
-  const std::vector<double>&kronrod_w = nodes.kronrod_weight, &gauss_w = nodes.gauss_weight;
   const std::size_t count = nodes.u.size();
-  std::vector<double> t(count);
-  for (std::size_t j = 0; j < count; ++j) t[j] = mid + nodes.u[j] * half;
-  std::vector<Complex> x(count);
-  for (std::size_t j = 0; j < count; ++j) x[j] = point(t[j]);
-  std::vector<mie::ForwardAmplitude> fa(count);
-  mie::forward_amplitudes(x.data(), count, m, arithmetic, fa.data());
   Complex k{}, g{};
   double worst_rounding = 0;
   for (std::size_t j = 0; j < count; ++j) {
-    const Complex jac = jacobian(t[j]);
+    const Complex jac = jacobian(mid + nodes.u[j] * half);
     const Complex w = weight(x[j]) * jac;
     const Complex v = fa[j].s0 * w;
-    k += kronrod_w[j] * v;
-    g += gauss_w[j] * v;
+    k += nodes.kronrod_weight[j] * v;
+    g += nodes.gauss_weight[j] * v;
     worst_rounding = std::max(worst_rounding, fa[j].rounding_bound() * std::abs(w));
     p.q_max = std::max(p.q_max, 4 * std::abs(fa[j].s0) / std::norm(x[j]));
     p.magnitude_max = std::max(p.magnitude_max, fa[j].magnitude);
@@ -97,6 +96,21 @@ PathPanel evaluate_path_panel(const Rule& rule, double a, double b, const Point&
   p.error = half * std::abs(k - g);
   p.rounding = (b - a) * worst_rounding;  // width x largest sampled bound
   return p;
+}
+
+// Gauss-Kronrod on [a, b] of S(0; x(t)) w(x(t)) x'(t) dt, x(t) = point(t),
+// x'(t) = jacobian(t), w = weight(x) (complex).  The nodes are visited in
+// increasing t, so S(0) is batched over neighbouring |x|.
+template <class Point, class Jacobian, class Weight>
+PathPanel evaluate_path_panel(const Rule& rule, double a, double b, const Point& point, const Jacobian& jacobian,
+                              const Weight& weight, std::complex<double> m, mie::Precision arithmetic) {
+  const OrderedNodes nodes = ordered_nodes(rule);
+  const std::size_t count = nodes.u.size();
+  std::vector<std::complex<double>> x(count);
+  path_points(nodes, a, b, point, x.data());
+  std::vector<mie::ForwardAmplitude> fa(count);
+  mie::forward_amplitudes(x.data(), count, m, arithmetic, fa.data());
+  return path_panel_sums(nodes, a, b, x.data(), fa.data(), jacobian, weight);
 }
 
 // The same panel by product integration (product_rule.hpp): S(0; x(t)) x'(t)

@@ -3,6 +3,7 @@
 #include "attenuvis/weather/segmented_contour.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -193,10 +194,26 @@ class PieceQuadrature {
 
   std::size_t evaluations() const { return evaluations_; }
 
+  // Legs' panels on the axis two at a time (one batch of S(0) for both:
+  // Integrand::axis_panels), in task order; the others one by one.
   std::vector<Panel> evaluate_all(const std::vector<Task>& ts) {
     std::vector<Panel> out(ts.size());
-    tbb::parallel_for(std::size_t(0), ts.size(),
-                      [&](std::size_t i) { out[i] = f_.evaluate(ts[i].where, ts[i].index, ts[i].a, ts[i].b); });
+    std::vector<std::size_t> axis, single;
+    for (std::size_t i = 0; i < ts.size(); ++i)
+      (ts[i].where == Where::leg && ts[i].a == 0 && s_.sqrt_axis_panels ? axis : single).push_back(i);
+    tbb::parallel_for(std::size_t(0), single.size() + (axis.size() + 1) / 2, [&](std::size_t u) {
+      if (u < single.size()) {
+        const Task& t = ts[single[u]];
+        out[single[u]] = f_.evaluate(t.where, t.index, t.a, t.b);
+        return;
+      }
+      const std::size_t i = 2 * (u - single.size()), j = std::min(i + 1, axis.size() - 1);
+      const Task &first = ts[axis[i]], &second = ts[axis[j]];
+      throw_if_cancelled(s_.cancel);
+      const std::array<Panel, 2> two = f_.axis_panels(first.index, first.b, second.index, second.b);
+      out[axis[i]] = two[0];
+      out[axis[j]] = two[1];
+    });
     for (const auto& p : out) evaluations_ += p.quad.evaluations;
     return out;
   }
