@@ -200,7 +200,7 @@ class PieceQuadrature {
     std::vector<Panel> out(ts.size());
     std::vector<std::size_t> axis, single;
     for (std::size_t i = 0; i < ts.size(); ++i)
-      (ts[i].where == Where::leg && ts[i].a == 0 && s_.sqrt_axis_panels ? axis : single).push_back(i);
+      (ts[i].where == Where::leg && f_.sqrt_axis_panel(ts[i].a) ? axis : single).push_back(i);
     tbb::parallel_for(std::size_t(0), single.size() + (axis.size() + 1) / 2, [&](std::size_t u) {
       if (u < single.size()) {
         const Task& t = ts[single[u]];
@@ -362,8 +362,8 @@ void add_legs(std::vector<Piece> pieces, double wavelength_m, const SegmentedCon
       add(kEvaluationsPerAxisPanel, x);
       continue;
     }
-    const bool clamped = cut[kb] <= h / 4096 * (1 + 1e-12);  // axis_cut's lowest cut
-    const double deepest = clamped ? f.axis_cut(kb, h * 0x1p-36, allowed, h) : cut[kb];
+    const bool clamped = cut[kb] <= h * Integrand::kLowestCut;
+    const double deepest = clamped ? f.axis_cut_between(kb, h * 0x1p-48, h, allowed) : cut[kb];
     add(kEvaluationsPerAxisPanel + kEvaluationsPerLegPanel * graded_panels(deepest, h), x);
   }
   for (const LegWindow& lw : windows)
@@ -373,18 +373,18 @@ void add_legs(std::vector<Piece> pieces, double wavelength_m, const SegmentedCon
 // One run of the route over `pieces` with S(0) in `arithmetic`; `spent`:
 // the evaluations of an earlier run, counted in the result.
 ContourExtinction route_in(std::vector<Piece> pieces, const SizeDistribution& d, double wavelength_m, Complex m,
-                           const SegmentedContourSettings& s, const SegmentedContourSettings& run,
-                           mie::Precision arithmetic, double x_max, std::size_t spent) {
-  Integrand f(std::move(pieces), wavelength_m, m, run, arithmetic);
+                           const SegmentedContourSettings& s, mie::Precision arithmetic, double x_max,
+                           std::size_t spent) {
+  Integrand f(std::move(pieces), wavelength_m, m, s, arithmetic);
 
   // The path first, then the legs, whose budget the path's sum sets; where
   // rows are dense, leg windows, and the spans again with the density
   // switching at their anchors.
-  PieceQuadrature quadrature(f, d, run);
-  const std::vector<Task> path = path_tasks(f, run);
+  PieceQuadrature quadrature(f, d, s);
+  const std::vector<Task> path = path_tasks(f, s);
   const bool spans = std::any_of(path.begin(), path.end(), [](const Task& t) { return t.where == Where::span; });
   std::vector<Panel> panels = quadrature.evaluate_all(path);
-  const std::vector<double> cut = axis_cuts(f, leg_allowed(f, panels, run));
+  const std::vector<double> cut = axis_cuts(f, leg_allowed(f, panels, s));
   if (spans) {
     f.set_windows(leg_windows(f, cut));
     // Only the span panels across a window's breakpoints change.
@@ -426,22 +426,22 @@ ContourExtinction route_in(std::vector<Piece> pieces, const SizeDistribution& d,
 
 }  // namespace
 
-ContourCost segmented_contour_cost(const SizeDistribution& d, double wavelength_m, const SegmentedContourSettings& s) {
+namespace {
+// The estimate over pieces already taken from the distribution.
+ContourCost cost_of(std::vector<Piece> pieces, double wavelength_m, const SegmentedContourSettings& s) {
   ContourCost cost;
-  auto pieces = pieces_of(d, s.truncated_log_normal);
-  if (!pieces) return cost;
   const double k = 2 * kPi / wavelength_m;
   auto add = [&](double evaluations, double x) {
     cost.evaluations += evaluations;
     cost.seconds += evaluations * (kSecondsPerEvaluation + kSecondsPerTerm * x);
   };
   // As path_tasks: runs of two or more short straight pieces in spans.
-  const auto spanned = [&](std::size_t i) { return spanned_piece((*pieces)[i], k, s); };
-  for (std::size_t i = 0; i < pieces->size(); ++i) {
-    const std::size_t end = run_end(i, pieces->size(), spanned);
-    const Piece& p = (*pieces)[i];
+  const auto spanned = [&](std::size_t i) { return spanned_piece(pieces[i], k, s); };
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const std::size_t end = run_end(i, pieces.size(), spanned);
+    const Piece& p = pieces[i];
     if (s.spans && end >= i + 2) {
-      const double xa = k * p.r0, xb = k * (*pieces)[end - 1].r1;
+      const double xa = k * p.r0, xb = k * pieces[end - 1].r1;
       add(std::max(kEvaluationsPerSpan, (xb - xa) * kEvaluationsPerSpanX), 0.5 * (xa + xb));
       i = end - 1;
     } else if (!p.zero()) {
@@ -449,8 +449,14 @@ ContourCost segmented_contour_cost(const SizeDistribution& d, double wavelength_
       add(std::max<double>(s.kronrod_points, (xb - xa) * kEvaluationsPerX), 0.5 * (xa + xb));
     }
   }
-  add_legs(std::move(*pieces), wavelength_m, s, add);
+  add_legs(std::move(pieces), wavelength_m, s, add);
   return cost;
+}
+}  // namespace
+
+ContourCost segmented_contour_cost(const SizeDistribution& d, double wavelength_m, const SegmentedContourSettings& s) {
+  auto pieces = pieces_of(d, s.truncated_log_normal);
+  return pieces ? cost_of(std::move(*pieces), wavelength_m, s) : ContourCost{};
 }
 
 std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribution& d, double wavelength_m,
@@ -460,7 +466,7 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
   const double k = 2 * kPi / wavelength_m;
   const double x_min = k * pieces->front().r0, x_max = k * pieces->back().r1;
   if (!(x_max <= s.max_x) || !(x_min > 0)) return std::nullopt;
-  const ContourCost cost = segmented_contour_cost(d, wavelength_m, s);
+  const ContourCost cost = cost_of(*pieces, wavelength_m, s);
   if (cost.seconds > s.max_seconds)
     throw std::runtime_error("sigma_ext by segmented contour over " + d.describe() + ": " +
                              std::to_string(pieces->size()) + " pieces up to x = " + significant(x_max, 3) +
@@ -471,7 +477,7 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
   SegmentedContourSettings run = s;
   run.max_evaluations = std::max(s.max_evaluations, static_cast<std::size_t>(2 * cost.evaluations));
   const mie::Precision arithmetic = detail::contour_arithmetic(run.rel_tolerance, run.height);
-  ContourExtinction out = route_in(*pieces, d, wavelength_m, m, s, run, arithmetic, x_max, 0);
+  ContourExtinction out = route_in(*pieces, d, wavelength_m, m, run, arithmetic, x_max, 0);
   // Splitting panels does not lower the rounding bound.  It stays far below
   // the tolerance unless the legs carry contributions many times sigma_ext
   // that cancel (as at a table's steep steps, two kinks close together);
@@ -482,7 +488,7 @@ std::optional<ContourExtinction> segmented_contour_extinction(const SizeDistribu
   const double again_seconds = 10 * cost.seconds * static_cast<double>(out.evaluations) / std::max(cost.evaluations, 1.0);
   const bool again = over() && arithmetic == mie::Precision::double_precision && again_seconds <= s.max_seconds;
   if (again)
-    out = route_in(std::move(*pieces), d, wavelength_m, m, s, run, mie::Precision::extended, x_max, out.evaluations);
+    out = route_in(std::move(*pieces), d, wavelength_m, m, run, mie::Precision::extended, x_max, out.evaluations);
   if (over())
     throw std::runtime_error(
         "sigma_ext by segmented contour over " + d.describe() + ": the rounding bound of S(0) (" +

@@ -409,7 +409,7 @@ class Integrand {
 
   // The leg up from breakpoint k over y in [a, b]: i int D_k(x_k + i y) dy.
   Panel leg_panel(std::size_t k, double a, double b) const {
-    if (a == 0 && s_.sqrt_axis_panels) return axis_panels(k, b, k, b)[0];
+    if (sqrt_axis_panel(a)) return axis_panels(k, b, k, b)[0];
     Panel p;
     p.where = Where::leg;
     p.index = k;
@@ -420,6 +420,9 @@ class Integrand {
     if (a == 0) p.near_axis = near_axis_bound(k, lowest_node(b));
     return p;
   }
+
+  // Whether a leg's panel from y = a up is on the axis and taken in sqrt(y).
+  bool sqrt_axis_panel(double a) const { return a == 0 && s_.sqrt_axis_panels; }
 
   // The panels on the axis [0, b1] of leg k1 and [0, b2] of leg k2 in
   // sqrt(y), y = b t^2, dy = 2 b t dt (segmented_contour.hpp, "The panel on
@@ -480,11 +483,16 @@ class Integrand {
   double near_axis_bound(std::size_t k, double y1) const { return near_axis_bound_of(k)(y1); }
   // Where to cut a leg's panel [0, b] on the axis so that the lower part's
   // bound, were its rule the settings' in y, is about `allowed`: between
-  // b/4096 and `largest` (the upper part is split again at its middle if its
-  // |K - G| asks).  The rule in sqrt(y) charges 11 to 120 times less.
+  // b kLowestCut and `largest` (the upper part is split again at its middle
+  // if its |K - G| asks).  The rule in sqrt(y) charges 11 to 120 times less.
+  static constexpr double kLowestCut = 1.0 / 4096;
   double axis_cut(std::size_t k, double b, double allowed, double largest) const {
+    return axis_cut_between(k, b * kLowestCut, largest, allowed);
+  }
+  // The same cut searched between lo and hi (at lo if the bound there is
+  // still above `allowed`).
+  double axis_cut_between(std::size_t k, double lo, double hi, double allowed) const {
     const auto bound = near_axis_bound_of(k);
-    double lo = b / 4096, hi = largest;
     if (bound(lowest_node_in_y(hi)) <= allowed) return hi;
     // Bisection in log (the bound grows with the height) to 2^-24 of the
     // range in ln c: a relative precision of ~1e-6 in c, which only sizes a panel.
