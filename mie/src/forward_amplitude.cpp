@@ -54,20 +54,29 @@ struct ForwardProblem {
   ForwardProblem(const std::complex<double>* x_in, std::complex<double> m_in)
       : m(m_in.real(), m_in.imag()), inv_m(detail::recip(m)) {
     using C = std::complex<R>;
+    R largest = 0;
     for (int j = 0; j < L; ++j) {
       const C x(x_in[j].real(), x_in[j].imag());
       ax[j] = std::abs(x);
-      N = std::max(N, static_cast<std::size_t>(ax[j] + 8 * std::cbrt(ax[j]) + 24));
+      largest = std::max(largest, ax[j]);
       const C a = detail::recip(x), b = detail::recip(m * x);
       inv_x.re[j] = a.real(), inv_x.im[j] = a.imag(), inv_mx.re[j] = b.real(), inv_mx.im[j] = b.imag();
     }
+    N = table_length(largest);
+  }
+  // Tables for series up to |z|: the largest lane's (one cube root per batch).
+  static std::size_t table_length(R largest_abs_z) {
+    return static_cast<std::size_t>(largest_abs_z + 8 * std::cbrt(largest_abs_z) + 24);
   }
 };
 
-// Per order n <= N: Dₙ(x), ψₙ/ψ_{n−1} at x, Dₙ(mx).
+// Per order n <= N: ψₙ/ψ_{n−1} at x and Dₙ(mx).  Dₙ(x) is not kept: it is
+// (n+1)/x − ψ_{n+1}/ψₙ (B&H eq. 4.89), the same operation, in the same
+// order, that produced it, so the sums read it back bit for bit from one
+// table fewer (the tables are much of the series' memory traffic).
 template <class R, int L>
 struct ForwardTables {
-  std::vector<Lanes<R, L>> d_x, psi_up, d_mx;
+  std::vector<Lanes<R, L>> psi_up, d_mx;
 };
 
 // ψ_{N−1}/ψ_N at the L arguments z = 1/inv_z: Lentz's continued fraction
@@ -100,11 +109,11 @@ Lanes<R, L> psi_ratio_lanes(std::size_t N, const Lanes<R, L>& inv_z) {
     for (int j = 0; j < L; ++j) {
       const R br = bk * inv_z.re[j], bi = bk * inv_z.im[j];
       R dr = br - d.re[j], di = bi - d.im[j];
-      const bool d_zero = dr == 0 && di == 0;
+      const bool d_zero = (dr == 0) & (di == 0);  // & not &&: no branch in the lane loop
       dr = d_zero ? tiny : dr, di = d_zero ? R(0) : di;
       const R sc = 1 / (c.re[j] * c.re[j] + c.im[j] * c.im[j]);
       R cr = br - c.re[j] * sc, ci = bi - (-c.im[j] * sc);
-      const bool c_zero = cr == 0 && ci == 0;
+      const bool c_zero = (cr == 0) & (ci == 0);
       cr = c_zero ? tiny : cr, ci = c_zero ? R(0) : ci;
       const R sd = 1 / (dr * dr + di * di);
       dr = dr * sd, di = -di * sd;
@@ -132,37 +141,42 @@ template <class R, int L>
 void downward_log_derivatives(const ForwardProblem<R, L>& p, std::size_t N, ForwardTables<R, L>& t) {
   using V = Lanes<R, L>;
   const V &inv_x = p.inv_x, &inv_mx = p.inv_mx;
-  t.d_x.resize(N + 1);
-  t.psi_up.resize(N + 1);
+  t.psi_up.resize(N + 2);
   t.d_mx.resize(N + 1);
   // Dₙ(mx) starts at N_mx >= N past |mx| (m > 1 puts |mx| beyond the tables),
   // where the continued fraction takes a few dozen steps instead of the
   // ~|mx| − N it needs at N, and runs down to N by the recurrence: one
   // division per order instead of the fraction's two.
-  std::size_t N_mx = N;
-  for (int j = 0; j < L; ++j) {
-    const R amx = 1 / std::hypot(inv_mx.re[j], inv_mx.im[j]);
-    N_mx = std::max(N_mx, static_cast<std::size_t>(amx + 8 * std::cbrt(amx) + 24));
-  }
+  R largest_mx = 0;
+  for (int j = 0; j < L; ++j) largest_mx = std::max(largest_mx, 1 / std::hypot(inv_mx.re[j], inv_mx.im[j]));
+  const std::size_t N_mx = std::max(N, ForwardProblem<R, L>::table_length(largest_mx));
   const V start_x = psi_ratio_lanes(N, inv_x), start_mx = psi_ratio_lanes(N_mx, inv_mx);
-  V d_mx;
+  V dx, d_mx;
   for (int j = 0; j < L; ++j) {
-    t.d_x[N].re[j] = start_x.re[j] - R(N) * inv_x.re[j], t.d_x[N].im[j] = start_x.im[j] - R(N) * inv_x.im[j];
+    dx.re[j] = start_x.re[j] - R(N) * inv_x.re[j], dx.im[j] = start_x.im[j] - R(N) * inv_x.im[j];
+    // A ψ_{N+1}/ψ_N that gives back D_N(x) through (N+1)/x − ψ_{N+1}/ψ_N
+    // to within a rounding (the series has converged long before order N).
+    t.psi_up[N + 1].re[j] = R(N + 1) * inv_x.re[j] - dx.re[j];
+    t.psi_up[N + 1].im[j] = R(N + 1) * inv_x.im[j] - dx.im[j];
     d_mx.re[j] = start_mx.re[j] - R(N_mx) * inv_mx.re[j], d_mx.im[j] = start_mx.im[j] - R(N_mx) * inv_mx.im[j];
   }
   for (std::size_t n = N_mx; n > N; --n) {
-    const R rn = R(n);
+    const R rn = detail::index_real<R>(n);
+    // Not unrolled: GCC unrolls this short lane loop in full and then leaves
+    // it scalar (sixteen scalar divisions per order, ~9 % of an evaluation
+    // at |x| = 400); as a loop it is vectorised.
+#pragma GCC unroll 1
     for (int j = 0; j < L; ++j) {
       const R br = d_mx.re[j] + rn * inv_mx.re[j], bi = d_mx.im[j] + rn * inv_mx.im[j];
       const R sb = 1 / (br * br + bi * bi);
       d_mx.re[j] = rn * inv_mx.re[j] - br * sb, d_mx.im[j] = rn * inv_mx.im[j] + bi * sb;
     }
   }
-  t.d_mx[N] = d_mx;
   // The running Dₙ are carried in locals, not read back from the tables: the
   // recurrence is a chain of dependent divisions, and a store-to-load round
   // trip per order would lengthen it.
-  V dx = t.d_x[N], dmx = t.d_mx[N];
+  t.d_mx[N] = d_mx;
+  V dmx = d_mx;
   for (std::size_t n = N; n >= 1; --n) {
     const R rn = R(n);
     V up;
@@ -174,7 +188,7 @@ void downward_log_derivatives(const ForwardProblem<R, L>& p, std::size_t N, Forw
       dx.re[j] = rn * inv_x.re[j] - ar * sa, dx.im[j] = rn * inv_x.im[j] + ai * sa;
       dmx.re[j] = rn * inv_mx.re[j] - br * sb, dmx.im[j] = rn * inv_mx.im[j] + bi * sb;
     }
-    t.psi_up[n] = up, t.d_x[n - 1] = dx, t.d_mx[n - 1] = dmx;
+    t.psi_up[n] = up, t.d_mx[n - 1] = dmx;
   }
 }
 
@@ -197,9 +211,10 @@ template <bool test, class R, int L>
 void add_forward_order(const ForwardProblem<R, L>& p, const ForwardTables<R, L>& tables, std::size_t n,
                        ForwardSums<R, L>& s, R* term2, R* sum2) {
   const R m_re = p.m.real(), m_im = p.m.imag(), im_re = p.inv_m.real(), im_im = p.inv_m.imag();
-  const R rn = R(n), weight = R(2 * n + 1);
-  const Lanes<R, L> &dx = tables.d_x[n], &dmx = tables.d_mx[n], &up = tables.psi_up[n], &inv_x = p.inv_x;
+  const R rn = R(n), weight = R(2 * n + 1), rn1 = R(n + 1);
+  const Lanes<R, L> &dmx = tables.d_mx[n], &up = tables.psi_up[n], &up1 = tables.psi_up[n + 1], &inv_x = p.inv_x;
   for (int j = 0; j < L; ++j) {
+    const R dxr = rn1 * inv_x.re[j] - up1.re[j], dxi = rn1 * inv_x.im[j] - up1.im[j];  // Dₙ(x)
     const R qr = s.xi_down.re[j], qi = s.xi_down.im[j];  // ξ_{n−1}/ξₙ
     const R fr = up.re[j] * qr - up.im[j] * qi, fi = up.re[j] * qi + up.im[j] * qr;
     const R tr = s.t.re[j] * fr - s.t.im[j] * fi, ti = s.t.re[j] * fi + s.t.im[j] * fr;
@@ -212,7 +227,7 @@ void add_forward_order(const ForwardProblem<R, L>& p, const ForwardTables<R, L>&
     const R sr = m_re * dr - m_im * di, si = m_re * di + m_im * dr;      // m Dₙ(mx)
     const R nxr = rn * inv_x.re[j] - qr, nxi = rn * inv_x.im[j] - qi;
     const R Ur = pr + nxr, Ui = pi + nxi, Vr = sr + nxr, Vi = si + nxi;
-    const R unr = pr - dx.re[j], uni = pi - dx.im[j], vnr = sr - dx.re[j], vni = si - dx.im[j];
+    const R unr = pr - dxr, uni = pi - dxi, vnr = sr - dxr, vni = si - dxi;
     const R aVr = unr * Vr - uni * Vi, aVi = unr * Vi + uni * Vr;  // (Dₙ(mx)/m − Dₙ(x)) V
     const R bUr = vnr * Ur - vni * Ui, bUi = vnr * Ui + vni * Ur;  // (m Dₙ(mx) − Dₙ(x)) U
     const R UVr = Ur * Vr - Ui * Vi, UVi = Ur * Vi + Ui * Vr, q = 1 / (UVr * UVr + UVi * UVi);
@@ -295,10 +310,11 @@ void evaluate(const std::complex<double>* x_in, std::complex<double> m_in, Forwa
 
 // Series per batch.  Sixteen side by side hide more of the latency of each
 // recurrence's divisions than eight (47 against 54 us per point at |x| = 1e4,
-// validation/bench/forward_amplitude_speed), but their tables (3 x 16 bytes
-// per series and order, kept per thread) no longer stay in cache at large |x|,
-// where sixteen gain nothing: batches whose |x| all lie below kWideBatchMaxX
-// take sixteen (<= 15 MB of tables), others eight (38 MB at |x| = 1e5).
+// validation/bench/forward_amplitude_speed, measured with three tables), but
+// their tables (2 x 16 bytes per series and order, kept per thread) no longer
+// stay in cache at large |x|, where sixteen gain nothing: batches whose |x|
+// all lie below kWideBatchMaxX take sixteen (<= 10 MB of tables), others
+// eight (26 MB at |x| = 1e5).
 constexpr int kBatch = 8, kWideBatch = 16;
 constexpr double kWideBatchMaxX = 2e4;
 
