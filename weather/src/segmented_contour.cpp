@@ -14,6 +14,7 @@
 
 #include <boost/math/constants/constants.hpp>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "attenuvis/io/number_text.hpp"
@@ -88,11 +89,14 @@ double leg_allowed(const Integrand& f, const std::vector<Panel>& path, const Seg
 }
 
 // Where each leg's first panel [0, c] ends: the bound below its lowest node
-// is `allowed` (infinity where the leg vanishes).
+// is `allowed` (infinity where the leg vanishes).  Each cut is a bisection of
+// its own (4 % of a run over 10^5 rows on one core): shared out like the panels.
 std::vector<double> axis_cuts(const Integrand& f, double allowed) {
   std::vector<double> c(f.breakpoints(), std::numeric_limits<double>::infinity());
-  for (std::size_t kb = 0; kb < f.breakpoints(); ++kb)
-    if (!f.leg_vanishes(kb)) c[kb] = f.axis_cut(kb, f.height(f.x_at(kb)), allowed, f.height(f.x_at(kb)));
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, f.breakpoints(), 1024), [&](const auto& range) {
+    for (std::size_t kb = range.begin(); kb < range.end(); ++kb)
+      if (!f.leg_vanishes(kb)) c[kb] = f.axis_cut(kb, f.height(f.x_at(kb)), allowed, f.height(f.x_at(kb)));
+  });
   return c;
 }
 
@@ -194,25 +198,29 @@ class PieceQuadrature {
 
   std::size_t evaluations() const { return evaluations_; }
 
-  // Legs' panels on the axis two at a time (one batch of S(0) for both:
+  // Legs' panels on the axis in groups (one call of S(0) for all:
   // Integrand::axis_panels), in task order; the others one by one.
   std::vector<Panel> evaluate_all(const std::vector<Task>& ts) {
     std::vector<Panel> out(ts.size());
     std::vector<std::size_t> axis, single;
     for (std::size_t i = 0; i < ts.size(); ++i)
       (ts[i].where == Where::leg && f_.sqrt_axis_panel(ts[i].a) ? axis : single).push_back(i);
-    tbb::parallel_for(std::size_t(0), single.size() + (axis.size() + 1) / 2, [&](std::size_t u) {
+    constexpr std::size_t group = Integrand::kAxisGroup;
+    const std::size_t groups = (axis.size() + group - 1) / group;
+    tbb::parallel_for(std::size_t(0), single.size() + groups, [&](std::size_t u) {
       if (u < single.size()) {
         const Task& t = ts[single[u]];
         out[single[u]] = f_.evaluate(t.where, t.index, t.a, t.b);
         return;
       }
-      const std::size_t i = 2 * (u - single.size()), j = std::min(i + 1, axis.size() - 1);
-      const Task &first = ts[axis[i]], &second = ts[axis[j]];
       throw_if_cancelled(s_.cancel);
-      const std::array<Panel, 2> two = f_.axis_panels(first.index, first.b, second.index, second.b);
-      out[axis[i]] = two[0];
-      out[axis[j]] = two[1];
+      const std::size_t first = group * (u - single.size()), count = std::min(group, axis.size() - first);
+      std::array<std::size_t, group> k;
+      std::array<double, group> b;
+      std::array<Panel, group> panels;
+      for (std::size_t i = 0; i < count; ++i) k[i] = ts[axis[first + i]].index, b[i] = ts[axis[first + i]].b;
+      f_.axis_panels(k.data(), b.data(), count, panels.data());
+      for (std::size_t i = 0; i < count; ++i) out[axis[first + i]] = panels[i];
     });
     for (const auto& p : out) evaluations_ += p.quad.evaluations;
     return out;
@@ -320,12 +328,12 @@ std::string method_text(const SizeDistribution& d, const SegmentedContourSetting
 // Evaluations per unit of x on a long piece's path, per short piece, and
 // per unit of x and at least on a span of short rows (10,000 log-normal rows
 // at 550 nm: the path's spans ~1,400 evaluations); a panel on the axis (7
-// points in a batch of 8), one above it, a window's line; and the CPU cost
-// of one evaluation (validation/bench/forward_amplitude_speed: 0.9 us at
+// points, sixteen legs' in seven full batches), one above it, a window's
+// line; and the CPU cost of one evaluation (validation/bench/forward_amplitude_speed: 0.9 us at
 // x = 100, 46 us at 1e4), from the runs quoted in segmented_contour.hpp,
 // rounded up.
 constexpr double kEvaluationsPerX = 0.7, kEvaluationsPerSpanX = 2, kEvaluationsPerSpan = 31;
-constexpr double kEvaluationsPerAxisPanel = 8, kEvaluationsPerLegPanel = 15, kEvaluationsPerLine = 31 * kLinePanels;
+constexpr double kEvaluationsPerAxisPanel = 7, kEvaluationsPerLegPanel = 15, kEvaluationsPerLine = 31 * kLinePanels;
 constexpr double kSecondsPerTerm = 5e-9, kSecondsPerEvaluation = 0.45e-6;
 
 // sigma_ext with Q_ext = 2 (the pieces at their middles): the scale of the

@@ -409,8 +409,11 @@ class Integrand {
 
   // The leg up from breakpoint k over y in [a, b]: i int D_k(x_k + i y) dy.
   Panel leg_panel(std::size_t k, double a, double b) const {
-    if (sqrt_axis_panel(a)) return axis_panels(k, b, k, b)[0];
     Panel p;
+    if (sqrt_axis_panel(a)) {
+      axis_panels(&k, &b, 1, &p);
+      return p;
+    }
     p.where = Where::leg;
     p.index = k;
     const double xk = x_at(k);
@@ -424,35 +427,37 @@ class Integrand {
   // Whether a leg's panel from y = a up is on the axis and taken in sqrt(y).
   bool sqrt_axis_panel(double a) const { return a == 0 && s_.sqrt_axis_panels; }
 
-  // The panels on the axis [0, b1] of leg k1 and [0, b2] of leg k2 in
-  // sqrt(y), y = b t^2, dy = 2 b t dt (segmented_contour.hpp, "The panel on
-  // the axis"): their fourteen S(0) in one call, a batch of sixteen series
-  // (two of eight take ~10 % longer; forward_amplitude.cpp).
-  std::array<Panel, 2> axis_panels(std::size_t k1, double b1, std::size_t k2, double b2) const {
+  // Legs whose panels on the axis are evaluated together (axis_panels).
+  static constexpr std::size_t kAxisGroup = 16;
+
+  // The panels on the axis [0, b[i]] of legs k[i], i < count <= kAxisGroup,
+  // in sqrt(y), y = b t^2, dy = 2 b t dt (segmented_contour.hpp, "The panel
+  // on the axis"): their 7 count S(0) in one call.  Sixteen legs' 112 points
+  // fill seven batches of sixteen series (forward_amplitude.cpp), where one
+  // leg alone fills seven lanes of eight and two legs fourteen of sixteen.
+  void axis_panels(const std::size_t* k, const double* b, std::size_t count, Panel* out) const {
+    ATTENUVIS_CHECK(count <= kAxisGroup);
     const detail::OrderedNodes nodes = detail::ordered_nodes(axis_rule_);
-    const std::size_t n = nodes.u.size(), panels = k1 == k2 && b1 == b2 ? 1 : 2;  // one: the same panel twice
-    const std::size_t k[2] = {k1, k2};
-    const double b[2] = {b1, b2};
-    std::vector<Complex> x(2 * n);
-    std::vector<mie::ForwardAmplitude> fa(2 * n);
-    for (std::size_t i = 0; i < panels; ++i) {
+    const std::size_t n = nodes.u.size();
+    std::array<Complex, 7 * kAxisGroup> x;
+    std::array<mie::ForwardAmplitude, 7 * kAxisGroup> fa;
+    ATTENUVIS_CHECK(n == 7);
+    for (std::size_t i = 0; i < count; ++i) {
       const double xk = x_at(k[i]), height = b[i];
       detail::path_points(nodes, 0.0, 1.0, [&](double t) { return Complex(xk, height * t * t); }, &x[i * n]);
     }
-    mie::forward_amplitudes(x.data(), panels * n, m_, arithmetic_, fa.data());
-    std::array<Panel, 2> out;
-    for (std::size_t i = 0; i < 2; ++i) {
-      const std::size_t at = panels == 1 ? 0 : i * n;
+    mie::forward_amplitudes(x.data(), count * n, m_, arithmetic_, fa.data());
+    for (std::size_t i = 0; i < count; ++i) {
       const double height = b[i];
       Panel& p = out[i];
       p.where = Where::leg;
       p.index = k[i];
       p.quad = detail::path_panel_sums(
-          nodes, 0.0, 1.0, &x[at], &fa[at], [&](double t) { return Complex(0, 2 * height * t); }, leg_weight(k[i]));
+          nodes, 0.0, 1.0, &x[i * n], &fa[i * n], [&](double t) { return Complex(0, 2 * height * t); },
+          leg_weight(k[i]));
       p.quad.a = 0, p.quad.b = height;
       p.near_axis = near_axis_bound(k[i], lowest_node(height));
     }
-    return out;
   }
 
   // Below the lowest node y_1 of a leg's panel on the axis the rule sees

@@ -42,8 +42,8 @@
 // 2 c t dt, still analytic and smooth in t, whose lowest node lies at
 // y_1 = c (0.0198)^2 = 3.9e-4 c, eleven times nearer the axis, so the bound
 // charged falls 11-fold at a jump and 120-fold at a kink (it grows like y_1
-// and y_1^2).  Seven nodes fill one batch of eight S(0) series instead of
-// sixteen.  Sizing c by the lower node instead (11 times taller panels) fails
+// and y_1^2).  Sixteen legs' seven nodes are evaluated together, seven full
+// batches of sixteen S(0) series.  Sizing c by the lower node instead (11 times taller panels) fails
 // the 7-point rule's |K - G|: 1.79 M evaluations on 10^5 rows against 0.74 M.
 // Measured at 1e-9 on log-normal fog tables at 550 nm: 10^4 rows 190,024 ->
 // 110,024 evaluations, 10^5 rows 1,544,461 -> 744,461, the reported error
