@@ -10,7 +10,8 @@
 namespace attenuvis::io {
 
 double parse_double(std::string_view text, std::string_view what) {
-  const std::string quoted = std::string(what) + ": '" + std::string(text) + "'";
+  // The message is built only on failure: tables of a million numbers pass through here.
+  const auto quoted = [&] { return std::string(what) + ": '" + std::string(text) + "'"; };
   if (text.empty()) throw std::invalid_argument(std::string(what) + ": a number is missing");
   const char* begin = text.data();
   const char* end = begin + text.size();
@@ -18,9 +19,9 @@ double parse_double(std::string_view text, std::string_view what) {
   double value = 0;
   const auto [ptr, ec] = std::from_chars(begin, end, value);
   if (ec == std::errc::result_out_of_range)
-    throw std::invalid_argument(quoted + " is out of the range of a double");
-  if (ec != std::errc() || ptr != end) throw std::invalid_argument(quoted + " is not a number");
-  if (!std::isfinite(value)) throw std::invalid_argument(quoted + " is not finite");
+    throw std::invalid_argument(quoted() + " is out of the range of a double");
+  if (ec != std::errc() || ptr != end) throw std::invalid_argument(quoted() + " is not a number");
+  if (!std::isfinite(value)) throw std::invalid_argument(quoted() + " is not finite");
   return value;
 }
 
