@@ -89,8 +89,9 @@ double leg_allowed(const Integrand& f, const std::vector<Panel>& path, const Seg
 }
 
 // Where each leg's first panel [0, c] ends: the bound below its lowest node
-// is `allowed` (infinity where the leg vanishes).  Each cut is a bisection of
-// its own (4 % of a run over 10^5 rows on one core): shared out like the panels.
+// is `allowed` (infinity where the leg vanishes).  Each cut is a root search
+// of its own (4 % of a run over 10^5 rows on one core when they were
+// bisections): shared out like the panels.
 std::vector<double> axis_cuts(const Integrand& f, double allowed) {
   std::vector<double> c(f.breakpoints(), std::numeric_limits<double>::infinity());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, f.breakpoints(), 1024), [&](const auto& range) {

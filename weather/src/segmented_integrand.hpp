@@ -473,17 +473,49 @@ class Integrand {
   // The lowest node of the settings' rule on [0, height] in y, which sizes
   // the panel on the axis either way (axis_cut).
   double lowest_node_in_y(double height) const { return 0.5 * height * (1 - rule_.abscissa.back()); }
-  // The bound at breakpoint k as a function of y_1 (what does not depend on
-  // y_1 taken once: axis_cut evaluates it ~25 times per leg).
-  auto near_axis_bound_of(std::size_t k) const {
+  // The near-axis bound at one breakpoint as a function of y_1 (segmented_contour.hpp):
+  // 2 scale S_max e^{2 y_1} (|J| y_1 + slope y_1^2 / (2 k)), with what does
+  // not depend on y_1 taken once.
+  struct NearAxisBound {
+    double factor, jump, kink;  // 2 scale S_max, |J|, slope / (2 k)
+
+    double operator()(double y1) const {
+      const double t = 2 * y1;
+      return factor * growth(t) * (jump * y1 + kink * y1 * y1);
+    }
+    // The y_1 in [lo, hi] where the bound equals `allowed`, given that it is
+    // below at lo and above at hi: Newton's method from the root without
+    // the growth factor (>= 1, so that root lies above), or from hi.  The
+    // bound is increasing and convex in y_1, so the steps fall monotonically
+    // onto the root; they stop when one moves y_1 by less than 1e-7 of
+    // itself (it only sizes a panel).
+    double root(double allowed, double lo, double hi) const {
+      const double c = allowed / factor;  // kink y^2 + jump y = c, the stable root
+      double y = std::min(hi, 2 * c / (jump + std::sqrt(jump * jump + 4 * kink * c)));
+      for (int i = 0; i < 60; ++i) {
+        const double t = 2 * y, q = jump * y + kink * y * y;
+        const double value = factor * growth(t) * q - allowed;
+        const double slope = factor * (2 * growth_slope(t) * q + growth(t) * (jump + 2 * kink * y));
+        const double step = value / slope;
+        if (!(step > 0)) break;
+        y = std::max(lo, y - step);
+        if (step <= 1e-7 * y) break;
+      }
+      return y;
+    }
+
+   private:
+    // e^t <= 1 + t + t^2 for 0 <= t <= 1 (the rest of the series is at most
+    // (e - 2) t^2); y_1 < 0.02 here (a lowest node below heights <= 4), and
+    // exp was most of the time of the legs' cuts.
+    static double growth(double t) { return t <= 1 ? 1 + t + t * t : std::exp(t); }
+    static double growth_slope(double t) { return t <= 1 ? 1 + 2 * t : std::exp(t); }
+  };
+  NearAxisBound near_axis_bound_of(std::size_t k) const {
     double jump = 0, slope_change = 0;
     difference_at(k, jump, slope_change);
-    const double fa_bound = forward_amplitude_bound(x_at(k));
     const double slope = (curved_at(k) ? 2.0 : 1.0) * std::abs(slope_change);
-    return [=, scale = scale_, k = k_](double y1) {
-      const double s_max = fa_bound * std::exp(2 * y1);
-      return 2 * scale * s_max * (std::abs(jump) * y1 + slope * y1 * y1 / (2 * k));
-    };
+    return {2 * scale_ * forward_amplitude_bound(x_at(k)), std::abs(jump), slope / (2 * k_)};
   }
   double near_axis_bound(std::size_t k, double y1) const { return near_axis_bound_of(k)(y1); }
   // Where to cut a leg's panel [0, b] on the axis so that the lower part's
@@ -495,17 +527,14 @@ class Integrand {
     return axis_cut_between(k, b * kLowestCut, largest, allowed);
   }
   // The same cut searched between lo and hi (at lo if the bound there is
-  // still above `allowed`).
+  // still above `allowed`).  The lowest node is proportional to the height.
   double axis_cut_between(std::size_t k, double lo, double hi, double allowed) const {
-    const auto bound = near_axis_bound_of(k);
-    if (bound(lowest_node_in_y(hi)) <= allowed) return hi;
-    // Bisection in log (the bound grows with the height) to 2^-24 of the
-    // range in ln c: a relative precision of ~1e-6 in c, which only sizes a panel.
-    for (int i = 0; i < 24; ++i) {
-      const double mid = std::sqrt(lo * hi);
-      (bound(lowest_node_in_y(mid)) <= allowed ? lo : hi) = mid;
-    }
-    return lo;
+    const NearAxisBound bound = near_axis_bound_of(k);
+    const double node_per_height = lowest_node_in_y(1.0);
+    const double y_lo = node_per_height * lo, y_hi = node_per_height * hi;
+    if (bound(y_hi) <= allowed) return hi;
+    if (bound(y_lo) > allowed) return lo;
+    return std::clamp(bound.root(allowed, y_lo, y_hi) / node_per_height, lo, hi);
   }
 
   Panel evaluate(Where where, std::size_t index, double a, double b) const {
