@@ -309,14 +309,12 @@ void evaluate(const std::complex<double>* x_in, std::complex<double> m_in, Forwa
 }
 
 // Series per batch.  Sixteen side by side hide more of the latency of each
-// recurrence's divisions than eight (47 against 54 us per point at |x| = 1e4,
-// validation/bench/forward_amplitude_speed, measured with three tables), but
-// their tables (2 x 16 bytes per series and order, kept per thread) no longer
-// stay in cache at large |x|, where sixteen gain nothing: batches whose |x|
-// all lie below kWideBatchMaxX take sixteen (<= 10 MB of tables), others
-// eight (26 MB at |x| = 1e5).
+// recurrence's divisions than eight, at every |x| now that the tables are
+// two (2 x 16 bytes per series and order, kept per thread: 10 MB at
+// |x| = 2e4, 51 MB at 1e5): 143 against 122-130 us per point at |x| = 3e4,
+// 240 against 203-215 at 5e4 (validation/bench/forward_amplitude_speed).
+// With three tables sixteen gained nothing above |x| ~ 2e4 and took eight.
 constexpr int kBatch = 8, kWideBatch = 16;
-constexpr double kWideBatchMaxX = 2e4;
 
 // The double series of one batch, compiled once per instruction set (the
 // series are inlined into each clone, flatten): the lane loops above then run
@@ -370,8 +368,7 @@ void forward_amplitudes(const std::complex<double>* x, std::size_t count, std::c
   for (std::size_t k = 0; k < count;) {
     const std::size_t end = std::min(k + kWideBatch, count);
     // Eight points or fewer (a 7-point panel) fill a batch of eight.
-    const bool wide = end - k > kBatch &&
-                      std::all_of(x + k, x + end, [](std::complex<double> z) { return std::abs(z) <= kWideBatchMaxX; });
+    const bool wide = end - k > kBatch;
     if (wide) run_batch<kWideBatch>(x, k, count, m, evaluate_wide_batch_double, out);
     else run_batch<kBatch>(x, k, count, m, evaluate_batch_double, out);
     k += wide ? kWideBatch : kBatch;

@@ -62,9 +62,9 @@ ForwardAmplitude forward_amplitude(std::complex<double> x, std::complex<double> 
                                    Precision precision = Precision::extended);
 
 // S(0) at x[0..count) for one m, the same values as forward_amplitude() one by
-// one (within their rounding bounds), about 5x faster in double on a CPU
-// with AVX-512: sixteen series run side by side (eight where |x| > 2e4, whose
-// tables would not stay in cache: 38 MB per thread at |x| = 1e5 with eight),
+// one (within their rounding bounds), about 5-7x faster in double on a CPU
+// with AVX-512: sixteen series run side by side (eight for a call of eight
+// points or fewer; the tables take 51 MB per thread at |x| = 1e5),
 // compiled per instruction set, so that their divisions overlap and
 // vectorise, and the continued fractions that start them run side by side
 // too.  Points of similar |x| batch best (the tables run to the largest).
