@@ -330,9 +330,9 @@ std::string method_text(const SizeDistribution& d, const SegmentedContourSetting
 // per unit of x and at least on a span of short rows (10,000 log-normal rows
 // at 550 nm: the path's spans ~1,400 evaluations); a panel on the axis (7
 // points, sixteen legs' in seven full batches), one above it, a window's
-// line; and the CPU cost of one evaluation (validation/bench/forward_amplitude_speed: 0.9 us at
-// x = 100, 46 us at 1e4), from the runs quoted in segmented_contour.hpp,
-// rounded up.
+// line; and the CPU cost of one evaluation
+// (validation/bench/forward_amplitude_speed: 0.8-0.9 us at x = 100, 40-46 us
+// at 1e4), from the runs quoted in segmented_contour.hpp, rounded up.
 constexpr double kEvaluationsPerX = 0.7, kEvaluationsPerSpanX = 2, kEvaluationsPerSpan = 31;
 constexpr double kEvaluationsPerAxisPanel = 7, kEvaluationsPerLegPanel = 15, kEvaluationsPerLine = 31 * kLinePanels;
 constexpr double kSecondsPerTerm = 5e-9, kSecondsPerEvaluation = 0.45e-6;
