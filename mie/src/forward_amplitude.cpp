@@ -109,11 +109,11 @@ Lanes<R, L> psi_ratio_lanes(std::size_t N, const Lanes<R, L>& inv_z) {
     for (int j = 0; j < L; ++j) {
       const R br = bk * inv_z.re[j], bi = bk * inv_z.im[j];
       R dr = br - d.re[j], di = bi - d.im[j];
-      const bool d_zero = (dr == 0) & (di == 0);  // & not &&: no branch in the lane loop
+      const bool d_zero = dr == 0 && di == 0;
       dr = d_zero ? tiny : dr, di = d_zero ? R(0) : di;
       const R sc = 1 / (c.re[j] * c.re[j] + c.im[j] * c.im[j]);
       R cr = br - c.re[j] * sc, ci = bi - (-c.im[j] * sc);
-      const bool c_zero = (cr == 0) & (ci == 0);
+      const bool c_zero = cr == 0 && ci == 0;
       cr = c_zero ? tiny : cr, ci = c_zero ? R(0) : ci;
       const R sd = 1 / (dr * dr + di * di);
       dr = dr * sd, di = -di * sd;
@@ -176,19 +176,18 @@ void downward_log_derivatives(const ForwardProblem<R, L>& p, std::size_t N, Forw
   // recurrence is a chain of dependent divisions, and a store-to-load round
   // trip per order would lengthen it.
   t.d_mx[N] = d_mx;
-  V dmx = d_mx;
   for (std::size_t n = N; n >= 1; --n) {
     const R rn = R(n);
     V up;
     for (int j = 0; j < L; ++j) {
       const R ar = dx.re[j] + rn * inv_x.re[j], ai = dx.im[j] + rn * inv_x.im[j];
-      const R br = dmx.re[j] + rn * inv_mx.re[j], bi = dmx.im[j] + rn * inv_mx.im[j];
+      const R br = d_mx.re[j] + rn * inv_mx.re[j], bi = d_mx.im[j] + rn * inv_mx.im[j];
       const R sa = 1 / (ar * ar + ai * ai), sb = 1 / (br * br + bi * bi);
       up.re[j] = ar * sa, up.im[j] = -ai * sa;
       dx.re[j] = rn * inv_x.re[j] - ar * sa, dx.im[j] = rn * inv_x.im[j] + ai * sa;
-      dmx.re[j] = rn * inv_mx.re[j] - br * sb, dmx.im[j] = rn * inv_mx.im[j] + bi * sb;
+      d_mx.re[j] = rn * inv_mx.re[j] - br * sb, d_mx.im[j] = rn * inv_mx.im[j] + bi * sb;
     }
-    t.psi_up[n] = up, t.d_mx[n - 1] = dmx;
+    t.psi_up[n] = up, t.d_mx[n - 1] = d_mx;
   }
 }
 
