@@ -95,8 +95,11 @@ double leg_allowed(const Integrand& f, const std::vector<Panel>& path, const Seg
 std::vector<double> axis_cuts(const Integrand& f, double allowed) {
   std::vector<double> c(f.breakpoints(), std::numeric_limits<double>::infinity());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, f.breakpoints(), 1024), [&](const auto& range) {
-    for (std::size_t kb = range.begin(); kb < range.end(); ++kb)
-      if (!f.leg_vanishes(kb)) c[kb] = f.axis_cut(kb, f.height(f.x_at(kb)), allowed, f.height(f.x_at(kb)));
+    for (std::size_t kb = range.begin(); kb < range.end(); ++kb) {
+      if (f.leg_vanishes(kb)) continue;
+      const double h = f.height(f.x_at(kb));
+      c[kb] = f.axis_cut(kb, h, allowed, h);
+    }
   });
   return c;
 }

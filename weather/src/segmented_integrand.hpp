@@ -224,7 +224,7 @@ class Integrand {
         s_(s),
         rule_(detail::rule_for(s.kronrod_points)),
         long_rule_(detail::rule_for(std::max(s.kronrod_points, kLongPieceKronrodPoints))),
-        axis_rule_(detail::make_rule<7>()),
+        axis_rule_(detail::make_rule<kAxisNodes>()),
         span_rule_(detail::rule_for(std::max(s.kronrod_points, kSpanKronrodPoints))),
         arithmetic_(arithmetic) {
     set_windows({});
@@ -427,8 +427,9 @@ class Integrand {
   // Whether a leg's panel from y = a up is on the axis and taken in sqrt(y).
   bool sqrt_axis_panel(double a) const { return a == 0 && s_.sqrt_axis_panels; }
 
-  // Legs whose panels on the axis are evaluated together (axis_panels).
-  static constexpr std::size_t kAxisGroup = 16;
+  // Legs whose panels on the axis are evaluated together (axis_panels), and
+  // the nodes of each (the 7-point rule in sqrt(y)).
+  static constexpr std::size_t kAxisGroup = 16, kAxisNodes = 7;
 
   // The panels on the axis [0, b[i]] of legs k[i], i < count <= kAxisGroup,
   // in sqrt(y), y = b t^2, dy = 2 b t dt (segmented_contour.hpp, "The panel
@@ -438,10 +439,10 @@ class Integrand {
   void axis_panels(const std::size_t* k, const double* b, std::size_t count, Panel* out) const {
     ATTENUVIS_CHECK(count <= kAxisGroup);
     const detail::OrderedNodes nodes = detail::ordered_nodes(axis_rule_);
-    const std::size_t n = nodes.u.size();
-    std::array<Complex, 7 * kAxisGroup> x;
-    std::array<mie::ForwardAmplitude, 7 * kAxisGroup> fa;
-    ATTENUVIS_CHECK(n == 7);
+    const std::size_t n = kAxisNodes;
+    ATTENUVIS_CHECK(nodes.u.size() == n);
+    std::array<Complex, kAxisNodes * kAxisGroup> x;
+    std::array<mie::ForwardAmplitude, kAxisNodes * kAxisGroup> fa;
     for (std::size_t i = 0; i < count; ++i) {
       const double xk = x_at(k[i]), height = b[i];
       detail::path_points(nodes, 0.0, 1.0, [&](double t) { return Complex(xk, height * t * t); }, &x[i * n]);
@@ -494,9 +495,8 @@ class Integrand {
       double y = std::min(hi, 2 * c / (jump + std::sqrt(jump * jump + 4 * kink * c)));
       for (int i = 0; i < 60; ++i) {
         const double t = 2 * y, q = jump * y + kink * y * y;
-        const double value = factor * growth(t) * q - allowed;
         const double slope = factor * (2 * growth_slope(t) * q + growth(t) * (jump + 2 * kink * y));
-        const double step = value / slope;
+        const double step = ((*this)(y) - allowed) / slope;
         if (!(step > 0)) break;
         y = std::max(lo, y - step);
         if (step <= 1e-7 * y) break;
