@@ -395,28 +395,46 @@ std::uint32_t CullGeometry::occluder_lanes(const Occluder& o, double sa, double 
 
 // Branch-free over the 16 lanes (the idle ones repeat partner 0, which
 // changes neither the box nor the longest line), vectorised per instruction
-// set like the lane tests.
+// set like the lane tests.  GCC does not vectorise a floating-point min or
+// max reduction (it would reorder NaN and signed-zero cases), so the lanes
+// are folded elementwise, 16 into 8, then 8 into 4, 2 and 1: each step is a
+// vector operation, where one running minimum over 16 lanes was a chain of
+// 16 dependent scalar instructions.  Min, max and the squared lengths are
+// exact in any order, so the box and the longest line are the same values.
 ATTENUVIS_CULL_CLONES
 void set_lines(PacketLines& lines, const double* point, const double* x, const double* y, const double* z, int n) {
   lines.point = point;
   lines.n = n;
-  for (int l = 0; l < 16; ++l) {
-    const int j = l < n ? l : 0;
-    lines.x[l] = x[j], lines.y[l] = y[j], lines.z[l] = z[j];
+  if (n == 16) {
+    std::copy(x, x + 16, lines.x), std::copy(y, y + 16, lines.y), std::copy(z, z + 16, lines.z);
+  } else {
+    for (int l = 0; l < 16; ++l) {
+      const int j = l < n ? l : 0;
+      lines.x[l] = x[j], lines.y[l] = y[j], lines.z[l] = z[j];
+    }
   }
   const double px = point[0], py = point[1], pz = point[2];
-  double lo[3] = {lines.x[0], lines.y[0], lines.z[0]}, hi[3] = {lo[0], lo[1], lo[2]};
-  double longest = 0;
-  for (int l = 0; l < 16; ++l) {
-    const double qx = lines.x[l], qy = lines.y[l], qz = lines.z[l];
-    lo[0] = std::min(lo[0], qx), hi[0] = std::max(hi[0], qx);
-    lo[1] = std::min(lo[1], qy), hi[1] = std::max(hi[1], qy);
-    lo[2] = std::min(lo[2], qz), hi[2] = std::max(hi[2], qz);
-    const double dx = qx - px, dy = qy - py, dz = qz - pz;
-    longest = std::max(longest, dx * dx + dy * dy + dz * dz);
+  alignas(64) double lo[3][8], hi[3][8], longest[8];
+  for (int l = 0; l < 8; ++l) {
+    const double* q[3] = {lines.x, lines.y, lines.z};
+    for (int c = 0; c < 3; ++c) {
+      lo[c][l] = std::min(q[c][l], q[c][l + 8]);
+      hi[c][l] = std::max(q[c][l], q[c][l + 8]);
+    }
+    const double dx0 = lines.x[l] - px, dy0 = lines.y[l] - py, dz0 = lines.z[l] - pz;
+    const double dx1 = lines.x[l + 8] - px, dy1 = lines.y[l + 8] - py, dz1 = lines.z[l + 8] - pz;
+    longest[l] = std::max(dx0 * dx0 + dy0 * dy0 + dz0 * dz0, dx1 * dx1 + dy1 * dy1 + dz1 * dz1);
   }
-  for (int c = 0; c < 3; ++c) lines.box.lo[c] = lo[c], lines.box.hi[c] = hi[c];
-  lines.longest = std::sqrt(longest);
+  for (int width = 4; width >= 1; width /= 2)
+    for (int l = 0; l < width; ++l) {
+      for (int c = 0; c < 3; ++c) {
+        lo[c][l] = std::min(lo[c][l], lo[c][l + width]);
+        hi[c][l] = std::max(hi[c][l], hi[c][l + width]);
+      }
+      longest[l] = std::max(longest[l], longest[l + width]);
+    }
+  for (int c = 0; c < 3; ++c) lines.box.lo[c] = lo[c][0], lines.box.hi[c] = hi[c][0];
+  lines.longest = std::sqrt(longest[0]);
 }
 
 std::uint32_t CullGeometry::lanes_blocked(std::uint32_t triangle, const PacketLines& lines, double margin,
