@@ -393,6 +393,21 @@ std::uint32_t CullGeometry::occluder_lanes(const Occluder& o, double sa, double 
   return blocked & ((1u << lines.n) - 1u);
 }
 
+namespace {
+// One step of set_lines' fold: lanes [0, W) take the min / max with lanes
+// [W, 2W).  A constant width, so that each step is straight vector code.
+template <int W>
+inline void fold_lanes(double (&lo)[3][8], double (&hi)[3][8], double (&longest)[8]) {
+  for (int l = 0; l < W; ++l) {
+    for (int c = 0; c < 3; ++c) {
+      lo[c][l] = std::min(lo[c][l], lo[c][l + W]);
+      hi[c][l] = std::max(hi[c][l], hi[c][l + W]);
+    }
+    longest[l] = std::max(longest[l], longest[l + W]);
+  }
+}
+}  // namespace
+
 // Branch-free over the 16 lanes (the idle ones repeat partner 0, which
 // changes neither the box nor the longest line), vectorised per instruction
 // set like the lane tests.  GCC does not vectorise a floating-point min or
@@ -425,16 +440,11 @@ void set_lines(PacketLines& lines, const double* point, const double* x, const d
     const double dx1 = lines.x[l + 8] - px, dy1 = lines.y[l + 8] - py, dz1 = lines.z[l + 8] - pz;
     longest[l] = std::max(dx0 * dx0 + dy0 * dy0 + dz0 * dz0, dx1 * dx1 + dy1 * dy1 + dz1 * dz1);
   }
-  for (int width = 4; width >= 1; width /= 2)
-    for (int l = 0; l < width; ++l) {
-      for (int c = 0; c < 3; ++c) {
-        lo[c][l] = std::min(lo[c][l], lo[c][l + width]);
-        hi[c][l] = std::max(hi[c][l], hi[c][l + width]);
-      }
-      longest[l] = std::max(longest[l], longest[l + width]);
-    }
+  fold_lanes<4>(lo, hi, longest);
+  fold_lanes<2>(lo, hi, longest);
+  fold_lanes<1>(lo, hi, longest);
   for (int c = 0; c < 3; ++c) lines.box.lo[c] = lo[c][0], lines.box.hi[c] = hi[c][0];
-  lines.longest = std::sqrt(longest[0]);
+  lines.longest_squared = longest[0];
 }
 
 std::uint32_t CullGeometry::lanes_blocked(std::uint32_t triangle, const PacketLines& lines, double margin,
@@ -457,7 +467,7 @@ std::uint32_t CullGeometry::lanes_blocked(std::uint32_t triangle, const PacketLi
   }
   if (o.edges > 0 && std::abs(sa) >= side && far_side >= side) {
     const double inside =
-        margin + (o.depth > 0 ? o.depth + o.depth * lines.longest / (std::abs(sa) + side) : 0.0);
+        margin + (o.depth > 0 ? o.depth + o.depth * std::sqrt(lines.longest_squared) / (std::abs(sa) + side) : 0.0);
     blocked = occluder_lanes(o, sa, side, inside, lines);
   }
   const std::uint32_t all = (1u << n) - 1u;

@@ -23,7 +23,8 @@ struct Box3 {
 };
 
 // The sight lines of one packet: from `point` to partners (x[l], y[l],
-// z[l]), l < n <= 16, their bounding box and the length of the longest.
+// z[l]), l < n <= 16, their bounding box and the squared length of the
+// longest (its root is taken only by the quads that need it).
 // The partners are copied into 16 aligned lanes, the idle ones repeating
 // partner 0, so that every lane test loads whole vectors and needs no
 // bounds (each test masks the idle lanes out of its answer).
@@ -32,7 +33,7 @@ struct PacketLines {
   alignas(64) double x[16], y[16], z[16];
   int n = 0;
   Box3 box;
-  double longest = 0;
+  double longest_squared = 0;
 };
 // The lines from `point` to partners (x[l], y[l], z[l]), l < n, 1 <= n <= 16.
 void set_lines(PacketLines& lines, const double* point, const double* x, const double* y, const double* z, int n);
