@@ -477,7 +477,8 @@ void report_pass(const vg::VisibilityResult& result) {
   std::cerr << "visibility: " << result.nodes << " nodes, " << result.pairs_total << " pairs ("
             << result.pairs_cast << " cast, " << result.pairs_culled_visible << " culled in sight, "
             << result.pairs_culled_blocked << " culled blocked, " << result.pairs_visible << " visible) in "
-            << result.seconds << " s (clustering and classifying " << result.culling_seconds << " s)"
+            << result.seconds << " s (clustering and classifying " << result.culling_seconds << " s, "
+            << result.culling_bytes / 1e6 << " MB of cluster records)"
             << (process_count() > 1 ? " on " + std::to_string(process_count()) + " processes" : std::string())
             << " = " << (result.seconds > 0 ? result.pairs_total / result.seconds / 1e6 : 0.0) << " M pairs/s\n";
 }

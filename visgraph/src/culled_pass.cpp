@@ -183,6 +183,7 @@ std::vector<std::uint32_t> run_culled_pass(const Scene& scene, const Pass& rows_
   result.pairs_culled_visible = culling->pairs_visible();
   result.pairs_culled_blocked = culling->pairs_blocked();
   result.culling_seconds = culling->seconds();
+  result.culling_bytes = culling->record_bytes();
   const LeafLayout layout = leaf_layout(*culling, sources, rows_pass.caller);
   Pass pass = rows_pass;
   pass.sources = pass.partners = &layout.points;

@@ -17,6 +17,8 @@
 #include <cmath>
 #include <numeric>
 #include <queue>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 
 namespace attenuvis::visgraph::detail {
@@ -35,9 +37,28 @@ constexpr double kParallelPairs = 1 << 16;
 constexpr double kCastPairs = 64;
 }  // namespace
 
+// A thread's counts and records.  The records (node a in the high word,
+// node b and the cast bit in the low) grow in chunks: a vector that doubles
+// copies, and holds up to three times its records while it does.
 struct PairCulling::Local {
-  std::vector<std::array<std::uint32_t, 3>> records;  // a, b, verdict
+  static constexpr std::size_t kChunk = std::size_t{1} << 16;
+  std::vector<std::vector<std::uint64_t>> chunks;
   std::uint64_t blocked = 0, visible = 0, tests = 0;
+  void record(std::uint32_t a, std::uint32_t b, Verdict v) {
+    if (chunks.empty() || chunks.back().size() == kChunk) {
+      chunks.emplace_back();
+      chunks.back().reserve(kChunk);
+    }
+    const std::uint32_t low = b | (v == Verdict::cast ? Record::kCastBit : 0u);
+    chunks.back().push_back(std::uint64_t{a} << 32 | low);
+  }
+  // Drops the last `count` records.
+  void drop(int count) {
+    for (; count > 0; --count) {
+      chunks.back().pop_back();
+      if (chunks.back().empty()) chunks.pop_back();
+    }
+  }
 };
 
 PairCulling::~PairCulling() = default;
@@ -52,7 +73,8 @@ PairCulling::PairCulling(RTCScene scene, std::size_t triangle_count, const std::
   std::iota(rows_.begin(), rows_.end(), 0u);
   nodes_.reserve(4 * (n / kLeafNodes + 1));
   build(0, n, -1);
-  records_.resize(nodes_.size());
+  if (nodes_.size() >= Record::kCastBit)  // a record keeps a node's id in 31 bits
+    throw std::length_error("visibility: too many nodes for the cluster tree (" + std::to_string(n) + ")");
   decide(triangle_count, classify, share_index, share_count);
   seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -63,7 +85,9 @@ PairCulling::PairCulling(RTCScene scene, std::size_t triangle_count, const std::
 // of them or this share's.
 void PairCulling::decide(std::size_t triangle_count, bool classify, int share_index, int share_count) {
   if (!classify && share_count == 1) {
-    records_[0].push_back({0, Verdict::cast});
+    first_record_.assign(nodes_.size() + 1, 1);
+    first_record_[0] = 0;
+    records_ = {Record{Record::kCastBit}};  // the root with itself: every pair cast
     return;
   }
   if (classify) {
@@ -86,23 +110,46 @@ double PairCulling::margin_for(const CullGeometry& geometry, const std::vector<d
   return 1e-3 + 1e-5 * largest;
 }
 
-void PairCulling::collect(const tbb::enumerable_thread_specific<Local>& locals) {
+void PairCulling::collect(tbb::enumerable_thread_specific<Local>& locals) {
+  // Counted first, then laid out once: each record under both of its
+  // nodes, a thread's chunks freed as they are copied.
+  first_record_.assign(nodes_.size() + 1, 0);
   for (const Local& local : locals) {
     pairs_blocked_ += local.blocked;
     pairs_visible_ += local.visible;
     tests_ += local.tests;
-    for (const auto& r : local.records) {
-      const auto v = static_cast<Verdict>(r[2]);
-      records_[r[0]].push_back({r[1], v});
-      if (r[0] != r[1]) records_[r[1]].push_back({r[0], v});
-    }
+    for (const auto& chunk : local.chunks)
+      for (const std::uint64_t r : chunk) {
+        const auto a = static_cast<std::uint32_t>(r >> 32), b = static_cast<std::uint32_t>(r) & ~Record::kCastBit;
+        ++first_record_[a + 1];
+        if (a != b) ++first_record_[b + 1];
+      }
   }
-  // The threads' lists arrive in whatever order the scheduler left them;
+  std::partial_sum(first_record_.begin(), first_record_.end(), first_record_.begin());
+  records_.resize(first_record_.back());
+  std::vector<std::uint64_t> next(first_record_.begin(), first_record_.end() - 1);
+  for (Local& local : locals) {
+    for (auto& chunk : local.chunks) {
+      for (const std::uint64_t r : chunk) {
+        const auto a = static_cast<std::uint32_t>(r >> 32), low = static_cast<std::uint32_t>(r);
+        const std::uint32_t b = low & ~Record::kCastBit, cast = low & Record::kCastBit;
+        records_[next[a]++] = Record{b | cast};
+        if (a != b) records_[next[b]++] = Record{a | cast};
+      }
+      std::vector<std::uint64_t>().swap(chunk);
+    }
+    local.chunks.clear();
+  }
+  // The threads' records arrive in whatever order the scheduler left them;
   // the rows' packets are tried in record order and carry occluder hints
   // from one to the next, so that order must not depend on the threads:
   // by the other cluster (its id: the tree's depth-first order).
-  for (auto& list : records_)
-    std::sort(list.begin(), list.end(), [](const Record& a, const Record& b) { return a.other < b.other; });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nodes_.size()), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t x = range.begin(); x != range.end(); ++x)
+      std::sort(records_.begin() + static_cast<std::ptrdiff_t>(first_record_[x]),
+                records_.begin() + static_cast<std::ptrdiff_t>(first_record_[x + 1]),
+                [](const Record& p, const Record& q) { return p.other() < q.other(); });
+  });
 }
 
 // Split on the longest side of the nodes' bounding box, at the median
@@ -169,7 +216,7 @@ PairCulling::Step PairCulling::visit(std::uint32_t a, std::uint32_t b, bool clas
                              : classify(a, b);
     if (v == Verdict::visible) {
       local.visible += static_cast<std::uint64_t>(pairs);
-      local.records.push_back({a, b, static_cast<std::uint32_t>(v)});
+      local.record(a, b, v);
       return Step::visible;
     }
     if (v == Verdict::blocked) {
@@ -178,7 +225,7 @@ PairCulling::Step PairCulling::visit(std::uint32_t a, std::uint32_t b, bool clas
     }
   }
   if ((A.is_leaf() && B.is_leaf()) || (a != b && pairs <= kCastPairs)) {
-    local.records.push_back({a, b, static_cast<std::uint32_t>(Verdict::cast)});
+    local.record(a, b, Verdict::cast);
     return Step::cast;
   }
   if (a == b) {
@@ -192,20 +239,40 @@ PairCulling::Step PairCulling::visit(std::uint32_t a, std::uint32_t b, bool clas
   return Step::split;
 }
 
-// Every unordered pair of nodes under a, b (a == b: under a) once.
-void PairCulling::traverse(std::uint32_t a, std::uint32_t b, tbb::enumerable_thread_specific<Local>& locals) {
+// Every unordered pair of nodes under a, b (a == b: under a) once.  Returns
+// Step::visible or Step::cast when all that the pair of clusters left is
+// one record of that verdict, for (a, b): children traversed on this thread
+// that all end so, with the same verdict, are merged into one record (every
+// pair under a visible record is in sight, every pair under a cast record is
+// cast in its canonical packet, at whatever level the record stands; fewer
+// records take less memory and give the rows fewer runs).  Children run as
+// parallel tasks are not merged: while a thread waits for them it may run
+// other tasks, whose records then follow theirs.  Otherwise Step::split
+// (or the visit's own step).
+PairCulling::Step PairCulling::traverse(std::uint32_t a, std::uint32_t b,
+                                        tbb::enumerable_thread_specific<Local>& locals) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> children;
-  const Step step = visit(a, b, true, locals.local(), children);
+  Local& local = locals.local();
+  const Step step = visit(a, b, true, local, children);
   // Blocked pairs are done: no row will see them.
   if (step == Step::blocked && progress_) progress_->add(static_cast<std::uint64_t>(pairs_of(a, b)));
-  if (step != Step::split) return;
+  if (step != Step::split) return step;
   if (pairs_of(a, b) > kParallelPairs) {
     tbb::task_group group;
     for (const auto& c : children) group.run([this, c, &locals] { traverse(c.first, c.second, locals); });
     group.wait();
-  } else {
-    for (const auto& c : children) traverse(c.first, c.second, locals);
+    return Step::split;
   }
+  int visible = 0, cast = 0, other = 0;
+  for (const auto& c : children) {
+    const Step s = traverse(c.first, c.second, locals);
+    visible += s == Step::visible, cast += s == Step::cast, other += s != Step::visible && s != Step::cast && s != Step::empty;
+  }
+  if (other > 0 || (visible > 0) == (cast > 0)) return Step::split;
+  local.drop(visible + cast);
+  const Verdict v = visible > 0 ? Verdict::visible : Verdict::cast;
+  local.record(a, b, v);
+  return visible > 0 ? Step::visible : Step::cast;
 }
 
 // Several shares: the top of the traversal is expanded in the same order by
@@ -276,7 +343,7 @@ void PairCulling::traverse_share(bool classify_pairs, int index, int count,
     }
     if (item.step == Step::visible || item.step == Step::cast || (item.step == Step::split && !classify_pairs)) {
       const Verdict v = item.step == Step::visible ? Verdict::visible : Verdict::cast;
-      own.records.push_back({item.a, item.b, static_cast<std::uint32_t>(v)});
+      own.record(item.a, item.b, v);
     }
     if (item.step == Step::split && classify_pairs) to_traverse.push_back(static_cast<std::uint32_t>(k));
   }
@@ -341,18 +408,19 @@ const std::uint32_t* PairCulling::leaf_rows(std::size_t l, std::size_t& count) c
 void PairCulling::partner_runs(std::size_t l, std::vector<Run>& out) const {
   out.clear();
   for (std::int32_t x = static_cast<std::int32_t>(leaf_nodes_[l]); x >= 0; x = nodes_[static_cast<std::size_t>(x)].parent)
-    for (const Record& r : records_[static_cast<std::size_t>(x)]) {
-      const Node& other = nodes_[r.other];
-      out.push_back({other.leaf_begin, other.leaf_end, r.verdict});
+    for (std::uint64_t k = first_record_[static_cast<std::size_t>(x)]; k < first_record_[static_cast<std::size_t>(x) + 1]; ++k) {
+      const Node& other = nodes_[records_[k].other()];
+      out.push_back({other.leaf_begin, other.leaf_end, records_[k].verdict()});
     }
 }
 
 void PairCulling::partner_blocks(std::size_t l, std::vector<Block>& out) const {
   out.clear();
   for (std::int32_t x = static_cast<std::int32_t>(leaf_nodes_[l]); x >= 0; x = nodes_[static_cast<std::size_t>(x)].parent)
-    for (const Record& r : records_[static_cast<std::size_t>(x)]) {
-      const Node& other = nodes_[r.other];
-      for (std::uint32_t leaf = other.leaf_begin; leaf < other.leaf_end; ++leaf) out.push_back({leaf, r.verdict});
+    for (std::uint64_t k = first_record_[static_cast<std::size_t>(x)]; k < first_record_[static_cast<std::size_t>(x) + 1]; ++k) {
+      const Node& other = nodes_[records_[k].other()];
+      for (std::uint32_t leaf = other.leaf_begin; leaf < other.leaf_end; ++leaf)
+        out.push_back({leaf, records_[k].verdict()});
     }
 }
 

@@ -134,10 +134,18 @@ class PairCulling {
     std::uint32_t size() const { return end - begin; }
     bool is_leaf() const { return left < 0; }
   };
+  // A visible or cast record of a node: the other node of the pair of
+  // clusters and the verdict, in four bytes (the top bit: cast), so that
+  // the records of a fine grid (hundreds of millions of them) take a
+  // third of what a padded pair took.
   struct Record {
-    std::uint32_t other;
-    Verdict verdict;
+    std::uint32_t bits;
+    std::uint32_t other() const { return bits & ~kCastBit; }
+    Verdict verdict() const { return bits & kCastBit ? Verdict::cast : Verdict::visible; }
+    static constexpr std::uint32_t kCastBit = 1u << 31;
   };
+  // Bytes the records hold (reported with the pass's statistics).
+  std::size_t record_bytes() const { return records_.size() * sizeof(Record); }
 
  private:
   std::uint32_t build(std::uint32_t begin, std::uint32_t end, std::int32_t parent);
@@ -147,9 +155,9 @@ class PairCulling {
   double pairs_of(std::uint32_t a, std::uint32_t b) const;
   Step visit(std::uint32_t a, std::uint32_t b, bool classify_pairs, Local& local,
              std::vector<std::pair<std::uint32_t, std::uint32_t>>& children) const;
-  void traverse(std::uint32_t a, std::uint32_t b, tbb::enumerable_thread_specific<Local>& locals);
+  Step traverse(std::uint32_t a, std::uint32_t b, tbb::enumerable_thread_specific<Local>& locals);
   void traverse_share(bool classify_pairs, int index, int count, tbb::enumerable_thread_specific<Local>& locals);
-  void collect(const tbb::enumerable_thread_specific<Local>& locals);
+  void collect(tbb::enumerable_thread_specific<Local>& locals);
   static double margin_for(const CullGeometry& geometry, const std::vector<double>& x, const std::vector<double>& y,
                            const std::vector<double>& z);
   Verdict classify(std::uint32_t a, std::uint32_t b) const;
@@ -162,7 +170,11 @@ class PairCulling {
   std::vector<std::uint32_t> rows_;
   std::vector<Node> nodes_;
   std::vector<std::uint32_t> leaf_nodes_;
-  std::vector<std::vector<Record>> records_;  // per node: visible and cast records (symmetric)
+  // Per node x, records_[first_record_[x], first_record_[x + 1]): its
+  // visible and cast records (each pair of clusters under both of its
+  // nodes), by the other node.
+  std::vector<std::uint64_t> first_record_;
+  std::vector<Record> records_;
   std::uint64_t pairs_blocked_ = 0, pairs_visible_ = 0, tests_ = 0;
   double seconds_ = 0;
   std::unique_ptr<CullGeometry> geometry_;  // null when not classifying

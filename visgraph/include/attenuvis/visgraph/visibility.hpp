@@ -169,6 +169,7 @@ struct VisibilityResult {
   std::uint64_t pairs_culled_visible = 0;   // culling: pairs decided in sight without rays
   std::uint64_t pairs_culled_blocked = 0;   // culling: pairs decided blocked without rays
   double culling_seconds = 0;               // culling: clustering and classification
+  std::size_t culling_bytes = 0;            // culling: memory of the cluster pairs' records
   // With VisibilityOptions::phase_times: thread-seconds (steady clock,
   // summed over the pass's threads, this process only) spent deciding
   // packets of cluster pairs left undecided, scoring pairs, and inside
