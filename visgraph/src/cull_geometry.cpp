@@ -19,20 +19,24 @@ using namespace cull_math;
 
 // Convex hull of two grown boxes, as the separating-axis tests see it.
 struct Shaft {
-  double corner[16][3];
+  double centre[2][3], half[2][3];  // the two grown boxes
   double lo[3], hi[3];
   double dir[3];
   bool has_dir = false;
   double axis[3][3], amin[3], amax[3];
   int axes = 0;
 
+  // The hull projects onto the hull of the boxes' projections, and a box
+  // onto its centre's projection +- sum |n_c| half_c: two dot products
+  // instead of sixteen corners' (the same interval in exact arithmetic;
+  // either rounding is a few ulps of the coordinates, far inside the
+  // margin the boxes are grown by).
   void project(const double* n, double& lo_out, double& hi_out) const {
-    lo_out = hi_out = dot(n, corner[0]);
-    for (int k = 1; k < 16; ++k) {
-      const double p = dot(n, corner[k]);
-      lo_out = std::min(lo_out, p);
-      hi_out = std::max(hi_out, p);
-    }
+    const double abs_n[3] = {std::abs(n[0]), std::abs(n[1]), std::abs(n[2])};
+    const double p0 = dot(n, centre[0]), r0 = dot(abs_n, half[0]);
+    const double p1 = dot(n, centre[1]), r1 = dot(abs_n, half[1]);
+    lo_out = std::min(p0 - r0, p1 - r1);
+    hi_out = std::max(p0 + r0, p1 + r1);
   }
   // True when axis n separates the hull from points p[0..count).
   bool separates(const double* n, const double (*p)[3], int count) const {
@@ -51,9 +55,9 @@ struct Shaft {
 
 Shaft make_shaft(const Box3& a, const Box3& b, double g) {
   Shaft s;
-  corners(a, g, s.corner);
-  corners(b, g, s.corner + 8);
   for (int c = 0; c < 3; ++c) {
+    s.centre[0][c] = 0.5 * (a.lo[c] + a.hi[c]), s.half[0][c] = 0.5 * (a.hi[c] - a.lo[c]) + g;
+    s.centre[1][c] = 0.5 * (b.lo[c] + b.hi[c]), s.half[1][c] = 0.5 * (b.hi[c] - b.lo[c]) + g;
     s.lo[c] = std::min(a.lo[c], b.lo[c]) - g;
     s.hi[c] = std::max(a.hi[c], b.hi[c]) + g;
     s.dir[c] = 0.5 * (b.lo[c] + b.hi[c]) - 0.5 * (a.lo[c] + a.hi[c]);

@@ -30,12 +30,6 @@ inline V3 cross(const double* a, const double* b) {
 inline V3 sub(const double* a, const double* b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 inline double norm(const V3& a) { return std::sqrt(dot(a.data(), a.data())); }
 
-// The 8 corners of a box, optionally grown by g on every side.
-inline void corners(const Box3& b, double g, double (*out)[3]) {
-  for (int k = 0; k < 8; ++k)
-    for (int c = 0; c < 3; ++c) out[k][c] = (k >> c & 1) ? b.hi[c] + g : b.lo[c] - g;
-}
-
 // The distinct corners of a box (a flat box has 4, a point 1): every
 // segment between two boxes is a convex combination of the segments
 // between their corners, and the tests below need each corner once.
