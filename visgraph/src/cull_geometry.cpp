@@ -2,6 +2,7 @@
 // (cull_geometry.hpp; the proofs behind the tests are in pair_culling.hpp).
 #include "cull_geometry.hpp"
 #include "cull_math.hpp"
+#include "lane_isa.hpp"
 
 #include <algorithm>
 #include <array>
@@ -371,30 +372,88 @@ bool CullGeometry::occluder_blocks(std::uint32_t triangle, const Box3& a, const 
 // The same comparison in exact arithmetic; the rounding of either form is a
 // few ulps of the coordinates, far inside the margin.  The unused fourth
 // edge (u = 0, o = -inf) gives +inf: it passes.
+namespace {
+// What the lane loop needs of the occluder and the row.
+struct LaneTest {
+  const double* n;
+  double c;
+  const double (*u)[3];
+  double ua[4], rest[4];  // u.a and u.a - o - inside per edge
+  double sign, abs_sa, side;
+};
+
+// The lane loop in portable code, one clone per instruction set.
 ATTENUVIS_CULL_CLONES
-std::uint32_t CullGeometry::occluder_lanes(const Occluder& o, double sa, double side, double inside,
-                                           const PacketLines& lines) {
-  const double sign = sa < 0 ? 1.0 : -1.0;  // the partner must be beyond +side (row below) or -side (row above)
-  const double abs_sa = std::abs(sa);
-  const double* a = lines.point;
-  double ua[4], rest[4];
-  for (int k = 0; k < 4; ++k) {
-    ua[k] = o.u[k][0] * a[0] + o.u[k][1] * a[1] + o.u[k][2] * a[2];
-    rest[k] = ua[k] - o.o[k] - inside;
-  }
+std::uint32_t occluder_lane_bits(const LaneTest& t, const PacketLines& lines) {
   int ok[16];
   for (int l = 0; l < 16; ++l) {
     const double qx = lines.x[l], qy = lines.y[l], qz = lines.z[l];
-    const double sb = o.n[0] * qx + o.n[1] * qy + o.n[2] * qz - o.c;
-    const double abs_d = abs_sa + sign * sb;
-    bool pass = sign * sb >= side;
+    const double sb = t.n[0] * qx + t.n[1] * qy + t.n[2] * qz - t.c;
+    const double abs_d = t.abs_sa + t.sign * sb;
+    bool pass = t.sign * sb >= t.side;
     for (int k = 0; k < 4; ++k)
-      pass &= rest[k] * abs_d + abs_sa * (o.u[k][0] * qx + o.u[k][1] * qy + o.u[k][2] * qz - ua[k]) >= 0;
+      pass &= t.rest[k] * abs_d + t.abs_sa * (t.u[k][0] * qx + t.u[k][1] * qy + t.u[k][2] * qz - t.ua[k]) >= 0;
     ok[l] = pass ? 1 : 0;
   }
   std::uint32_t blocked = 0;
   for (int l = 0; l < 16; ++l) blocked |= static_cast<std::uint32_t>(ok[l]) << l;
-  return blocked & ((1u << lines.n) - 1u);
+  return blocked;
+}
+
+#ifdef ATTENUVIS_X86_DISPATCH
+// The same loop on AVX-512 with its comparisons kept in mask registers:
+// GCC turns the portable loop's sixteen flags into a bit mask with shifts
+// and a tree of ORs, a quarter of the loop's time.
+__attribute__((target("avx512f"))) std::uint32_t occluder_lane_bits_avx512(const LaneTest& t,
+                                                                          const PacketLines& lines) {
+  const __m512d n0 = _mm512_set1_pd(t.n[0]), n1 = _mm512_set1_pd(t.n[1]), n2 = _mm512_set1_pd(t.n[2]);
+  const __m512d c = _mm512_set1_pd(t.c), sign = _mm512_set1_pd(t.sign), abs_sa = _mm512_set1_pd(t.abs_sa);
+  const __m512d side = _mm512_set1_pd(t.side), zero = _mm512_setzero_pd();
+  std::uint32_t blocked = 0;
+  for (int h = 0; h < 2; ++h) {
+    const __m512d qx = _mm512_load_pd(lines.x + 8 * h), qy = _mm512_load_pd(lines.y + 8 * h);
+    const __m512d qz = _mm512_load_pd(lines.z + 8 * h);
+    const __m512d sb = _mm512_sub_pd(_mm512_fmadd_pd(n2, qz, _mm512_fmadd_pd(n1, qy, _mm512_mul_pd(n0, qx))), c);
+    const __m512d signed_sb = _mm512_mul_pd(sign, sb);
+    const __m512d abs_d = _mm512_add_pd(abs_sa, signed_sb);
+    __mmask8 pass = _mm512_cmp_pd_mask(signed_sb, side, _CMP_GE_OQ);
+    for (int k = 0; k < 4; ++k) {
+      const __m512d uq = _mm512_fmadd_pd(_mm512_set1_pd(t.u[k][2]), qz,
+                                         _mm512_fmadd_pd(_mm512_set1_pd(t.u[k][1]), qy,
+                                                         _mm512_mul_pd(_mm512_set1_pd(t.u[k][0]), qx)));
+      const __m512d e = _mm512_fmadd_pd(_mm512_set1_pd(t.rest[k]), abs_d,
+                                        _mm512_mul_pd(abs_sa, _mm512_sub_pd(uq, _mm512_set1_pd(t.ua[k]))));
+      pass = _mm512_mask_cmp_pd_mask(pass, e, zero, _CMP_GE_OQ);
+    }
+    blocked |= static_cast<std::uint32_t>(pass) << (8 * h);
+  }
+  return blocked;
+}
+#endif
+
+using LaneBits = std::uint32_t (*)(const LaneTest&, const PacketLines&);
+LaneBits pick_lane_bits() {
+#ifdef ATTENUVIS_X86_DISPATCH
+  if (pick_isa() == Isa::avx512) return occluder_lane_bits_avx512;
+#endif
+  return occluder_lane_bits;
+}
+}  // namespace
+
+std::uint32_t CullGeometry::occluder_lanes(const Occluder& o, double sa, double side, double inside,
+                                           const PacketLines& lines) {
+  static const LaneBits lane_bits = pick_lane_bits();
+  LaneTest t;
+  t.n = o.n, t.c = o.c, t.u = o.u;
+  t.sign = sa < 0 ? 1.0 : -1.0;  // the partner must be beyond +side (row below) or -side (row above)
+  t.abs_sa = std::abs(sa);
+  t.side = side;
+  const double* a = lines.point;
+  for (int k = 0; k < 4; ++k) {
+    t.ua[k] = o.u[k][0] * a[0] + o.u[k][1] * a[1] + o.u[k][2] * a[2];
+    t.rest[k] = t.ua[k] - o.o[k] - inside;
+  }
+  return lane_bits(t, lines) & ((1u << lines.n) - 1u);
 }
 
 namespace {
