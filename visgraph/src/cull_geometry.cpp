@@ -61,7 +61,7 @@ Shaft make_shaft(const Box3& a, const Box3& b, double g) {
     s.centre[1][c] = 0.5 * (b.lo[c] + b.hi[c]), s.half[1][c] = 0.5 * (b.hi[c] - b.lo[c]) + g;
     s.lo[c] = std::min(a.lo[c], b.lo[c]) - g;
     s.hi[c] = std::max(a.hi[c], b.hi[c]) + g;
-    s.dir[c] = 0.5 * (b.lo[c] + b.hi[c]) - 0.5 * (a.lo[c] + a.hi[c]);
+    s.dir[c] = s.centre[1][c] - s.centre[0][c];
   }
   s.has_dir = dot(s.dir, s.dir) > 0;
   if (s.has_dir)
@@ -382,8 +382,11 @@ struct LaneTest {
   double sign, abs_sa, side;
 };
 
-// The lane loop in portable code, one clone per instruction set.
-ATTENUVIS_CULL_CLONES
+// The lane loop in portable code, one clone per instruction set below
+// AVX-512 (which takes occluder_lane_bits_avx512).
+#ifdef ATTENUVIS_X86_DISPATCH
+__attribute__((target_clones("avx2", "default")))
+#endif
 std::uint32_t occluder_lane_bits(const LaneTest& t, const PacketLines& lines) {
   int ok[16];
   for (int l = 0; l < 16; ++l) {
