@@ -11,7 +11,6 @@
 #include <tbb/task_group.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <memory>
 #include <cmath>
@@ -52,6 +51,9 @@ struct PairCulling::Local {
     const std::uint32_t low = b | (v == Verdict::cast ? Record::kCastBit : 0u);
     chunks.back().push_back(std::uint64_t{a} << 32 | low);
   }
+  // A packed record's node a, and its node b with the verdict as b's Record.
+  static std::uint32_t node_a(std::uint64_t r) { return static_cast<std::uint32_t>(r >> 32); }
+  static Record record_of_a(std::uint64_t r) { return Record{static_cast<std::uint32_t>(r)}; }
   // Drops the last `count` records.
   void drop(int count) {
     for (; count > 0; --count) {
@@ -120,7 +122,7 @@ void PairCulling::collect(tbb::enumerable_thread_specific<Local>& locals) {
     tests_ += local.tests;
     for (const auto& chunk : local.chunks)
       for (const std::uint64_t r : chunk) {
-        const auto a = static_cast<std::uint32_t>(r >> 32), b = static_cast<std::uint32_t>(r) & ~Record::kCastBit;
+        const std::uint32_t a = Local::node_a(r), b = Local::record_of_a(r).other();
         ++first_record_[a + 1];
         if (a != b) ++first_record_[b + 1];
       }
@@ -131,10 +133,11 @@ void PairCulling::collect(tbb::enumerable_thread_specific<Local>& locals) {
   for (Local& local : locals) {
     for (auto& chunk : local.chunks) {
       for (const std::uint64_t r : chunk) {
-        const auto a = static_cast<std::uint32_t>(r >> 32), low = static_cast<std::uint32_t>(r);
-        const std::uint32_t b = low & ~Record::kCastBit, cast = low & Record::kCastBit;
-        records_[next[a]++] = Record{b | cast};
-        if (a != b) records_[next[b]++] = Record{a | cast};
+        const std::uint32_t a = Local::node_a(r);
+        const Record of_a = Local::record_of_a(r);
+        const std::uint32_t b = of_a.other();
+        records_[next[a]++] = of_a;
+        if (a != b) records_[next[b]++] = Record{a | (of_a.bits & Record::kCastBit)};
       }
       std::vector<std::uint64_t>().swap(chunk);
     }
@@ -405,23 +408,24 @@ const std::uint32_t* PairCulling::leaf_rows(std::size_t l, std::size_t& count) c
   return rows_.data() + n.begin;
 }
 
+// f(other node, verdict) for every record of leaf l and of its ancestors.
+template <class F>
+void PairCulling::for_each_record(std::size_t l, F f) const {
+  for (std::int32_t x = static_cast<std::int32_t>(leaf_nodes_[l]); x >= 0; x = nodes_[static_cast<std::size_t>(x)].parent)
+    for (std::uint64_t k = first_record_[static_cast<std::size_t>(x)]; k < first_record_[static_cast<std::size_t>(x) + 1]; ++k)
+      f(nodes_[records_[k].other()], records_[k].verdict());
+}
+
 void PairCulling::partner_runs(std::size_t l, std::vector<Run>& out) const {
   out.clear();
-  for (std::int32_t x = static_cast<std::int32_t>(leaf_nodes_[l]); x >= 0; x = nodes_[static_cast<std::size_t>(x)].parent)
-    for (std::uint64_t k = first_record_[static_cast<std::size_t>(x)]; k < first_record_[static_cast<std::size_t>(x) + 1]; ++k) {
-      const Node& other = nodes_[records_[k].other()];
-      out.push_back({other.leaf_begin, other.leaf_end, records_[k].verdict()});
-    }
+  for_each_record(l, [&](const Node& other, Verdict v) { out.push_back({other.leaf_begin, other.leaf_end, v}); });
 }
 
 void PairCulling::partner_blocks(std::size_t l, std::vector<Block>& out) const {
   out.clear();
-  for (std::int32_t x = static_cast<std::int32_t>(leaf_nodes_[l]); x >= 0; x = nodes_[static_cast<std::size_t>(x)].parent)
-    for (std::uint64_t k = first_record_[static_cast<std::size_t>(x)]; k < first_record_[static_cast<std::size_t>(x) + 1]; ++k) {
-      const Node& other = nodes_[records_[k].other()];
-      for (std::uint32_t leaf = other.leaf_begin; leaf < other.leaf_end; ++leaf)
-        out.push_back({leaf, records_[k].verdict()});
-    }
+  for_each_record(l, [&](const Node& other, Verdict v) {
+    for (std::uint32_t leaf = other.leaf_begin; leaf < other.leaf_end; ++leaf) out.push_back({leaf, v});
+  });
 }
 
 }  // namespace attenuvis::visgraph::detail

@@ -135,9 +135,9 @@ class PairCulling {
     bool is_leaf() const { return left < 0; }
   };
   // A visible or cast record of a node: the other node of the pair of
-  // clusters and the verdict, in four bytes (the top bit: cast), so that
-  // the records of a fine grid (hundreds of millions of them) take a
-  // third of what a padded pair took.
+  // clusters and the verdict, in four bytes (the top bit: cast), half of
+  // what the padded pair of an id and a verdict took: a fine grid has
+  // hundreds of millions of them.
   struct Record {
     std::uint32_t bits;
     std::uint32_t other() const { return bits & ~kCastBit; }
@@ -158,6 +158,8 @@ class PairCulling {
   Step traverse(std::uint32_t a, std::uint32_t b, tbb::enumerable_thread_specific<Local>& locals);
   void traverse_share(bool classify_pairs, int index, int count, tbb::enumerable_thread_specific<Local>& locals);
   void collect(tbb::enumerable_thread_specific<Local>& locals);
+  template <class F>
+  void for_each_record(std::size_t l, F f) const;
   static double margin_for(const CullGeometry& geometry, const std::vector<double>& x, const std::vector<double>& y,
                            const std::vector<double>& z);
   Verdict classify(std::uint32_t a, std::uint32_t b) const;
