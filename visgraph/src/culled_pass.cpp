@@ -104,8 +104,7 @@ void expand_runs(const std::vector<PairCulling::Run>& runs, bool dense, std::vec
 constexpr std::uint8_t kPacketMisses = 3;
 
 // What a row does with one packet of a pair of leaves left to rays
-// (packet_culling.hpp): cast it, or, decided, score it without rays or
-// skip it.
+// (packet_culling.hpp): cast it, or skip it, decided blocked.
 Verdict decide_packet(const LeafPass& lp, std::size_t i, std::size_t j0, int k, std::size_t b, ThreadState& ts) {
   if (!lp.packets.active() || ts.packet_misses[b] >= kPacketMisses) return Verdict::cast;
   PhaseClock clock(lp.pass.time_phases);
@@ -115,7 +114,6 @@ Verdict decide_packet(const LeafPass& lp, std::size_t i, std::size_t j0, int k, 
       lp.packets.decide(point, P.x.data() + j0, P.y.data() + j0, P.z.data() + j0, k, ts.packet_hints[b], ts.near_hints);
   ts.packet_misses[b] = v == Verdict::cast ? static_cast<std::uint8_t>(ts.packet_misses[b] + 1) : 0;
   if (v == Verdict::blocked) ts.packet_blocked += static_cast<std::uint64_t>(k);
-  if (v == Verdict::visible) ts.packet_visible += static_cast<std::uint64_t>(k);
   ts.seconds.classify += clock.lap();
   return v;
 }

@@ -33,12 +33,6 @@ std::uint32_t PacketCulling::unblocked(std::uint32_t t, const PacketLines& p, st
   return open & ~geometry_->lanes_blocked(t, p, margin_, with_solid);
 }
 
-Verdict PacketCulling::all_in_sight(const PacketLines& p) const {
-  Box3 a;
-  for (int c = 0; c < 3; ++c) a.lo[c] = a.hi[c] = p.point[c];
-  return geometry_->hull_is_empty(a, p.box, margin_) ? Verdict::visible : Verdict::cast;
-}
-
 Verdict PacketCulling::decide(const double* point, const double* x, const double* y, const double* z, int n,
                               Hints& hints, Hints& near) const {
   if (!geometry_ || n <= 0) return Verdict::cast;
@@ -62,9 +56,9 @@ Verdict PacketCulling::decide(const double* point, const double* x, const double
     if (!(length > 4 * margin_)) return Verdict::cast;
     RTCRayHit rh = embree_ray(point, d, 0.0, 1.0);
     rtcIntersect1(scene_, &context, &rh);
-    // Nothing along the first lane tried: the packet may be all in sight.
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
-      return open == all && ray == 0 ? all_in_sight(p) : Verdict::cast;
+    // Nothing along lane l: it is in sight or near an edge, and either way
+    // a ray decides it (see packet_culling.hpp).
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return Verdict::cast;
     for (int surface = 0; surface < kSurfaces; ++surface) {
       const std::uint32_t left = unblocked(rh.hit.primID, p, open, tried);
       if (left != open) {

@@ -74,7 +74,7 @@ struct ThreadState {
   std::uint64_t cast = 0, visible = 0, coincident = 0;
   // Pairs of cluster pairs left to rays that PacketCulling decided packet
   // by packet without them.
-  std::uint64_t packet_visible = 0, packet_blocked = 0;
+  std::uint64_t packet_blocked = 0;
   PhaseSeconds seconds;
 };
 

@@ -207,7 +207,6 @@ void collect_results(const tbb::enumerable_thread_specific<ThreadState>& states,
     result.pairs_cast += ts.cast;
     result.pairs_visible += ts.visible;
     result.coincident_pairs += ts.coincident;
-    result.pairs_culled_visible += ts.packet_visible;
     result.pairs_culled_blocked += ts.packet_blocked;
     result.packet_culling_seconds += ts.seconds.classify;
     result.score_seconds += ts.seconds.score;
