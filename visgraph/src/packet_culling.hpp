@@ -18,7 +18,7 @@
 // such a packet in sight (the hull from its row to the partners' box empty,
 // or each lane clear of the triangles near the pair of leaves) took longer
 // than Embree takes to cast it (packets in sight near geometry are its
-// cheapest), and dropping the hull test made Delfshaven's runs 6 to 10 %
+// cheapest), and dropping the hull test made Delfshaven's runs 5 to 10 %
 // faster (docs/guide/visgraph-engine.md).
 #pragma once
 
