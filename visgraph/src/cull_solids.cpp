@@ -170,10 +170,19 @@ bool CullGeometry::solid_blocks(std::uint32_t triangle, const Box3& a, const Box
 // lanes_blocked's solid test on the 16 lanes at once: the row outside
 // (one face plane with the row at least m beyond it), each partner outside,
 // and the crossing of the segment with the plane through the centre normal
-// to it inside every face by m.  The comparisons are written so that a NaN
-// (a partner on the row: zero length) fails them: such a lane is never
-// blocked.  Branch-free over the lanes, faces outermost, so that each clone
-// vectorises the lane loops.
+// to it inside every face by m.  Branch-free over the lanes, faces
+// outermost, so that each clone vectorises the lane loops.
+//
+// Without a square root or a division (GCC keeps std::sqrt scalar, and the
+// divisions were most of the test's time).  With r = q - a, rr = |r|^2 and
+// s = r.(centre - a), the signed distances of a and q from that plane are
+// -s / |r| and (rr - s) / |r|, and the crossing is p = a + (s / rr) r.  So
+//     s_a <= -m   reads  s >= 0 and s^2 >= m^2 rr,
+//     s_b >= m    reads  rr - s >= 0 and (rr - s)^2 >= m^2 rr,
+//     f.p - f_3 <= -m  reads  (f.a - f_3 + m) rr + s (f.r) <= 0,
+// each the test it replaces multiplied by a positive factor (the same
+// comparison in exact arithmetic; either rounding is a few ulps, far inside
+// the margin).  A partner on the row (rr = 0) is never blocked.
 ATTENUVIS_CULL_CLONES
 std::uint32_t CullGeometry::solid_lanes(const Solid& solid, double margin, const PacketLines& lines) {
   const double m = margin + solid.slack;
@@ -183,25 +192,29 @@ std::uint32_t CullGeometry::solid_lanes(const Solid& solid, double margin, const
   if (!a_outside) return 0;
   const int n = lines.n;
   const double *qx = lines.x, *qy = lines.y, *qz = lines.z;
-  alignas(64) double px[16], py[16], pz[16];
+  const double cx = solid.centre[0] - a[0], cy = solid.centre[1] - a[1], cz = solid.centre[2] - a[2];
+  const double m2 = m * m;
+  alignas(64) double rx[16], ry[16], rz[16], rr[16], s[16];
   int ok[16];
   for (int l = 0; l < 16; ++l) {
-    const double dx = qx[l] - a[0], dy = qy[l] - a[1], dz = qz[l] - a[2];
-    const double inv = 1.0 / std::sqrt(dx * dx + dy * dy + dz * dz);
-    const double nx = dx * inv, ny = dy * inv, nz = dz * inv;
-    const double c0 = nx * solid.centre[0] + ny * solid.centre[1] + nz * solid.centre[2];
-    const double sa = nx * a[0] + ny * a[1] + nz * a[2] - c0;
-    const double sb = nx * qx[l] + ny * qy[l] + nz * qz[l] - c0;
-    const double t = sa / (sa - sb);
-    px[l] = a[0] + t * dx, py[l] = a[1] + t * dy, pz[l] = a[2] + t * dz;
-    ok[l] = ((sa <= -m) & (sb >= m) & (l < n)) ? 1 : 0;
+    rx[l] = qx[l] - a[0], ry[l] = qy[l] - a[1], rz[l] = qz[l] - a[2];
+    rr[l] = rx[l] * rx[l] + ry[l] * ry[l] + rz[l] * rz[l];
+    s[l] = rx[l] * cx + ry[l] * cy + rz[l] * cz;
+    const double beyond = rr[l] - s[l];
+    ok[l] = ((rr[l] > 0) & (s[l] >= 0) & (s[l] * s[l] >= m2 * rr[l]) & (beyond >= 0) &
+             (beyond * beyond >= m2 * rr[l]) & (l < n))
+                ? 1
+                : 0;
   }
   int b_outside[16] = {};
-  for (const auto& f : solid.faces)
+  for (const auto& f : solid.faces) {
+    const double fa = f[0] * a[0] + f[1] * a[1] + f[2] * a[2] - f[3] + m;
     for (int l = 0; l < 16; ++l) {
+      const double fr = f[0] * rx[l] + f[1] * ry[l] + f[2] * rz[l];
       b_outside[l] |= (f[0] * qx[l] + f[1] * qy[l] + f[2] * qz[l] - f[3] >= m) ? 1 : 0;
-      ok[l] &= (f[0] * px[l] + f[1] * py[l] + f[2] * pz[l] - f[3] <= -m) ? 1 : 0;
+      ok[l] &= (fa * rr[l] + s[l] * fr <= 0) ? 1 : 0;
     }
+  }
   std::uint32_t blocked = 0;
   for (int l = 0; l < 16; ++l) blocked |= static_cast<std::uint32_t>(ok[l] & b_outside[l]) << l;
   return blocked;
