@@ -487,7 +487,9 @@ void set_lines(PacketLines& lines, const double* point, const double* x, const d
   lines.point = point;
   lines.n = n;
   if (n == 16) {
-    std::copy(x, x + 16, lines.x), std::copy(y, y + 16, lines.y), std::copy(z, z + 16, lines.z);
+    // Element loops, not std::copy: GCC turns the copies into three calls
+    // of memmove.
+    for (int l = 0; l < 16; ++l) lines.x[l] = x[l], lines.y[l] = y[l], lines.z[l] = z[l];
   } else {
     for (int l = 0; l < 16; ++l) {
       const int j = l < n ? l : 0;
