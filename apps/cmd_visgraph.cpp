@@ -115,6 +115,7 @@ std::vector<vg::ConditionInfo> conditions_to_sigma(const VgArguments& a, double&
     vg::ConditionInfo info;
     info.label = label;
     const weather::Sigma s = weather::sigma(weather::parse_condition(label), wavelength_m, settings);
+    if (!s.shortfall.empty()) std::cerr << "warning: " << label << ": " << s.shortfall << "\n";
     info.sigma = s.per_m;
     info.sigma_error = s.error_per_m;
     info.model = s.model;

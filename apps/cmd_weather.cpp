@@ -46,6 +46,8 @@ void run_sigma(const std::vector<std::string>& conditions, const CommonOptions& 
   nlohmann::json out = nlohmann::json::array();
   for (const auto& c : parsed) {
     w::Sigma r = w::sigma(c.condition, wavelength_m, s);
+    // An error above the tolerance asked is printed as reached, and said so.
+    if (!r.shortfall.empty()) std::cerr << "warning: " << c.label << ": " << r.shortfall << "\n";
     // sigma = 0: the visibility is unbounded (JSON null, "unbounded" in text).
     const bool bounded = r.per_m > 0;
     const double vis = bounded ? w::koschmieder_visibility_m(r.per_m, s.contrast_threshold) : 0.0;
@@ -62,7 +64,8 @@ void run_sigma(const std::vector<std::string>& conditions, const CommonOptions& 
                             {"convention", r.convention},
                             {"contrast_threshold", s.contrast_threshold},
                             {"model", r.model},
-                            {"note", r.note}};
+                            {"note", r.note},
+                            {"tolerance_met", r.shortfall.empty()}};
       if (bounded) row["visibility_m"] = vis;
       else row["visibility_m"] = nullptr;
       out.push_back(row);
@@ -194,6 +197,12 @@ void run_table(const TableOptions& t, const CommonOptions& o) {
             << t.out;
   if (table_format == w::TableFormat::csv) std::cout << " (column descriptions in " << w::csv_sidecar_path(t.out) << ")";
   std::cout << "\n";
+  // Cells whose errors, as written, exceed the tolerance asked.
+  const auto short_of = w::cells_short_of_tolerance(table);
+  if (!short_of.empty())
+    std::cerr << "warning: " << short_of.size() << " of " << table.cells.size()
+              << " cells missed the requested tolerance (their errors are written as reached); the first: "
+              << short_of.front() << "\n";
   // Say which conditions leave quantities missing, so an empty column is no surprise.
   const auto missing = w::conditions_with_missing_values(table);
   if (!missing.empty()) {

@@ -31,6 +31,9 @@ class SigmaResult:
         "itu" or "seed" for the power laws, "n/a" where it does not enter.
     note : str
         Warnings, the refractive index used, the integration method.
+    shortfall : str
+        Empty when the requested tolerance was met; else which integral
+        missed it and by how much (``error`` is then the error reached).
 
     Examples
     --------
@@ -45,6 +48,7 @@ class SigmaResult:
     model: str
     convention: str
     note: str = ""
+    shortfall: str = ""
 
     def __float__(self) -> float:
         return self.value
@@ -203,9 +207,9 @@ def sigma(condition, wavelength: float = 550e-9, *, convention: str = "itu", con
     if c._cpp is None:
         o = optics(c, wavelength, rel_tolerance=rel_tolerance, water_table=water_table)
         return SigmaResult(o.extinction.value, o.extinction.error, "1/m",
-                           f"Mie over {c.distribution._cpp.describe()}, m = {o.m}", "n/a")
+                           f"Mie over {c.distribution._cpp.describe()}, m = {o.m}", "n/a", shortfall=o.shortfall)
     d = _core.sigma(c._cpp, float(wavelength), *_settings(convention, contrast_threshold, rel_tolerance, water_table))
-    return SigmaResult(d["value"], d["error"], "1/m", d["model"], d["convention"], d["note"])
+    return SigmaResult(d["value"], d["error"], "1/m", d["model"], d["convention"], d["note"], d["shortfall"])
 
 
 def optics(condition, wavelength: float = 550e-9, *, rel_tolerance: float = 1e-9, water_table: str = "water",

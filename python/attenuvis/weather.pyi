@@ -62,6 +62,7 @@ class SigmaResult:
     model: str
     convention: str
     note: str = ...
+    shortfall: str = ...
 
 @dataclass(frozen=True)
 class Estimate:

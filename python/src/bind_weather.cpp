@@ -100,6 +100,7 @@ py::dict sigma_fields(const w::Sigma& s) {
   d["model"] = s.model;
   d["convention"] = s.convention;
   d["note"] = s.note;
+  d["shortfall"] = s.shortfall;
   return d;
 }
 

@@ -45,6 +45,15 @@ def test_objects_match_the_grammar_and_the_command_line(cli, text, obj):
     assert type(parsed) is type(obj)
 
 
+def test_a_tolerance_out_of_reach_is_said_so(cli):
+    # Rain at 200 nm: Q_ext's large-x expansion beyond x = 2000 bounds the
+    # error far above 1e-9 (its bound (40 + 8/|m-1|)/x, resonance.cpp).
+    s = w.sigma("rain:8:mie", 200e-9)
+    assert "not reachable" in s.shortfall and s.error > 1e-9 * s.value
+    assert cli_sigma(cli, "rain:8:mie", "200nm")["tolerance_met"] is False
+    assert w.sigma("fog:advection", 550e-9).shortfall == ""
+
+
 def test_conventions_and_repr():
     itu, seed = w.sigma(w.Rain(8), convention="itu"), w.sigma(w.Rain(8), convention="seed")
     assert itu.convention == "itu" and seed.convention == "seed" and itu.value != seed.value

@@ -130,6 +130,34 @@ TEST_CASE("sigma --units km: sigma, its error and the error's parts all in 1/km"
   CHECK_THAT(db.output, Contains("  error: quadrature ") && !Contains("1/m"));
 }
 
+TEST_CASE("sigma and table say when the tolerance is out of reach, and write the error reached", "[weather][cli]") {
+  // Rain at 200 nm reaches x = 2e5, beyond the contour's 1e5: the real axis
+  // takes Q_ext's large-x expansion beyond x = 2000, whose bound
+  // (40 + 8 / |m - 1|) / x (resonance.cpp) is far above 1e-9 of sigma.
+  const auto r = run("sigma rain:8:mie --wavelength 200nm --json");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Contains("warning: rain:8:mie: sigma_ext: relative tolerance 1e-09 not reachable") &&
+                           Contains("large-x expansion"));
+  const auto j = nlohmann::json::parse(r.output.substr(r.output.find('[')))[0];
+  CHECK(j["tolerance_met"] == false);
+  CHECK(j["error"].get<double>() > 1e-9 * j["sigma"].get<double>());
+  CHECK(j["error_terms"]["large-x expansion"].get<double>() > 1e-9 * j["sigma"].get<double>());
+  // Fog at 550 nm: the contour meets the tolerance, and says nothing more.
+  const auto met = run("sigma fog:advection --json");
+  REQUIRE(met.status == 0);
+  CHECK_THAT(met.output, !Contains("warning"));
+  CHECK(nlohmann::json::parse(met.output)[0]["tolerance_met"] == true);
+  const std::string out = "weather_cli_short_of_tolerance.csv";
+  std::remove(out.c_str());
+  const auto t = run("table --conditions rain:8:mie,clear --wavelengths 200nm --out " + out);
+  REQUIRE(t.status == 0);
+  CHECK_THAT(t.output, Contains("warning: 1 of 2 cells missed the requested tolerance") &&
+                           Contains("rain:8:mie at 200 nm: sigma_ext: relative tolerance 1e-09 not reachable"));
+  CHECK(exists(out));
+  std::remove(out.c_str());
+  std::remove((out + ".meta.json").c_str());
+}
+
 TEST_CASE("distribution reports moments and validates files", "[weather][cli]") {
   auto r = run("distribution advection --json");
   REQUIRE(r.status == 0);

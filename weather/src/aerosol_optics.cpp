@@ -378,6 +378,7 @@ Sigma aerosol_sigma(const AerosolOptics& o) {
                      {"rounding of the Mie efficiencies or of S(0) on the contour", e.rounding_error}};
   out.model = "Mie over " + o.model;
   out.note = o.index_source + " " + o.bulk.method;
+  out.shortfall = o.bulk.shortfall;
   if (!std::isfinite(out.per_m) || !(out.per_m >= 0) || !std::isfinite(out.error_per_m))
     throw std::runtime_error("sigma of " + o.model + " is " + g4(out.per_m) + " +- " + g4(out.error_per_m) +
                              " 1/m, not a finite value");

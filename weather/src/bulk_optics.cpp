@@ -545,12 +545,20 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   Refinement r(integ, std::move(panels), t, plan.unresolved_bound, extinction_only);
   r.refine();
   r.totals();
-  const std::string missed = r.require_met(d, t.estimate_resonances);
+  std::string missed = r.require_met(d, t.estimate_resonances);
+  if (!missed.empty() && !plan.short_of.empty()) missed += "; " + plan.short_of;
   BulkOptics out = bulk_optics_result(r, support, t, tail_fraction, plan);
   out.evaluations += probe;
+  // A tolerance raised beside the expansion is one the caller did not get.
+  if (t.rel_tolerance > s.rel_tolerance) {
+    const std::string expansion =
+        "sigma_ext: relative tolerance " + significant(s.rel_tolerance, 3) + " not reachable: beyond x = " +
+        significant(s.asymptotic_x, 6) + " Q_ext's large-x expansion replaces Mie, and its error bound is " +
+        significant(out.extinction.asymptotic_error / out.extinction.value, 3) + " of sigma_ext";
+    missed = missed.empty() ? expansion : expansion + "; " + missed;
+  }
   if (!missed.empty()) {
     out.shortfall = missed;
-    if (!plan.short_of.empty()) out.shortfall += "; " + plan.short_of;
     out.method += "; tolerance not met: " + out.shortfall;
   }
   return out;

@@ -145,6 +145,7 @@ Sigma mie_sigma(const MieCondition& c, double wavelength_m, const Settings& s) {
                        {"tails", b.extinction.tail_error},
                        {"unresolved resonances", b.extinction.resonance_error}};
     if (b.extinction.asymptotic_error > 0) out.error_terms.push_back({"large-x expansion", b.extinction.asymptotic_error});
+    out.shortfall = b.shortfall;
   }
   out.note = note.str();
   return out;

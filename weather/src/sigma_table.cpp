@@ -126,6 +126,20 @@ void check_table_angles(const std::vector<double>& angles) {
   }
 }
 
+std::vector<std::string> cells_short_of_tolerance(const SigmaTable& t) {
+  std::vector<std::string> out;
+  for (std::size_t w = 0; w < t.wavelengths_m.size(); ++w)
+    for (std::size_t c = 0; c < t.conditions.size(); ++c) {
+      const TableCell& cell = t.at(w, c);
+      std::string shortfall = cell.sigma.shortfall;
+      if (shortfall.empty() && cell.optics) shortfall = cell.optics->shortfall;
+      if (!shortfall.empty())
+        out.push_back(t.conditions[c].label + " at " + io::significant(wavelength_nm(t.wavelengths_m[w]), 12) +
+                      " nm: " + shortfall);
+    }
+  return out;
+}
+
 std::vector<std::string> conditions_with_missing_values(const SigmaTable& t) {
   std::vector<std::string> out;
   for (std::size_t c = 0; c < t.conditions.size(); ++c) {

@@ -26,6 +26,10 @@ struct Sigma {
   std::string model;       // what was computed, with its source
   std::string convention;  // "itu" or "seed" for power laws; "n/a" where the convention does not enter
   std::string note;        // warnings, refractive index used, integration method (numbers free of units)
+  // Empty when the Mie integral met Settings::rel_tolerance; else what missed
+  // it and by how much (BulkOptics::shortfall): error_per_m is then the
+  // error reached, larger than the tolerance asked.
+  std::string shortfall;
 };
 
 // Does Mie work only for a MieCondition.  Mie results are cached per process,

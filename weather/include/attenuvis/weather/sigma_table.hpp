@@ -57,6 +57,9 @@ struct SigmaTable {
 
 // The value and error of one quantity in a cell, or missing.
 QuantityValue table_value(const TableCell& cell, Quantity q);
+// The cells whose values missed Settings::rel_tolerance (their errors are
+// those reached), in table order, each as "LABEL at LAMBDA nm: SHORTFALL".
+std::vector<std::string> cells_short_of_tolerance(const SigmaTable& t);
 // The labels of the conditions with a missing value of some asked-for
 // quantity at some wavelength, in table order.
 std::vector<std::string> conditions_with_missing_values(const SigmaTable& t);
