@@ -553,7 +553,7 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   if (t.rel_tolerance > s.rel_tolerance) {
     const std::string expansion =
         "sigma_ext: relative tolerance " + significant(s.rel_tolerance, 3) + " not reachable: beyond x = " +
-        significant(s.asymptotic_x, 6) + " Q_ext's large-x expansion replaces Mie, and its error bound is " +
+        significant(s.asymptotic_x, 6) + " Q_ext's large-x expansion replaces Mie, and its error bound (calibrated, resonance.hpp) is " +
         significant(out.extinction.asymptotic_error / out.extinction.value, 3) + " of sigma_ext";
     missed = missed.empty() ? expansion : expansion + "; " + missed;
   }
