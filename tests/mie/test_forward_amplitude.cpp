@@ -55,6 +55,44 @@ TEST_CASE("forward amplitude at complex x: 60-digit mpmath table", "[mie][comple
                                                             << " (double) over " << rows << " points");
 }
 
+TEST_CASE("forward amplitude up to its range, 3e5: 60-digit mpmath values", "[mie][complex-x]") {
+  // tests/data/mie/forward_amplitude_mpmath_large.csv: the same script, psi_n
+  // by Miller's algorithm (mpmath's besselj does not converge at these
+  // orders).  Raindrops in the ultraviolet: water at 200 nm on the contour's
+  // height and on the real axis, water at 550 nm.
+  std::ifstream in(std::string(ATTENUVIS_TEST_DATA_DIR) + "/mie/forward_amplitude_mpmath_large.csv");
+  REQUIRE(in);
+  std::string line;
+  int rows = 0;
+  double worst[2] = {0, 0};  // double, long double
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || line[0] == 'x') continue;
+    std::istringstream s(line);
+    std::vector<double> v;
+    for (std::string cell; std::getline(s, cell, ',');) v.push_back(std::stod(cell));
+    REQUIRE(v.size() == 6);
+    const std::complex<double> x(v[0], v[1]), m(v[2], v[3]), ref(v[4], v[5]);
+    for (Precision a : {Precision::extended, Precision::double_precision}) {
+      const auto fa = forward_amplitude(x, m, a);
+      const double err = std::abs(fa.s0 - ref);
+      INFO("x = " << x << ", m = " << m << (a == Precision::extended ? " (long double)" : " (double)") << ": S(0) "
+                  << fa.s0 << " vs " << ref << ", |error| " << err << ", rounding bound " << fa.rounding_bound());
+      // The bound the contour integral charges for rounding; in long double
+      // also ~ terms x its unit roundoff (2.8e5 x 1.1e-19 = 3e-14).  In
+      // double the error reached 4.3e-11 of |S(0)| at x = 2e5 + 4i, a
+      // hundredth of the bound charged.
+      CHECK(err <= fa.rounding_bound());
+      if (a == Precision::extended) CHECK(err <= 1e-13 * std::abs(ref));
+      worst[a == Precision::extended] = std::max(worst[a == Precision::extended], err / std::abs(ref));
+    }
+    ++rows;
+  }
+  CHECK(rows == 3);
+  WARN("forward amplitude vs mpmath, |x| 1.5e5 ... 2.8e5: max relative error " << worst[1] << " (long double), "
+                                                                                << worst[0] << " (double)");
+  CHECK_THROWS_WITH(forward_amplitude({3.1e5, 4.0}, {1.33, 0.0}), Catch::Contains("|x| <= 3e5"));
+}
+
 TEST_CASE("forward amplitudes in batches agree with one-by-one calls", "[mie][complex-x]") {
   // forward_amplitudes runs up to sixteen series side by side on tables as long
   // as the largest |x| needs (eight where some |x| > 2e4); points spanning |x|

@@ -132,14 +132,14 @@ TEST_CASE("sigma --units km: sigma, its error and the error's parts all in 1/km"
 
 TEST_CASE("sigma and table say when the tolerance is out of reach, and write the error reached", "[weather][cli][slow]") {
   // [slow]: the Release tree's check of what the command says; the two Mie
-  // integrals take 4.9 s each under the sanitizers (0.4 s in Release) and
+  // integrals take 4.8 s each under the sanitizers (0.5 s in Release) and
   // exercise no memory that other tests do not.
-  // Rain at 200 nm reaches x = 2e5, beyond the contour's 1e5: the real axis
-  // takes Q_ext's large-x expansion beyond x = 2000, whose bound
-  // (40 + 8 / |m - 1|) / x (resonance.cpp) is far above 1e-9 of sigma.
-  const auto r = run("sigma rain:8:mie --wavelength 200nm --json");
+  // Rain of 300 mm/h at 200 nm reaches x ~ 4e5, beyond the contour's 3e5:
+  // the real axis takes Q_ext's large-x expansion beyond x = 2000, whose
+  // bound (40 + 8 / |m - 1|) / x (resonance.cpp) is far above 1e-9 of sigma.
+  const auto r = run("sigma rain:300:mie --wavelength 200nm --json");
   REQUIRE(r.status == 0);
-  CHECK_THAT(r.output, Contains("warning: rain:8:mie: sigma_ext: relative tolerance 1e-09 not reachable") &&
+  CHECK_THAT(r.output, Contains("warning: rain:300:mie: sigma_ext: relative tolerance 1e-09 not reachable") &&
                            Contains("large-x expansion"));
   const auto j = nlohmann::json::parse(r.output.substr(r.output.find('[')))[0];
   CHECK(j["tolerance_met"] == false);
@@ -152,10 +152,10 @@ TEST_CASE("sigma and table say when the tolerance is out of reach, and write the
   CHECK(nlohmann::json::parse(met.output)[0]["tolerance_met"] == true);
   const std::string out = "weather_cli_short_of_tolerance.csv";
   std::remove(out.c_str());
-  const auto t = run("table --conditions rain:8:mie,clear --wavelengths 200nm --out " + out);
+  const auto t = run("table --conditions rain:300:mie,clear --wavelengths 200nm --out " + out);
   REQUIRE(t.status == 0);
   CHECK_THAT(t.output, Contains("warning: 1 of 2 cells missed the requested tolerance") &&
-                           Contains("rain:8:mie at 200 nm: sigma_ext: relative tolerance 1e-09 not reachable"));
+                           Contains("rain:300:mie at 200 nm: sigma_ext: relative tolerance 1e-09 not reachable"));
   CHECK(exists(out));
   std::remove(out.c_str());
   std::remove((out + ".meta.json").c_str());

@@ -79,9 +79,9 @@ TEST_CASE("contour extinction declines what it cannot do", "[weather][contour]")
   const auto tab = SizeDistribution::tabulated({{1e-6, 2e-6, 1e9, 1e9}}, "test");
   CHECK_FALSE(contour_extinction(tab, 550e-9, kWater550));
   CHECK_FALSE(contour_extinction(SizeDistribution::power_law(1.0, 3.0, 1e-7, 1e-5), 550e-9, kWater550));
-  // Rain at 8 mm/h reaches x = 6.8e4 at 550 nm and 1.16e5 at 355 nm, beyond
-  // S(0)'s range (max_x = 1e5): left to the real-axis rule there.
-  CHECK_FALSE(contour_extinction(SizeDistribution::marshall_palmer(8.0), 355e-9, kWater550));
+  // Rain at 300 mm/h reaches x ~ 4e5 at 200 nm, beyond S(0)'s range
+  // (max_x = 3e5): left to the real-axis rule there.
+  CHECK_FALSE(contour_extinction(SizeDistribution::marshall_palmer(300.0), 200e-9, kWater550));
   ContourSettings short_reach;
   short_reach.max_x = 5e4;
   CHECK_FALSE(contour_extinction(SizeDistribution::marshall_palmer(8.0), 550e-9, kWater550, short_reach));

@@ -56,7 +56,7 @@ struct ForwardAmplitude {
   double rounding_bound() const;
 };
 
-// Throws std::invalid_argument unless 0 < |x| <= 1e5, Re x > 0, 0 <= Im x <= 20,
+// Throws std::invalid_argument unless 0 < |x| <= 3e5, Re x > 0, 0 <= Im x <= 20,
 // Re m > 0, Im m >= 0 and |m - 1| >= 1e-6 (all finite).
 ForwardAmplitude forward_amplitude(std::complex<double> x, std::complex<double> m,
                                    Precision precision = Precision::extended);
@@ -64,7 +64,7 @@ ForwardAmplitude forward_amplitude(std::complex<double> x, std::complex<double> 
 // S(0) at x[0..count) for one m, the same values as forward_amplitude() one by
 // one (within their rounding bounds), about 5-7x faster in double on a CPU
 // with AVX-512: sixteen series run side by side (eight for a call of eight
-// points or fewer; the tables take 51 MB per thread at |x| = 1e5),
+// points or fewer; the tables take 51 MB per thread at |x| = 1e5, 153 MB at 3e5),
 // compiled per instruction set, so that their divisions overlap and
 // vectorise, and the continued fractions that start them run side by side
 // too.  Points of similar |x| batch best (the tables run to the largest).

@@ -52,8 +52,10 @@ struct ContourSettings {
   // Up to S(0)'s range: the cost grows ~x_max^2, but Marshall-Palmer rain at
   // 8 mm/h then takes 0.36 s at 1.55 um (x_max 2.4e4) and 2.5 s at 550 nm
   // (6.8e4) for a certified 1e-9, against 1.45 s and 0.53 s for the real
-  // axis's 0.7 % (docs/guide/optics-tables.md).
-  double max_x = 1e5;
+  // axis's 0.7 % (docs/guide/optics-tables.md).  3e5 takes Marshall-Palmer
+  // rain up to about 75 mm/h down to 200 nm (8 mm/h there: x_max 1.9e5,
+  // 14 s on two cores, 270 MB).
+  double max_x = 3e5;
   double tail_fraction = 0;     // of the r^2 moment beyond x_max; 0: 2e-2 x rel_tolerance (bound ~4e-2 x)
   double initial_panel_heights = 25;  // first panels are this many H wide (in Re x)
   double tail_panel_fraction = 1e-5;  // beyond the radius leaving this much of the r^2 moment, ...
