@@ -551,10 +551,12 @@ BulkOptics integrate_bulk_optics_impl(const SizeDistribution& d, double waveleng
   out.evaluations += probe;
   // A tolerance raised beside the expansion is one the caller did not get.
   if (t.rel_tolerance > s.rel_tolerance) {
-    const std::string expansion =
-        "sigma_ext: relative tolerance " + significant(s.rel_tolerance, 3) + " not reachable: beyond x = " +
-        significant(s.asymptotic_x, 6) + " Q_ext's large-x expansion replaces Mie, and its error bound (calibrated, resonance.hpp) is " +
-        significant(out.extinction.asymptotic_error / out.extinction.value, 3) + " of sigma_ext";
+    const std::string expansion = "sigma_ext: relative tolerance " + significant(s.rel_tolerance, 3) +
+                                  " not reachable: beyond x = " + significant(s.asymptotic_x, 6) +
+                                  " Q_ext's large-x expansion replaces Mie, and its error bound (calibrated, "
+                                  "resonance.hpp) is " +
+                                  significant(out.extinction.asymptotic_error / out.extinction.value, 3) +
+                                  " of sigma_ext";
     missed = missed.empty() ? expansion : expansion + "; " + missed;
   }
   if (!missed.empty()) {
