@@ -14,22 +14,34 @@
 using attenuvis::mie::Precision;
 using attenuvis::mie::forward_amplitude;
 
-TEST_CASE("forward amplitude at complex x: 60-digit mpmath table", "[mie][complex-x]") {
-  // tests/data/mie/forward_amplitude_mpmath.csv: validation/scripts/forward_amplitude_reference.py,
-  // mpmath at 60 digits from besselj/bessely (B&H eq. 4.53 form of a_n, b_n), an
-  // implementation independent of ours (log-derivative ratios, long double).
-  std::ifstream in(std::string(ATTENUVIS_TEST_DATA_DIR) + "/mie/forward_amplitude_mpmath.csv");
+namespace {
+// The rows of a reference table in tests/data/mie/: x, m and S(0).
+struct ReferenceRow {
+  std::complex<double> x, m, s0;
+};
+std::vector<ReferenceRow> reference_rows(const std::string& name) {
+  std::ifstream in(std::string(ATTENUVIS_TEST_DATA_DIR) + "/mie/" + name);
   REQUIRE(in);
-  std::string line;
-  int rows = 0;
-  double worst = 0, worst_double = 0;
-  while (std::getline(in, line)) {
+  std::vector<ReferenceRow> rows;
+  for (std::string line; std::getline(in, line);) {
     if (line.empty() || line[0] == '#' || line[0] == 'x') continue;
     std::istringstream s(line);
     std::vector<double> v;
     for (std::string cell; std::getline(s, cell, ',');) v.push_back(std::stod(cell));
     REQUIRE(v.size() == 6);
-    const std::complex<double> x(v[0], v[1]), m(v[2], v[3]), ref(v[4], v[5]);
+    rows.push_back({{v[0], v[1]}, {v[2], v[3]}, {v[4], v[5]}});
+  }
+  return rows;
+}
+}  // namespace
+
+TEST_CASE("forward amplitude at complex x: 60-digit mpmath table", "[mie][complex-x]") {
+  // tests/data/mie/forward_amplitude_mpmath.csv: validation/scripts/forward_amplitude_reference.py,
+  // mpmath at 60 digits from besselj/bessely (B&H eq. 4.53 form of a_n, b_n), an
+  // implementation independent of ours (log-derivative ratios, long double).
+  int rows = 0;
+  double worst = 0, worst_double = 0;
+  for (const auto& [x, m, ref] : reference_rows("forward_amplitude_mpmath.csv")) {
     for (Precision a : {Precision::extended, Precision::double_precision}) {
       const auto fa = forward_amplitude(x, m, a);
       const double err = std::abs(fa.s0 - ref);
@@ -60,18 +72,9 @@ TEST_CASE("forward amplitude up to its range, 3e5: 60-digit mpmath values", "[mi
   // by Miller's algorithm (mpmath's besselj does not converge at these
   // orders).  Raindrops in the ultraviolet: water at 200 nm on the contour's
   // height and on the real axis, water at 550 nm.
-  std::ifstream in(std::string(ATTENUVIS_TEST_DATA_DIR) + "/mie/forward_amplitude_mpmath_large.csv");
-  REQUIRE(in);
-  std::string line;
   int rows = 0;
   double worst[2] = {0, 0};  // double, long double
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#' || line[0] == 'x') continue;
-    std::istringstream s(line);
-    std::vector<double> v;
-    for (std::string cell; std::getline(s, cell, ',');) v.push_back(std::stod(cell));
-    REQUIRE(v.size() == 6);
-    const std::complex<double> x(v[0], v[1]), m(v[2], v[3]), ref(v[4], v[5]);
+  for (const auto& [x, m, ref] : reference_rows("forward_amplitude_mpmath_large.csv")) {
     for (Precision a : {Precision::extended, Precision::double_precision}) {
       const auto fa = forward_amplitude(x, m, a);
       const double err = std::abs(fa.s0 - ref);
