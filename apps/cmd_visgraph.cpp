@@ -115,7 +115,9 @@ std::vector<vg::ConditionInfo> conditions_to_sigma(const VgArguments& a, double&
     vg::ConditionInfo info;
     info.label = label;
     const weather::Sigma s = weather::sigma(weather::parse_condition(label), wavelength_m, settings);
-    if (!s.shortfall.empty()) std::cerr << "warning: " << label << ": " << s.shortfall << "\n";
+    // Like every warning of vg, silent under --quiet and on all but the
+    // first process under mpirun; the note carries it into the outputs.
+    if (!s.shortfall.empty() && !a.quiet) std::cerr << "warning: " << label << ": " << s.shortfall << "\n";
     info.sigma = s.per_m;
     info.sigma_error = s.error_per_m;
     info.model = s.model;
