@@ -144,19 +144,22 @@ TEST_CASE("space syntax: through vision walks depthmapX's cells", "[visgraph][sp
 
 TEST_CASE("space syntax: the bit-parallel BFS equals one BFS per node", "[visgraph][space_syntax]") {
   // 700 nodes: a full sweep of 512 origins and a partial one; sparse and
-  // dense graphs, disconnected parts and isolated nodes, every radius.
+  // dense graphs, disconnected parts and isolated nodes, every radius, both
+  // storages (the sweep reads bit rows and neighbour lists by different code).
   for (double p : {0.004, 0.05, 0.6}) {
     std::vector<Vector3d> eyes;
     std::vector<vg::Edge> edges;
     random_graph(7, 700, p, eyes, edges);
     for (int radius : {0, 1, 2, 3}) {
-      INFO("p = " << p << ", radius " << radius);
-      const vg::SpaceSyntaxResult r = on_edges(eyes, edges, options("mean-depth", {0.0}, 0.0, radius), true);
       std::vector<double> count, md;
       plain_depths(eyes.size(), edges, radius, count, md);
       const std::string suffix = radius > 0 ? "_r" + std::to_string(radius) : "";
-      CHECK(r.values("node_count" + suffix, 0) == count);
-      CHECK(r.values("mean_depth" + suffix, 0) == md);
+      for (bool bit_rows : {true, false}) {
+        INFO("p = " << p << ", radius " << radius << (bit_rows ? ", bit rows" : ", CSR"));
+        const vg::SpaceSyntaxResult r = on_edges(eyes, edges, options("mean-depth", {0.0}, 0.0, radius), bit_rows);
+        CHECK(r.values("node_count" + suffix, 0) == count);
+        CHECK(r.values("mean_depth" + suffix, 0) == md);
+      }
     }
   }
 }

@@ -27,7 +27,7 @@ inline bool any(const std::uint64_t* a) {
 }  // namespace
 
 DepthSweeper::DepthSweeper(const Storage& g)
-    : g_(g), seen_(g.n * W, 0), frontier_(g.n * W, 0), next_(g.n * W, 0) {}
+    : g_(g), seen_(g.n * W, 0), frontier_(g.n * W, 0), next_(g.n * W, 0), active_((g.n + 63) / 64, 0) {}
 
 // The origin bits of node v OR-ed into t (8 words).
 inline void merge(std::uint64_t* t, const std::uint64_t* f) {
@@ -42,48 +42,53 @@ ATTENUVIS_SWEEP_CLONES std::uint64_t DepthSweeper::push() {
   std::fill(next_.begin(), next_.end(), 0);
   std::uint64_t read = 0;
   std::uint64_t* next = next_.data();
-  for (std::size_t v = 0; v < g_.n; ++v) {
-    const std::uint64_t* f = frontier_.data() + v * W;
-    if (!any(f)) continue;
-    ++read;
-    if (g_.dense) {
-      if (g_.first_word[v] > g_.last_word[v]) continue;
-      const std::uint64_t* r = g_.row(v);
-      for (std::size_t w = g_.first_word[v]; w <= g_.last_word[v]; ++w)
-        for (std::uint64_t x = r[w]; x; x &= x - 1) merge(next + (w * 64 + lowest_bit(x)) * W, f);
-    } else {
-      for (std::uint64_t p = g_.offset[v]; p < g_.offset[v + 1]; ++p) merge(next + std::size_t{g_.adjacency[p]} * W, f);
+  for (std::size_t a = 0; a < active_.size(); ++a)
+    for (std::uint64_t bits = active_[a]; bits; bits &= bits - 1) {
+      const std::size_t v = a * 64 + lowest_bit(bits);
+      const std::uint64_t* f = frontier_.data() + v * W;
+      ++read;
+      if (g_.dense) {
+        if (g_.first_word[v] > g_.last_word[v]) continue;
+        const std::uint64_t* r = g_.row(v);
+        for (std::size_t w = g_.first_word[v]; w <= g_.last_word[v]; ++w)
+          for (std::uint64_t x = r[w]; x; x &= x - 1) merge(next + (w * 64 + lowest_bit(x)) * W, f);
+      } else {
+        for (std::uint64_t p = g_.offset[v]; p < g_.offset[v + 1]; ++p) merge(next + std::size_t{g_.adjacency[p]} * W, f);
+      }
     }
-  }
   return read;
 }
 
-// Bottom-up: every node still missing some origin ORs its neighbours'
-// frontier bits, stopping once it has every missing one (checked every
-// eighth neighbour: the check costs as much as a merge).  Returns the
-// neighbours read.
+// Bottom-up: every node still missing some origin ORs the frontier bits of
+// its neighbours on the frontier, stopping once it has every missing one
+// (checked every eighth merge: the check costs as much as a merge).
+// Returns the work in merges: those done, and in neighbour lists an eighth
+// of the entries passed over (4 sequential bytes against 64 random ones).
 ATTENUVIS_SWEEP_CLONES std::uint64_t DepthSweeper::pull() {
   const std::uint64_t* frontier = frontier_.data();
+  const std::uint64_t* active = active_.data();
   std::uint64_t read = 0;
   for (std::size_t u = 0; u < g_.n; ++u) {
-    std::uint64_t* t = next_.data() + u * W;
     const std::uint64_t* s = seen_.data() + u * W;
-    std::uint64_t missing[W];
+    // The bits gather in a local array (registers: one vector of eight
+    // words), not in next_, which the compiler must assume aliases the
+    // frontier and would store to after every merge.
+    std::uint64_t missing[W], got[W] = {};
     std::uint64_t open = 0;
-    for (std::size_t w = 0; w < W; ++w) missing[w] = ~s[w] & valid_[w], open |= missing[w], t[w] = 0;
-    if (!open) continue;
+    for (std::size_t w = 0; w < W; ++w) missing[w] = ~s[w] & valid_[w], open |= missing[w];
     const auto complete = [&] {
       std::uint64_t still = 0;
-      for (std::size_t w = 0; w < W; ++w) still |= missing[w] & ~t[w];
+      for (std::size_t w = 0; w < W; ++w) still |= missing[w] & ~got[w];
       return still == 0;
     };
     unsigned since_check = 0;
-    if (g_.dense) {
-      if (g_.first_word[u] > g_.last_word[u]) continue;
+    if (!open) {
+    } else if (g_.dense) {
       const std::uint64_t* r = g_.row(u);
-      for (std::size_t w = g_.first_word[u]; w <= g_.last_word[u]; ++w) {
-        for (std::uint64_t x = r[w]; x; x &= x - 1) merge(t, frontier + (w * 64 + lowest_bit(x)) * W);
-        const auto merged = static_cast<unsigned>(__builtin_popcountll(r[w]));
+      for (std::size_t w = g_.first_word[u]; w <= g_.last_word[u] && g_.first_word[u] <= g_.last_word[u]; ++w) {
+        const std::uint64_t on = r[w] & active[w];
+        for (std::uint64_t x = on; x; x &= x - 1) merge(got, frontier + (w * 64 + lowest_bit(x)) * W);
+        const auto merged = static_cast<unsigned>(__builtin_popcountll(on));
         since_check += merged;
         read += merged;
         if (since_check >= 8) {
@@ -92,15 +97,20 @@ ATTENUVIS_SWEEP_CLONES std::uint64_t DepthSweeper::pull() {
         }
       }
     } else {
-      for (std::uint64_t p = g_.offset[u]; p < g_.offset[u + 1]; ++p) {
-        merge(t, frontier + std::size_t{g_.adjacency[p]} * W);
+      std::uint64_t p = g_.offset[u];
+      for (; p < g_.offset[u + 1]; ++p) {
+        const std::uint32_t v = g_.adjacency[p];
+        if (!(active[v / 64] >> (v % 64) & 1)) continue;
+        merge(got, frontier + std::size_t{v} * W);
         ++read;
         if (++since_check == 8) {
           since_check = 0;
           if (complete()) break;
         }
       }
+      read += (p - g_.offset[u]) / 8;
     }
+    std::copy(got, got + W, next_.data() + u * W);
   }
   return read;
 }
@@ -110,6 +120,7 @@ bool DepthSweeper::settle(std::size_t d, SweepDepths& out, std::uint64_t& push_w
   std::uint32_t* count = out.counts.data() + d * kSweepOrigins;
   bool reached = false;
   push_work = pull_work = 0;
+  std::fill(active_.begin(), active_.end(), 0);
   for (std::size_t u = 0; u < g_.n; ++u) {
     std::uint64_t* t = next_.data() + u * W;
     std::uint64_t* s = seen_.data() + u * W;
@@ -123,7 +134,7 @@ bool DepthSweeper::settle(std::size_t d, SweepDepths& out, std::uint64_t& push_w
       open |= ~s[w] & valid_[w];
       for (std::uint64_t x = fresh; x; x &= x - 1) ++count[w * 64 + lowest_bit(x)];
     }
-    if (fresh_any) reached = true, push_work += g_.degree[u];
+    if (fresh_any) reached = true, push_work += g_.degree[u], active_[u / 64] |= std::uint64_t{1} << (u % 64);
     if (open) pull_work += g_.degree[u];
   }
   out.levels = d + 1;
@@ -135,6 +146,7 @@ void DepthSweeper::run(std::size_t first, std::size_t origins, int max_depth, Sw
   ATTENUVIS_CHECK_LE(first + origins, g_.n);
   std::fill(seen_.begin(), seen_.end(), 0);
   std::fill(frontier_.begin(), frontier_.end(), 0);
+  std::fill(active_.begin(), active_.end(), 0);
   for (std::size_t w = 0; w < W; ++w) {
     const std::size_t lo = w * 64;
     valid_[w] = origins >= lo + 64 ? ~std::uint64_t{0} : origins > lo ? (std::uint64_t{1} << (origins - lo)) - 1 : 0;
@@ -148,6 +160,7 @@ void DepthSweeper::run(std::size_t first, std::size_t origins, int max_depth, Sw
     const std::size_t v = first + b;
     seen_[v * W + b / 64] |= std::uint64_t{1} << (b % 64);
     frontier_[v * W + b / 64] |= std::uint64_t{1} << (b % 64);
+    active_[v / 64] |= std::uint64_t{1} << (v % 64);
     out.counts[b] = 1;
     push_work += g_.degree[v];
   }

@@ -25,7 +25,8 @@ struct SweepDepths {
 };
 
 // Per-thread state of the sweeps: seen, frontier and next bits of every
-// node (3 x 64 bytes per node).
+// node (3 x 64 bytes per node), and one bit per node that says whether its
+// frontier bits are non-zero.
 class DepthSweeper {
  public:
   explicit DepthSweeper(const Storage& g);
@@ -45,6 +46,11 @@ class DepthSweeper {
 
   const Storage& g_;
   std::vector<std::uint64_t> seen_, frontier_, next_;
+  // active_[v / 64] bit v % 64: node v is on the frontier of some origin.
+  // A pull skips every other neighbour without reading its 64 bytes (in
+  // bit rows, a whole word of neighbours at a time); a push visits only
+  // these nodes.
+  std::vector<std::uint64_t> active_;
   std::uint64_t valid_[kSweepWords] = {};
 };
 
