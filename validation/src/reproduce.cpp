@@ -84,10 +84,12 @@ std::string tail_of_file(const fs::path& p, std::size_t max_chars) {
   return s;
 }
 
-// Draws every figure of the report in one interpreter (matplotlib's import
-// costs about a second; once is enough).  Any failure fails the job.
-void draw_figures(const Report& report, const std::string& dir, detail::Progress* progress) {
+// Draws every figure of the report with one interpreter (matplotlib's import
+// costs about a second; once is enough), which forks into `processes` to
+// draw.  Any failure fails the job.
+void draw_figures(const Report& report, const std::string& dir, int processes, detail::Progress* progress) {
   nlohmann::json spec;
+  spec["processes"] = processes;
   spec["figures"] = nlohmann::json::array();
   std::vector<std::string> ids;
   for (const auto& s : report.sections)
@@ -363,7 +365,7 @@ ReproduceResult reproduce(const ReproduceOptions& options) {
   run_sections(ctx, report);
   open_with_verdict_count(report);
   report.guide = reading_guide();
-  if (options.figures) draw_figures(report, staging.path().string(), &progress);
+  if (options.figures) draw_figures(report, staging.path().string(), threads, &progress);
 
   ReproduceResult result;
   result.seconds = detail::seconds_since(t0);

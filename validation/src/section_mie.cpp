@@ -7,13 +7,12 @@
 #include <cmath>
 #include <complex>
 #include <map>
-#include <numeric>
 #include <string>
 #include <vector>
 
-#include <tbb/parallel_for.h>
 
 #include "attenuvis/validation/mie_accuracy.hpp"
+#include "dearest_first.hpp"
 #include "heartbeat.hpp"
 #include "mie_published.hpp"
 #include "sections.hpp"
@@ -230,8 +229,8 @@ std::vector<MapCell> map_cells(const MapGrid& g, std::vector<std::vector<int>>& 
 }
 
 // Each cell's error against the referee and its time.  The cheap first cell
-// alone (initialises any function-local statics), the rest in parallel, most
-// expensive (largest x) first.
+// alone (initialises any function-local statics), the rest on every thread,
+// the most expensive (largest x) first.
 void run_map_cells(Context& ctx, std::vector<MapCell>& cells) {
   ctx.step("mie", "error map: " + std::to_string(cells.size()) + " cells against the 50-digit reference");
   auto run_cell = [](MapCell& c) {
@@ -246,13 +245,12 @@ void run_map_cells(Context& ctx, std::vector<MapCell>& cells) {
   Heartbeat heartbeat(ctx, "mie", "error map against the 50-digit reference", cells.size(), total_terms);
   run_cell(cells[0]);
   heartbeat.done(terms(cells[0].x));
-  std::vector<std::size_t> order(cells.size() - 1);
-  std::iota(order.begin(), order.end(), std::size_t{1});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cells[a].x > cells[b].x; });
-  tbb::parallel_for(std::size_t{0}, order.size(), [&](std::size_t i) {
-    run_cell(cells[order[i]]);
-    heartbeat.done(terms(cells[order[i]].x));
-  });
+  run_dearest_first(
+      cells.size() - 1, [&](std::size_t i) { return cells[i + 1].x; },
+      [&](std::size_t i) {
+        run_cell(cells[i + 1]);
+        heartbeat.done(terms(cells[i + 1].x));
+      });
 }
 
 // What the map shows: the worst cell, the cells above the requirement and

@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include <tbb/parallel_for.h>
 
 #include "attenuvis/mie.hpp"
 #include "attenuvis/mie/detail/layered_stress_grid.hpp"
@@ -21,6 +20,7 @@
 #include "attenuvis/mie/layered_referee.hpp"
 #include "attenuvis/validation/mie_accuracy.hpp"
 #include "block_timing.hpp"
+#include "dearest_first.hpp"
 #include "heartbeat.hpp"
 #include "mie_published.hpp"
 #include "sections.hpp"
@@ -68,14 +68,13 @@ std::vector<CaseResult> run_grid(Context& ctx, std::vector<LayeredCase>& cases) 
   double total = 0;
   for (const auto& c : cases) total += c.x.back();
   Heartbeat heartbeat(ctx, "mie", "layered spheres against the 50-digit referee", cases.size(), total);
-  std::vector<std::size_t> order(cases.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cases[a].x.back() > cases[b].x.back(); });
-  tbb::parallel_for(std::size_t{0}, order.size(), [&](std::size_t i) {
-    const auto e = mie::detail::layered_case_error(cases[order[i]]);
-    results[order[i]] = {&cases[order[i]], e.error, e.quantity};
-    heartbeat.done(cases[order[i]].x.back());
-  });
+  run_dearest_first(
+      cases.size(), [&](std::size_t i) { return cases[i].x.back(); },
+      [&](std::size_t i) {
+        const auto e = mie::detail::layered_case_error(cases[i]);
+        results[i] = {&cases[i], e.error, e.quantity};
+        heartbeat.done(cases[i].x.back());
+      });
   return results;
 }
 
