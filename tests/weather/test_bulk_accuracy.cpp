@@ -77,7 +77,8 @@ BulkOptics check_case(const SizeDistribution& d, double wavelength, const Refere
   }
   for (const auto& [l, chi] : ref.chi) {
     const std::string name = "chi_" + std::to_string(l);
-    check(name.c_str(), b.moments[l], b.moments_error[l], chi, ref.spread_angular, angular);
+    // bulk_optics.hpp: chi_l relative to max(|chi_l|, 1e-3).
+    check(name.c_str(), b.moments[l], b.moments_error[l], chi, ref.spread_angular, angular * std::max(std::abs(chi), 1e-3));
   }
   for (std::size_t j = 0; j < ref.phase.size(); ++j) {
     const std::string name = "p(" + std::to_string(static_cast<int>(kAngles[j])) + " deg)";

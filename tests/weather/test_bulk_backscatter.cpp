@@ -205,7 +205,8 @@ void check_against_brute_force(const SizeDistribution& d, double wavelength, con
   for (int l = 0; l <= L; ++l) {
     const double t1 = static_cast<double>(r1.moments[l] / r1.sca), t2 = static_cast<double>(r2.moments[l] / r2.sca);
     const std::string name = "chi_" + std::to_string(l);
-    check(name.c_str(), b.moments[l], b.moments_error[l], t1, t2, angular);
+    // bulk_optics.hpp: chi_l relative to max(|chi_l|, 1e-3).
+    check(name.c_str(), b.moments[l], b.moments_error[l], t1, t2, angular * std::max(std::abs(t2), 1e-3));
   }
 }
 }  // namespace

@@ -13,6 +13,7 @@
 #include "attenuvis/io/check.hpp"
 #include "attenuvis/io/number_text.hpp"
 #include "attenuvis/weather/segmented_contour.hpp"
+#include "bulk_components.hpp"
 
 namespace attenuvis::weather {
 namespace {
@@ -165,9 +166,10 @@ std::vector<double> tolerance_factors(const std::vector<AerosolPart>& parts, dou
 
 // Which quantity of a mixture misses its tolerance by its reported error, the
 // worst, in words; empty when none does.  The tolerances of bulk_optics.hpp:
-// sigma_ext, sigma_sca, sigma_abs relative to sigma_ext; g, chi_l and the
-// matrix expansion's coefficients absolute, beta_pi and p(theta) relative,
-// to max(tolerance, 1e-6).
+// sigma_ext, sigma_sca, sigma_abs relative to sigma_ext; g and the matrix
+// expansion's coefficients absolute, beta_pi and p(theta) relative, chi_l
+// relative down to |chi_l| = 1e-3 (Layout::moment_scale), to
+// max(tolerance, 1e-6).
 std::string mixture_missed(const BulkOptics& b, const Settings& s) {
   const double tol = s.rel_tolerance, angular = std::max(tol, 1e-6), ext = b.extinction.value;
   std::string worst;
@@ -185,7 +187,8 @@ std::string mixture_missed(const BulkOptics& b, const Settings& s) {
   if (b.backscatter_computed)
     check("backscatter beta_pi", b.backscatter.error(), angular * b.backscatter.value, angular);
   for (std::size_t l = 1; l < b.moments_error.size(); ++l)
-    check("Legendre moment chi_" + std::to_string(l), b.moments_error[l], angular, angular);
+    check("Legendre moment chi_" + std::to_string(l), b.moments_error[l],
+          angular * detail::Layout::moment_scale(b.moments[l]), angular);
   for (std::size_t i = 0; i < b.phase_error.size() && i < b.angles_deg.size(); ++i)
     check("phase function at " + g4(b.angles_deg[i]) + " deg", b.phase_error[i], angular * b.phase[i], angular);
   const auto& [a1, a2, a3, a4, b1, b2] = b.expansion_error;

@@ -52,14 +52,25 @@ struct Layout {
     for (int i = kFixed; i < size(); ++i) c.push_back(i);
     return c;
   }
-  // sigma_ext for ext/sca/abs, sigma_sca for g and chi_l (absolute on the
-  // normalised value), the component itself for beta_pi and p(theta).
+  bool is_moment(int c) const { return c >= kFixed && c < kFixed + moments; }
+  // sigma_ext for ext/sca/abs, sigma_sca for g and the expansion (absolute
+  // on the normalised value), the component itself for beta_pi and
+  // p(theta), and for chi_l the larger of the component and
+  // kMomentFloor sigma_sca (moment_scale).
   double scale(int c, const Vec& v) const {
-    if (c == kGSca || (c >= kFixed && c < kFixed + moments) || c >= kFixed + moments + angles)
-      return std::max(std::abs(v[kSca]), 1e-300);
+    if (is_moment(c)) return std::max(std::abs(v[kSca]), 1e-300) * moment_scale(v[c] / v[kSca]);
+    if (c == kGSca || c >= kFixed + moments + angles) return std::max(std::abs(v[kSca]), 1e-300);
     if (c == kBack || c >= kFixed + moments) return std::max(std::abs(v[c]), 1e-300);
     return std::max(std::abs(v[kExt]), 1e-300);
   }
+  // chi_l is held to the angular tolerance relative to itself down to
+  // |chi_l| = kMomentFloor, and below that to the tolerance times the floor,
+  // absolute (chi_0 = 1).  The moments that shape the phase function are so
+  // each relative; the tail of a small drop's moments (chi_32 of radiation
+  // fog at 10.6 um is 3e-18) would otherwise ask for digits that the
+  // per-drop moments, rounded relative to chi_0, do not hold.
+  static constexpr double kMomentFloor = 1e-3;
+  static double moment_scale(double chi) { return std::isfinite(chi) ? std::max(std::abs(chi), kMomentFloor) : 1.0; }
 };
 
 // The relative tolerance of g, beta_pi, chi_l, p(theta) and the expansion:

@@ -16,7 +16,8 @@
 //                on an angle grid, normalised int p dOmega = 4 pi (p = 1 for
 //                isotropic scattering; divide by 4 pi for 1/sr).
 // Each is one more component of the same panel sums, with the same error terms
-// (backscatter and phase relative to their own value, moments absolute, like g).
+// (backscatter and phase relative to their own value, g absolute, chi_l
+// relative to max(|chi_l|, 1e-3): relative down to 1e-3, absolute below).
 //
 // Tolerances: rel_tolerance governs sigma_ext, sigma_sca and sigma_abs (each
 // relative to sigma_ext, so that the albedo is good to it as well);
@@ -124,8 +125,8 @@ using EfficiencyBatch = std::function<void(const double* x, std::size_t n, Effic
 struct QuadratureSettings {
   double rel_tolerance = 1e-9;     // on sigma_ext, sigma_sca, sigma_abs (relative to sigma_ext)
   // On g, beta_pi, chi_l, p(theta) and the expansion (relative to sigma_sca
-  // for g and chi_l, to itself for beta_pi and p(theta)); 0: max(rel_tolerance,
-  // 1e-6).  Their integrands carry resonances 10-1000x stronger than Q_ext's
+  // for g and the expansion, to itself for beta_pi and p(theta), to
+  // max(|chi_l|, 1e-3) for chi_l); 0: max(rel_tolerance, 1e-6).  Their integrands carry resonances 10-1000x stronger than Q_ext's
   // (Q_back ~ x |T| per resonance), so each decade costs more there.
   double angular_tolerance = 0;
   int kronrod_points = 31;         // Boost.Math gauss_kronrod order: 15, 21, 31, 41, 51 or 61
