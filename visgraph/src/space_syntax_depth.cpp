@@ -18,12 +18,6 @@ constexpr std::size_t W = kSweepWords;
 #else
 #define ATTENUVIS_SWEEP_CLONES
 #endif
-
-inline bool any(const std::uint64_t* a) {
-  std::uint64_t x = 0;
-  for (std::size_t w = 0; w < W; ++w) x |= a[w];
-  return x != 0;
-}
 }  // namespace
 
 DepthSweeper::DepthSweeper(const Storage& g)
@@ -82,10 +76,11 @@ ATTENUVIS_SWEEP_CLONES std::uint64_t DepthSweeper::pull() {
       return still == 0;
     };
     unsigned since_check = 0;
-    if (!open) {
+    if (!open || (g_.dense && g_.first_word[u] > g_.last_word[u])) {
+      // reached by every origin, or no neighbours: nothing to gather
     } else if (g_.dense) {
       const std::uint64_t* r = g_.row(u);
-      for (std::size_t w = g_.first_word[u]; w <= g_.last_word[u] && g_.first_word[u] <= g_.last_word[u]; ++w) {
+      for (std::size_t w = g_.first_word[u]; w <= g_.last_word[u]; ++w) {
         const std::uint64_t on = r[w] & active[w];
         for (std::uint64_t x = on; x; x &= x - 1) merge(got, frontier + (w * 64 + lowest_bit(x)) * W);
         const auto merged = static_cast<unsigned>(__builtin_popcountll(on));
