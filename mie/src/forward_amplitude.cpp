@@ -18,10 +18,11 @@ namespace {
 void check(std::complex<double> x, std::complex<double> m) {
   const bool ok = std::isfinite(x.real()) && std::isfinite(x.imag()) && std::isfinite(m.real()) &&
                   std::isfinite(m.imag()) && x.real() > 0 && x.imag() >= 0 && x.imag() <= 20 &&
-                  std::abs(x) <= 3e5 && m.real() > 0 && m.imag() >= 0 && std::abs(m - 1.0) >= 1e-6;
+                  std::abs(x) <= kForwardAmplitudeMaxX && m.real() > 0 && m.imag() >= 0 && std::abs(m - 1.0) >= 1e-6;
   if (!ok) {
     std::ostringstream os;
     os.precision(17);
+    static_assert(kForwardAmplitudeMaxX == 3e5, "the message names the limit as 3e5");
     os << "mie::forward_amplitude: needs 0 < |x| <= 3e5, Re x > 0, 0 <= Im x <= 20, Re m > 0, Im m >= 0 and "
           "|m - 1| >= 1e-6; got x = "
        << x.real() << (x.imag() < 0 ? " - " : " + ") << std::abs(x.imag()) << "i, m = " << m.real()

@@ -169,8 +169,8 @@ class Refinement {
   // 0.45 of rel_tolerance x sigma_ext (so that the albedo, (err_sca + w
   // err_ext) / sigma_ext, stays within it too); the ratios to sigma_sca (g,
   // chi_l, p(theta), the expansion) carry (err_c + |v| err_sca) / sigma_sca
-  // as fill_optional reports them, relative to |v| for p(theta) and to
-  // max(|v|, kMomentFloor) for chi_l; beta_pi carries its own relative error
+  // as fill_optional reports them, against Layout::scale (relative to |v|
+  // for p(theta), to max(|v|, 1e-3) for chi_l); beta_pi carries its own relative error
   // plus sigma_ext's, so that the lidar ratio stays within its tolerance.
   // 0.9 of each leaves room for the tails (1e-3 of the tolerance).
   // With quadrature false, the share of the unresolved resonances alone.
@@ -181,10 +181,7 @@ class Refinement {
     if (c == kExt || c == kSca || c == kAbs) return err(c) / (0.45 * tol * ext);
     if (c == kBack) return (err(c) / std::max(std::abs(value_[c]), 1e-300) + err(kExt) / ext) / (0.9 * tol);
     const double v = value_[c] / sca;
-    const double e = (err(c) + std::abs(v) * err(kSca)) / sca;
-    const bool relative = c >= layout_.angle(0) && c < layout_.expansion_at(0);  // p(theta)
-    const double scale = relative ? std::max(std::abs(v), 1e-300) : layout_.is_moment(c) ? Layout::moment_scale(v) : 1.0;
-    return e / (0.9 * tol * scale);
+    return (err(c) + std::abs(v) * err(kSca)) / (0.9 * tol * scale(c));
   }
   bool met() const {
     for (int c : checked_)

@@ -38,6 +38,7 @@
 #include <optional>
 #include <string>
 
+#include "attenuvis/mie/forward_amplitude.hpp"
 #include "attenuvis/weather/bulk_optics.hpp"
 #include "attenuvis/weather/size_distribution.hpp"
 
@@ -55,7 +56,7 @@ struct ContourSettings {
   // axis's 0.7 % (docs/guide/optics-tables.md).  3e5 takes Marshall-Palmer
   // rain up to about 75 mm/h down to 200 nm (8 mm/h there: x_max 1.9e5,
   // 14 s on two cores, 270 MB).
-  double max_x = 3e5;
+  double max_x = mie::kForwardAmplitudeMaxX;
   double tail_fraction = 0;     // of the r^2 moment beyond x_max; 0: 2e-2 x rel_tolerance (bound ~4e-2 x)
   double initial_panel_heights = 25;  // first panels are this many H wide (in Re x)
   double tail_panel_fraction = 1e-5;  // beyond the radius leaving this much of the r^2 moment, ...
