@@ -135,6 +135,7 @@ FloorComparison compare_with_floors(const vg::Scene& scene, const std::vector<Ei
   out.culled_visible = result.pairs_culled_visible;
   out.culled_blocked = result.pairs_culled_blocked;
   out.cast = result.pairs_cast;
+  out.visible = result.pairs_visible;
   o.phase_times = true;
   const vg::VisibilityResult phases = vg::all_to_all(scene, eyes, o);
   // Clustering runs on the pass's threads: its wall time counts for each.
