@@ -347,15 +347,15 @@ void print_floors(const std::string& name, std::size_t K, int threads, const val
   const double percent = 100.0 / static_cast<double>(std::max<std::uint64_t>(f.pairs, 1));
   char rays[32] = "-", over_rays[32] = "-", scoring[32] = "-", over_scoring[32] = "-", ceiling[32] = "-";
   if (f.rays_cpu.best_s > 0) {
-    std::snprintf(rays, sizeof rays, "%9.2f", f.rays_cpu.best_s);
+    std::snprintf(rays, sizeof rays, "%9.3f", f.rays_cpu.best_s);
     std::snprintf(over_rays, sizeof over_rays, "%8.2f", f.over_rays());
   }
   if (f.scoring_cpu.best_s > 0) {
-    std::snprintf(scoring, sizeof scoring, "%9.2f", f.scoring_cpu.best_s);
+    std::snprintf(scoring, sizeof scoring, "%9.3f", f.scoring_cpu.best_s);
     std::snprintf(over_scoring, sizeof over_scoring, "%8.2f", f.over_scoring());
   }
   if (f.ceiling() > 0) std::snprintf(ceiling, sizeof ceiling, "%8.2f", f.ceiling());
-  std::printf("%-26s %7zu %11llu %2zu %3d %8.1f %8.1f %6.1f %8.2f %8.2f %8.2f %8.2f %9.2f %9s %9s %8s %8s %8s %8.2f\n",
+  std::printf("%-26s %7zu %11llu %2zu %3d %8.1f %8.1f %6.1f %8.3f %8.3f %8.3f %8.3f %9.3f %9s %9s %8s %8s %8s %8.2f\n",
               name.c_str(), f.nodes, static_cast<unsigned long long>(f.pairs), K, threads, f.culled_visible * percent,
               f.culled_blocked * percent, f.cast * percent, f.cluster_s, f.packet_s, f.score_s, f.rays_s,
               f.engine_cpu.best_s, rays, scoring, over_rays, ceiling, over_scoring, 1e9 * f.engine_cpu.best_s * percent / 100);
