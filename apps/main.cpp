@@ -85,7 +85,9 @@ int attenuvis::cli::run_program(int argc, char** argv) {
   attenuvis::cli::register_weather(app);
   attenuvis::cli::register_visgraph(app);
   attenuvis::cli::register_scene_command(app);
+#ifndef ATTENUVIS_WITHOUT_REPRODUCE
   attenuvis::cli::register_reproduce(app);
+#endif
   attenuvis::cli::register_optics(app);
   attenuvis::cli::register_help(app);
   attenuvis::cli::apply_help_layout(app);
