@@ -170,8 +170,9 @@ class Refinement {
   // err_ext) / sigma_ext, stays within it too); the ratios to sigma_sca (g,
   // chi_l, p(theta), the expansion) carry (err_c + |v| err_sca) / sigma_sca
   // as fill_optional reports them, against Layout::scale (relative to |v|
-  // for p(theta), to max(|v|, 1e-3) for chi_l); beta_pi carries its own relative error
-  // plus sigma_ext's, so that the lidar ratio stays within its tolerance.
+  // for p(theta), to max(|v|, Layout::kMomentFloor) for chi_l); beta_pi
+  // carries its own relative error plus sigma_ext's, so that the lidar ratio
+  // stays within its tolerance.
   // 0.9 of each leaves room for the tails (1e-3 of the tolerance).
   // With quadrature false, the share of the unresolved resonances alone.
   double share(int c, bool quadrature = true) const {
