@@ -335,12 +335,14 @@ void print_floors_header() {
               "vectorised scoring loop (every pair in sight, no rays); CPU seconds of the process, best of the repeats; "
               "the engine's CPU split by phase (cluster classification, packet decisions, scoring, rays) from the "
               "shares measured in one more run with phase timing; ceiling: the most Embree/engine can be when each pair "
-              "in sight costs what the scoring loop spends on it and no other pair costs anything\n");
-  std::printf("%-26s %7s %11s %2s %3s %8s %8s %6s %8s %8s %8s %8s %9s %9s %9s %8s %8s %8s %8s\n", "workload", "nodes",
-              "pairs", "K", "thr", "sight[%]", "block[%]", "cast%", "cluster", "packets", "score", "rays", "engine",
-              "Embree", "scoring", "Embree/", "ceiling", "engine/", "ns/pair");
-  std::printf("%-26s %7s %11s %2s %3s %8s %8s %6s %8s %8s %8s %8s %9s %9s %9s %8s %8s %8s %8s\n", "", "", "", "", "", "",
-              "", "", "[s]", "[s]", "[s]", "[s]", "cpu [s]", "cpu [s]", "cpu [s]", "engine", "", "scoring", "engine");
+              "in sight costs what the scoring loop spends on it and no other pair costs anything; no plane: the "
+              "engine without its eyes' plane (which decides sight lines where every node stands at one height)\n");
+  std::printf("%-26s %7s %11s %2s %3s %8s %8s %6s %8s %8s %8s %8s %9s %9s %9s %8s %8s %8s %8s %9s %8s\n", "workload",
+              "nodes", "pairs", "K", "thr", "sight[%]", "block[%]", "cast%", "cluster", "packets", "score", "rays",
+              "engine", "Embree", "scoring", "Embree/", "ceiling", "engine/", "ns/pair", "no plane", "Embree/");
+  std::printf("%-26s %7s %11s %2s %3s %8s %8s %6s %8s %8s %8s %8s %9s %9s %9s %8s %8s %8s %8s %9s %8s\n", "", "", "", "",
+              "", "", "", "", "[s]", "[s]", "[s]", "[s]", "cpu [s]", "cpu [s]", "cpu [s]", "engine", "", "scoring",
+              "engine", "cpu [s]", "no plane");
 }
 
 void print_floors(const std::string& name, std::size_t K, int threads, const val::FloorComparison& f) {
@@ -355,19 +357,27 @@ void print_floors(const std::string& name, std::size_t K, int threads, const val
     std::snprintf(over_scoring, sizeof over_scoring, "%8.2f", f.over_scoring());
   }
   if (f.ceiling() > 0) std::snprintf(ceiling, sizeof ceiling, "%8.2f", f.ceiling());
-  std::printf("%-26s %7zu %11llu %2zu %3d %8.1f %8.1f %6.1f %8.3f %8.3f %8.3f %8.3f %9.3f %9s %9s %8s %8s %8s %8.2f\n",
-              name.c_str(), f.nodes, static_cast<unsigned long long>(f.pairs), K, threads, f.culled_visible * percent,
-              f.culled_blocked * percent, f.cast * percent, f.cluster_s, f.packet_s, f.score_s, f.rays_s,
-              f.engine_cpu.best_s, rays, scoring, over_rays, ceiling, over_scoring, 1e9 * f.engine_cpu.best_s * percent / 100);
+  char no_plane[32] = "-", over_no_plane[32] = "-";
+  if (f.engine_no_plane_cpu.best_s > 0) std::snprintf(no_plane, sizeof no_plane, "%9.3f", f.engine_no_plane_cpu.best_s);
+  if (f.over_rays_no_plane() > 0) std::snprintf(over_no_plane, sizeof over_no_plane, "%8.2f", f.over_rays_no_plane());
+  std::printf(
+      "%-26s %7zu %11llu %2zu %3d %8.1f %8.1f %6.1f %8.3f %8.3f %8.3f %8.3f %9.3f %9s %9s %8s %8s %8s %8.2f %9s %8s\n",
+      name.c_str(), f.nodes, static_cast<unsigned long long>(f.pairs), K, threads, f.culled_visible * percent,
+      f.culled_blocked * percent, f.cast * percent, f.cluster_s, f.packet_s, f.score_s, f.rays_s, f.engine_cpu.best_s,
+      rays, scoring, over_rays, ceiling, over_scoring, 1e9 * f.engine_cpu.best_s * percent / 100, no_plane,
+      over_no_plane);
   std::fflush(stdout);
 }
 
+// `walls`: the scene has some, so the engine is also run without its eyes'
+// plane (on the open plane it would be the same engine).
 void floors_workload(const Args& a, const std::string& name, const vg::Scene& scene,
-                     const std::vector<Eigen::Vector3d>& eyes, const std::vector<double>& sigmas) {
+                     const std::vector<Eigen::Vector3d>& eyes, const std::vector<double>& sigmas, bool walls = true) {
   val::FloorOptions o;
   o.sigmas = sigmas;
   o.threads = max_threads(a);
   o.repeats = a.repeats;
+  o.without_eye_plane = walls;
   print_floors(name, sigmas.size(), o.threads, val::compare_with_floors(scene, eyes, o));
 }
 
@@ -383,8 +393,8 @@ void floors_study(const Args& a) {
     const vg::Scene scene(plane);
     const auto eyes = grid_nodes(scene, 1.0, {});
     const std::string name = "open plane " + std::to_string(static_cast<int>(a.plane)) + " m, 1 m";
-    floors_workload(a, name, scene, eyes, one);
-    floors_workload(a, name, scene, eyes, four);
+    floors_workload(a, name, scene, eyes, one, false);
+    floors_workload(a, name, scene, eyes, four, false);
   }
   if (std::filesystem::exists(a.cityjson)) {
     vg::Mesh m = vg::load_cityjson(a.cityjson);

@@ -116,10 +116,14 @@ FloorComparison compare_with_floors(const vg::Scene& scene, const std::vector<Ei
   o.sigmas = options.sigmas;
   o.threads = options.threads;
   vg::VisibilityResult result;
-  std::vector<double> engine_cpu, engine_wall, rays_cpu, scoring_cpu;
+  std::vector<double> engine_cpu, engine_wall, rays_cpu, scoring_cpu, no_plane_cpu;
   volatile double keep = 0;
+  vg::VisibilityOptions without = o;
+  without.eye_plane = false;
   for (int r = 0; r < std::max(1, options.repeats); ++r) {
     time_cpu(engine_cpu, &engine_wall, [&] { result = vg::all_to_all(scene, eyes, o); });
+    if (options.without_eye_plane)
+      time_cpu(no_plane_cpu, nullptr, [&] { out.cast_no_plane = vg::all_to_all(scene, eyes, without).pairs_cast; });
     if (options.rays_floor)
       time_cpu(rays_cpu, nullptr, [&] {
         keep = keep + static_cast<double>(vg::raw_visible_pairs(scene, eyes, options.threads, vg::RawMethod::packets16));
@@ -131,6 +135,7 @@ FloorComparison compare_with_floors(const vg::Scene& scene, const std::vector<Ei
   out.engine_wall = best_and_median(engine_wall);
   out.rays_cpu = best_and_median(rays_cpu);
   out.scoring_cpu = best_and_median(scoring_cpu);
+  out.engine_no_plane_cpu = best_and_median(no_plane_cpu);
   out.pairs = result.pairs_total;
   out.culled_visible = result.pairs_culled_visible;
   out.culled_blocked = result.pairs_culled_blocked;

@@ -69,6 +69,18 @@ class CullGeometry {
   // The solid of a triangle, or -1: callers skip a solid already tried.
   std::int32_t solid_of(std::uint32_t triangle) const { return solid_of_[triangle]; }
 
+  // A planar occluder: a triangle, or a convex quad of two (see
+  // build_occluders).  A sight line is blocked by it when both ends lie at
+  // least margin + depth from its plane, on either side, and it crosses
+  // the plane at least `inside` within every edge (lanes_blocked).
+  struct Occluder {
+    double n[3], c;           // plane n.x = c, |n| = 1
+    int edges = 0;            // 3 or 4; 0: degenerate, blocks nothing
+    double u[4][3], o[4];     // inward in-plane edge normals: u.x - o >= 0 inside
+    double depth = 0;         // a quad's second triangle: largest distance from the plane
+  };
+  const std::vector<Occluder>& occluders() const { return occluders_; }
+
  private:
   struct Triangle {
     double v[3][3];
@@ -77,12 +89,6 @@ class CullGeometry {
     double lo[3], hi[3];
     std::uint32_t first = 0, count = 0;  // leaf: triangles order_[first, first + count)
     std::int32_t left = -1, right = -1;
-  };
-  struct Occluder {
-    double n[3], c;           // plane n.x = c, |n| = 1
-    int edges = 0;            // 3 or 4
-    double u[4][3], o[4];     // inward in-plane edge normals: u.x - o >= 0 inside
-    double depth = 0;         // a quad's second triangle: largest distance from the plane
   };
   struct Solid {
     std::vector<std::array<double, 4>> faces;  // outward unit normal n and c: inside n.x - c <= 0

@@ -106,13 +106,15 @@ constexpr std::uint8_t kPacketMisses = 3;
 // What a row does with one packet of a pair of leaves left to rays
 // (packet_culling.hpp): cast it, or skip it, decided blocked.
 Verdict decide_packet(const LeafPass& lp, std::size_t i, std::size_t j0, int k, std::size_t b, ThreadState& ts) {
-  if (!lp.packets.active() || ts.packet_misses[b] >= kPacketMisses) return Verdict::cast;
+  if (!lp.packets.active()) return Verdict::cast;
   PhaseClock clock(lp.pass.time_phases);
   const Points& P = lp.layout.points;
   const double point[3] = {P.x[i], P.y[i], P.z[i]};
-  const Verdict v =
-      lp.packets.decide(point, P.x.data() + j0, P.y.data() + j0, P.z.data() + j0, k, ts.packet_hints[b], ts.near_hints);
-  ts.packet_misses[b] = v == Verdict::cast ? static_cast<std::uint8_t>(ts.packet_misses[b] + 1) : 0;
+  if (ts.fan.empty()) ts.fan.resize(1);
+  const bool occluders = ts.packet_misses[b] < kPacketMisses;
+  const Verdict v = lp.packets.decide(point, P.x.data() + j0, P.y.data() + j0, P.z.data() + j0, k, ts.packet_hints[b],
+                                      ts.near_hints, ts.fan[0], i, occluders);
+  if (occluders) ts.packet_misses[b] = v == Verdict::cast ? static_cast<std::uint8_t>(ts.packet_misses[b] + 1) : 0;
   if (v == Verdict::blocked) ts.packet_blocked += static_cast<std::uint64_t>(k);
   ts.seconds.classify += clock.lap();
   return v;
@@ -188,7 +190,10 @@ std::vector<std::uint32_t> run_culled_pass(const Scene& scene, const Pass& rows_
   pass.caller = layout.caller.data();
   std::vector<std::uint32_t> rank_of(options.edge_sink ? N : 0);
   for (std::size_t p = 0; p < rank_of.size(); ++p) rank_of[layout.caller[p]] = layout.row[p];
-  const PacketCulling packets(culling->scene(), culling->geometry(), culling->margin());
+  const std::unique_ptr<EyePlane> plane =
+      culling->geometry() && options.eye_plane ? EyePlane::build(*culling->geometry(), layout.points, culling->margin())
+                                                   : nullptr;
+  const PacketCulling packets(culling->scene(), culling->geometry(), culling->margin(), plane.get());
   const LeafPass lp{pass, *culling, layout, rank_of, progress, packets};
   run_row_blocks(options, N, N, [&](std::size_t block, std::size_t block_end, RowEdges* row_edges) {
     const bool dense = row_edges == nullptr;

@@ -36,12 +36,21 @@ std::uint32_t PacketCulling::unblocked(std::uint32_t t, const PacketLines& p, st
 }
 
 Verdict PacketCulling::decide(const double* point, const double* x, const double* y, const double* z, int n,
-                              Hints& hints, Hints& near) const {
-  if (!geometry_ || n <= 0) return Verdict::cast;
-  PacketLines p;
-  set_lines(p, point, x, y, z, n);
+                              Hints& hints, Hints& near, EyePlane::Fan& fan, std::size_t row, bool occluders) const {
+  if (!geometry_ || n <= 0 || (!plane_ && !occluders)) return Verdict::cast;
   const std::uint32_t all = (1u << n) - 1u;
   std::uint32_t open = all;
+  if (plane_) {
+    if (fan.eye != row) {
+      plane_->fill(point[0], point[1], fan);
+      fan.eye = row;
+    }
+    open &= ~EyePlane::lanes_blocked(fan, point, x, y, n);
+    if (!open) return Verdict::blocked;
+  }
+  if (!occluders) return Verdict::cast;
+  PacketLines p;
+  set_lines(p, point, x, y, z, n);
   TriedSolids tried;
   for (const Hints* list : {&hints, &near})
     for (int h = 0; h < kHints && open; ++h) {

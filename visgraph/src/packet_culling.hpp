@@ -23,6 +23,7 @@
 #pragma once
 
 #include "cull_geometry.hpp"
+#include "eye_plane.hpp"
 #include "pair_culling.hpp"
 
 #include <embree3/rtcore.h>
@@ -41,20 +42,23 @@ class PacketCulling {
     std::uint32_t triangle[kHints] = {kNoHint, kNoHint, kNoHint, kNoHint};
   };
 
-  // Null geometry: every packet is cast.
-  PacketCulling(RTCScene scene, const CullGeometry* geometry, double margin)
-      : scene_(scene), geometry_(geometry), margin_(margin) {}
+  // Null geometry: every packet is cast.  `plane`: the eyes' plane, where
+  // the nodes stand at one height (or null).
+  PacketCulling(RTCScene scene, const CullGeometry* geometry, double margin, const EyePlane* plane = nullptr)
+      : scene_(scene), geometry_(geometry), margin_(margin), plane_(plane) {}
   bool active() const { return geometry_ != nullptr; }
 
   // Row `point` against partners (x[l], y[l], z[l]), l < n <= 16 (local
-  // frame).  `hints`: of this pair of leaves; `near`: of the row's leaf
-  // (the walls around its rows, whatever the partners).  `near` carries
-  // over between pairs of leaves, so with pass shares (each its own pairs
-  // of clusters) the count of packets decided here may differ from one
-  // process's; each decision is exact, so no result does.  Verdict::blocked
-  // or Verdict::cast.
+  // frame).  The row's fan in the eyes' plane is tried first (`fan`, filled
+  // for `row` when it holds another row's); then, with `occluders`, the
+  // occluders: `hints` of this pair of leaves, `near` of the row's leaf (the
+  // walls around its rows, whatever the partners), and surfaces found by
+  // rays.  `near` carries over between pairs of leaves, so with pass shares
+  // (each its own pairs of clusters) the count of packets decided here may
+  // differ from one process's; each decision is exact, so no result does.
+  // Verdict::blocked or Verdict::cast.
   Verdict decide(const double* point, const double* x, const double* y, const double* z, int n, Hints& hints,
-                 Hints& near) const;
+                 Hints& near, EyePlane::Fan& fan, std::size_t row, bool occluders) const;
 
  private:
   // Clears the bits of the lanes in `open` that triangle t's occluders block.
@@ -70,6 +74,7 @@ class PacketCulling {
   RTCScene scene_;
   const CullGeometry* geometry_;
   double margin_;
+  const EyePlane* plane_;
 };
 
 }  // namespace attenuvis::visgraph::detail

@@ -85,6 +85,10 @@ struct FloorOptions {
   int repeats = 1;
   bool rays_floor = true;     // raw Embree on every pair
   bool scoring_floor = true;  // raw vectorised scoring loop
+  // The engine once more without its eyes' plane (VisibilityOptions::
+  // eye_plane false), which decides sight lines where every node stands
+  // at one height: what the plane gains, in the same run.
+  bool without_eye_plane = true;
 };
 
 // The engine (all_to_all, degree + sigmas, exact with culling) and the
@@ -98,6 +102,8 @@ struct FloorComparison {
   std::uint64_t culled_visible = 0, culled_blocked = 0, cast = 0;  // engine: how each pair was decided
   std::uint64_t visible = 0;                                       // pairs in sight, however decided
   Timing engine_cpu, engine_wall, rays_cpu, scoring_cpu;          // zero when not measured
+  Timing engine_no_plane_cpu;  // the engine without the eyes' plane (zero when not measured)
+  std::uint64_t cast_no_plane = 0;  // pairs it cast
   // The engine's CPU time split by phase: clustering and classifying
   // cluster pairs, deciding packets, scoring, rays.  Estimated: each
   // phase's share of the time the phase-timed run measured in them (steady
@@ -109,6 +115,10 @@ struct FloorComparison {
   // engine's time as a multiple of the scoring floor's).
   double over_rays() const { return rays_cpu.best_s > 0 ? rays_cpu.best_s / engine_cpu.best_s : 0.0; }
   double over_scoring() const { return scoring_cpu.best_s > 0 ? engine_cpu.best_s / scoring_cpu.best_s : 0.0; }
+  // rays_cpu / engine_no_plane_cpu: over_rays() without the eyes' plane.
+  double over_rays_no_plane() const {
+    return rays_cpu.best_s > 0 && engine_no_plane_cpu.best_s > 0 ? rays_cpu.best_s / engine_no_plane_cpu.best_s : 0.0;
+  }
   // The most over_rays() can be for an engine that scores each pair in
   // sight as fast as the raw scoring loop does and spends nothing on any
   // other pair: raw Embree's time over the loop's time for the pairs in

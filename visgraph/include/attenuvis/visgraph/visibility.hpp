@@ -128,6 +128,11 @@ struct VisibilityOptions {
   // pairs decided without rays, results identical to casting every pair.
   // false: every pair cast (the reference the culling is tested against).
   bool culling = true;
+  // With culling, where every node stands at one height (flat ground): each
+  // row's fan of walls in the eyes' plane decides sight lines before the
+  // occluders one by one (src/eye_plane.hpp).  false: without it (tests and
+  // benchmarks comparing the two; the results are the same).
+  bool eye_plane = true;
   // Prune whenever prune_below > 0 allows it, even where the exact pass would
   // be faster (tests and error studies of the pruning itself).
   bool always_prune = false;
