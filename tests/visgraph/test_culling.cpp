@@ -178,7 +178,8 @@ TEST_CASE("culling in the eyes' plane: walls ending just below or above the eyes
   // block them); its top 0.2 mm above h (it blocks, but within the margin:
   // left to rays); hanging from 0.2 mm above h (the lines pass under it);
   // leaning 45 or 0.06 degrees off vertical (its trace at h is not its
-  // foot).  Some eyes stand within the margin of a wall's plane.  A fan that took any of them wrongly changes some pair's answer.
+  // foot).  Some eyes stand within the margin of a wall's plane, and a
+  // few above every wall, off the plane.  A fan that took any of them wrongly changes some pair's answer.
   const double h = 1.5;
   std::mt19937_64 rng(4242);
   std::uniform_int_distribution<int> at(1, 39), length(1, 8), kind(0, 5), dir(0, 2);
@@ -211,6 +212,9 @@ TEST_CASE("culling in the eyes' plane: walls ending just below or above the eyes
         // (1.4 mm here) of their planes.
         if ((i + j) % 6 == 0) nodes.emplace_back(i + 5e-4, j + 1.0, h);
         if ((i + j) % 6 == 2) nodes.emplace_back(i + 1.0, j - 5e-4, h);
+        // A few eyes above every wall (on a roof): off the plane, they see
+        // over the walls that block the others.
+        if (i % 8 == 0 && j % 8 == 4) nodes.emplace_back(i + 0.5, j, 5.0);
       }
     const vg::Scene scene(m);
     INFO("trial " << trial << ", " << nodes.size() << " nodes");

@@ -80,13 +80,21 @@ void lower_bins(float* beyond, const double* lo_x, const double* lo_y, const dou
 
 std::unique_ptr<EyePlane> EyePlane::build(const CullGeometry& geometry, const Points& nodes, double margin) {
   if (nodes.size() < 2) return nullptr;
-  const auto [zlo, zhi] = std::minmax_element(nodes.z.begin(), nodes.z.end());
-  const double delta = 0.5 * (*zhi - *zlo);
-  if (!(delta <= 0.01 * margin)) return nullptr;
+  std::vector<double> z = nodes.z;
+  const auto middle = z.begin() + static_cast<std::ptrdiff_t>(z.size() / 2);
+  std::nth_element(z.begin(), middle, z.end());
+  const double h = *middle, tolerance = 0.01 * margin;
+  double delta = 0;
+  std::size_t on = 0;
+  for (const double v : nodes.z)
+    if (std::abs(v - h) <= tolerance) delta = std::max(delta, std::abs(v - h)), ++on;
+  if (2 * on < nodes.size()) return nullptr;
   std::unique_ptr<EyePlane> plane(new EyePlane());
-  plane->h_ = 0.5 * (*zlo + *zhi);
+  plane->h_ = h;
   plane->delta_ = delta;
+  plane->z_lo_ = h - delta, plane->z_hi_ = h + delta;
   plane->margin_ = margin;
+  // The longest sight line between nodes on the plane, bounded by their box.
   const auto [xlo, xhi] = std::minmax_element(nodes.x.begin(), nodes.x.end());
   const auto [ylo, yhi] = std::minmax_element(nodes.y.begin(), nodes.y.end());
   plane->longest_ = std::hypot(*xhi - *xlo, *yhi - *ylo, 2 * delta);
@@ -304,12 +312,14 @@ namespace {
 #ifdef ATTENUVIS_X86_DISPATCH
 __attribute__((target_clones("avx2", "default")))
 #endif
-std::uint32_t fan_lanes(const float* beyond, double ex, double ey, const double* x, const double* y, int n) {
+std::uint32_t fan_lanes(const float* beyond, double ex, double ey, const double* x, const double* y, const double* z,
+                        double z_lo, double z_hi, int n) {
   std::uint32_t blocked = 0;
   for (int l = 0; l < n; ++l) {
     const double dx = x[l] - ex, dy = y[l] - ey;
     const int b = std::min(kBins - 1, static_cast<int>(pseudo_angle(dx, dy) * kBinsPerUnit));
-    blocked |= static_cast<std::uint32_t>(dx * dx + dy * dy > static_cast<double>(beyond[b])) << l;
+    const bool on = z[l] >= z_lo && z[l] <= z_hi;
+    blocked |= static_cast<std::uint32_t>(on && dx * dx + dy * dy > static_cast<double>(beyond[b])) << l;
   }
   return blocked;
 }
@@ -322,14 +332,18 @@ std::uint32_t fan_lanes(const float* beyond, double ex, double ey, const double*
 // the maskz forms because GCC 12 warns that the plain forms' undefined
 // pass-through operand is uninitialised.
 __attribute__((target("avx512f"))) std::uint32_t fan_lanes_avx512(const float* beyond, double ex, double ey,
-                                                                  const double* x, const double* y, int n) {
+                                                                  const double* x, const double* y, const double* z,
+                                                                  double z_lo, double z_hi, int n) {
   const __m512d eye_x = _mm512_set1_pd(ex), eye_y = _mm512_set1_pd(ey), zero = _mm512_setzero_pd();
   const __m512d one = _mm512_set1_pd(1.0), two = _mm512_set1_pd(2.0), four = _mm512_set1_pd(4.0);
   const __m512d scale = _mm512_set1_pd(kBinsPerUnit);
+  const __m512d low = _mm512_set1_pd(z_lo), high = _mm512_set1_pd(z_hi);
   const __m256i last = _mm256_set1_epi32(kBins - 1);
   std::uint32_t blocked = 0;
   for (int h = 0; h < n; h += 8) {
-    const __mmask8 live = static_cast<__mmask8>(n - h >= 8 ? 0xFF : (1u << (n - h)) - 1u);
+    __mmask8 live = static_cast<__mmask8>(n - h >= 8 ? 0xFF : (1u << (n - h)) - 1u);
+    const __m512d height = _mm512_maskz_loadu_pd(live, z + h);
+    live = _mm512_mask_cmp_pd_mask(_mm512_mask_cmp_pd_mask(live, height, low, _CMP_GE_OQ), height, high, _CMP_LE_OQ);
     const __m512d dx = _mm512_sub_pd(_mm512_maskz_loadu_pd(live, x + h), eye_x);
     const __m512d dy = _mm512_sub_pd(_mm512_maskz_loadu_pd(live, y + h), eye_y);
     __m512d s = _mm512_add_pd(_mm512_abs_pd(dx), _mm512_abs_pd(dy));
@@ -346,7 +360,8 @@ __attribute__((target("avx512f"))) std::uint32_t fan_lanes_avx512(const float* b
 }
 #endif
 
-using FanLanes = std::uint32_t (*)(const float*, double, double, const double*, const double*, int);
+using FanLanes = std::uint32_t (*)(const float*, double, double, const double*, const double*, const double*, double,
+                                   double, int);
 FanLanes pick_fan_lanes() {
 #ifdef ATTENUVIS_X86_DISPATCH
   if (pick_isa() == Isa::avx512) return fan_lanes_avx512;
@@ -355,9 +370,10 @@ FanLanes pick_fan_lanes() {
 }
 }  // namespace
 
-std::uint32_t EyePlane::lanes_blocked(const Fan& fan, const double* eye, const double* x, const double* y, int n) {
+std::uint32_t EyePlane::lanes_blocked(const Fan& fan, const double* eye, const double* x, const double* y,
+                                      const double* z, int n) const {
   static const FanLanes lanes = pick_fan_lanes();
-  return lanes(fan.beyond_squared, eye[0], eye[1], x, y, n);
+  return lanes(fan.beyond_squared, eye[0], eye[1], x, y, z, z_lo_, z_hi_, n);
 }
 
 }  // namespace attenuvis::visgraph::detail

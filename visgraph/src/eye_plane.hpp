@@ -1,6 +1,8 @@
-// Sight lines in the eyes' plane: on flat ground every node stands at one
-// height h (to within delta), so every sight line lies within delta of the
-// horizontal plane z = h, where the walls' planar occluders are segments.
+// Sight lines in the eyes' plane: on flat ground the nodes stand at one
+// height h (to within delta), so every sight line between two of them lies
+// within delta of the horizontal plane z = h, where the walls' planar
+// occluders are segments.  Nodes elsewhere (a few on a raised ground
+// surface) take no part: their sight lines are left to the other tests.
 // Internal to the visgraph library (packet_culling.cpp).
 //
 // For one eye, a fan of bins around it (uniform in a pseudo-angle) holds,
@@ -48,16 +50,20 @@ class EyePlane {
     std::size_t eye = ~std::size_t{0};
   };
 
-  // The eyes' plane of `nodes`, or null when they do not stand at one
-  // height (their spread in z over a hundredth of the margin) or no wall
-  // crosses it.  `margin` as PairCulling's.
+  // The eyes' plane of `nodes`: h their median height, and the nodes
+  // within a hundredth of the margin of it on the plane (delta their
+  // largest distance from h).  Null when fewer than half of the nodes are
+  // on it, or no wall crosses it.  `margin` as PairCulling's.
   static std::unique_ptr<EyePlane> build(const CullGeometry& geometry, const Points& nodes, double margin);
 
-  // Fills `fan` for the eye at (x, y) (a node of the plane).
+  // Is a node at height z on the plane?
+  bool holds(double z) const { return z >= z_lo_ && z <= z_hi_; }
+  // Fills `fan` for the eye at (x, y) (a node on the plane).
   void fill(double x, double y, Fan& fan) const;
-  // The bit mask of the partners (x[l], y[l]), l < n <= 16, that the fan
-  // of `eye` blocks.
-  static std::uint32_t lanes_blocked(const Fan& fan, const double* eye, const double* x, const double* y, int n);
+  // The bit mask of the partners (x[l], y[l], z[l]), l < n <= 16, that
+  // the fan of `eye` (a node on the plane) blocks: partners on the plane only.
+  std::uint32_t lanes_blocked(const Fan& fan, const double* eye, const double* x, const double* y, const double* z,
+                              int n) const;
 
   std::size_t wall_count() const { return walls_.size(); }
 
@@ -96,6 +102,7 @@ class EyePlane {
   double cell_near_squared(int i, int j, double ex, double ey) const;
 
   double h_ = 0, delta_ = 0, margin_ = 0, longest_ = 0;
+  double z_lo_ = 0, z_hi_ = 0;  // h -+ delta
   std::vector<Wall> walls_;
   // The walls in a uniform grid of square cells of side cell_, by the box
   // of their widest trace.

@@ -40,12 +40,12 @@ Verdict PacketCulling::decide(const double* point, const double* x, const double
   if (!geometry_ || n <= 0 || (!plane_ && !occluders)) return Verdict::cast;
   const std::uint32_t all = (1u << n) - 1u;
   std::uint32_t open = all;
-  if (plane_) {
+  if (plane_ && plane_->holds(point[2])) {
     if (fan.eye != row) {
       plane_->fill(point[0], point[1], fan);
       fan.eye = row;
     }
-    open &= ~EyePlane::lanes_blocked(fan, point, x, y, n);
+    open &= ~plane_->lanes_blocked(fan, point, x, y, z, n);
     if (!open) return Verdict::blocked;
   }
   if (!occluders) return Verdict::cast;

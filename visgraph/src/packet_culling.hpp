@@ -9,9 +9,10 @@
 // at least m from the occluder's plane (or outside the solid), the crossing
 // at least m inside it.  Different lanes may be blocked by different
 // occluders, which is what a wide pair of clusters cannot use: real
-// buildings are many small walls.  The occluders tried are those that
-// blocked the last packets of the same pair of leaves (hints), then the
-// surfaces met by a ray along an unblocked lane.  Anything else is cast
+// buildings are many small walls.  On flat ground the row's fan in the
+// eyes' plane (eye_plane.hpp) is tried first.  The occluders tried are
+// those that blocked the last packets of the same pair of leaves (hints),
+// then the surfaces met by a ray along an unblocked lane.  Anything else is cast
 // whole, as the same canonical packet as without culling, so every pair
 // gets the answer its own ray gives.  A packet is not tested for being all
 // in sight: a lane whose ray meets nothing is cast with the rest.  Proving
