@@ -136,6 +136,13 @@ void run_leaf_rows(const LeafPass& lp, std::size_t leaf, std::size_t row_begin, 
   ts.packet_hints.assign(ts.blocks.size(), PacketCulling::Hints{});
   ts.packet_misses.assign(ts.blocks.size(), 0);
   ts.near_hints = PacketCulling::Hints{};
+  ts.block_rows.resize(ts.blocks.size());
+  for (std::size_t b = 0; b < ts.blocks.size(); ++b) {
+    ThreadState::BlockRows& br = ts.block_rows[b];
+    br.rows = lp.culling.leaf_rows(ts.blocks[b].leaf, br.count);
+    br.first = lp.culling.leaf_first(ts.blocks[b].leaf);
+    br.last = br.count ? br.rows[br.count - 1] : 0;
+  }
   for (const std::uint32_t* r = from; r != to; ++r) {
     const std::uint32_t row = *r;
     const std::size_t i = first + static_cast<std::size_t>(r - rows);  // position
@@ -145,11 +152,11 @@ void run_leaf_rows(const LeafPass& lp, std::size_t leaf, std::size_t row_begin, 
     std::uint64_t done = 0;
     for (std::size_t b = 0; b < ts.blocks.size(); ++b) {
       const PairCulling::Block& block = ts.blocks[b];
-      std::size_t n = 0;
-      const std::uint32_t* partners = lp.culling.leaf_rows(block.leaf, n);
-      if (n == 0 || partners[n - 1] <= row) continue;
+      const std::uint32_t* partners = ts.block_rows[b].rows;
+      const std::size_t n = ts.block_rows[b].count;
+      if (n == 0 || ts.block_rows[b].last <= row) continue;
       const std::uint32_t* after = partners[0] > row ? partners : std::upper_bound(partners, partners + n, row);
-      const std::size_t j0 = lp.culling.leaf_first(block.leaf) + static_cast<std::size_t>(after - partners);
+      const std::size_t j0 = ts.block_rows[b].first + static_cast<std::size_t>(after - partners);
       const int k = static_cast<int>(partners + n - after);
       done += static_cast<std::uint64_t>(k);
       const Verdict v = block.verdict == Verdict::cast ? decide_packet(lp, i, j0, k, b, ts) : block.verdict;

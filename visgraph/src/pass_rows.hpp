@@ -66,6 +66,15 @@ struct ThreadState {
   std::vector<std::uint32_t> candidates, cast_candidates;
   std::vector<PairCulling::Run> runs;
   std::vector<PairCulling::Block> blocks;
+  // Per block of the current leaf: its partner leaf's rows, their count,
+  // the last of them and the position of the first (looked up once per
+  // leaf, not per row).
+  struct BlockRows {
+    const std::uint32_t* rows;
+    std::size_t count, first;
+    std::uint32_t last;
+  };
+  std::vector<BlockRows> block_rows;
   std::vector<PacketCulling::Hints> packet_hints;  // per block: occluders that blocked its last packets
   PacketCulling::Hints near_hints;                  // of the leaf's rows, whatever the block
   std::vector<std::uint8_t> packet_misses;  // per block: packets in a row left undecided
