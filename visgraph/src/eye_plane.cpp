@@ -13,8 +13,10 @@ namespace attenuvis::visgraph::detail {
 namespace {
 constexpr int kBins = EyePlane::kBins;
 constexpr double kBinsPerUnit = kBins / 4.0;  // the pseudo-angle runs over [0, 4)
-// Bins are widened by this much on either side (in bins): ~1e-9 of a
-// radian, where the partner's bin is rounded by ~1e-15.
+// Bins are widened by this much on either side (in bins): ~6e-9 of a
+// radian.  A partner the fan can block lies at least the margin (1 mm)
+// away, so its direction is rounded by under 1e-10 (coordinates of a few
+// km carry ~1e-13 m), and its pseudo-angle by ~1e-15 more.
 constexpr double kWiden = 1e-6;
 // A wall is used only where the sight lines cross it at least this sine
 // of an angle (which bounds how far a tilted plane's trace moves along

@@ -65,8 +65,6 @@ class EyePlane {
   std::uint32_t lanes_blocked(const Fan& fan, const double* eye, const double* x, const double* y, const double* z,
                               int n) const;
 
-  std::size_t wall_count() const { return walls_.size(); }
-
  private:
   // A planar occluder's trace at height h: points p + s t (t a horizontal
   // unit vector), the plane's value g = nx x + ny y + g0 there (heights
