@@ -56,7 +56,8 @@ void add_row(Table& t, const Workload& w, int threads, const FloorComparison& f)
              Cell(100.0 * static_cast<double>(f.cast) / pairs, 3), Cell(f.cluster_s + f.packet_s, 3),
              Cell(f.score_s, 3), Cell(f.rays_s, 3), Cell(f.engine_cpu.best_s, 3), Cell(f.rays_cpu.best_s, 3),
              Cell(f.scoring_cpu.best_s, 3), Cell(f.over_rays(), 3), Cell(f.ceiling(), 3), Cell(f.over_scoring(), 3),
-             Cell(f.engine_no_plane_cpu.best_s, 3), Cell(f.over_rays_no_plane(), 3)});
+             f.engine_no_plane_cpu.best_s > 0 ? Cell(f.engine_no_plane_cpu.best_s, 3) : Cell("-"),
+             f.over_rays_no_plane() > 0 ? Cell(f.over_rays_no_plane(), 3) : Cell("-")});
 }
 }  // namespace
 
@@ -98,7 +99,8 @@ void floors_table(Context& ctx, Section& s) {
           "can be when each pair in sight costs what the raw scoring loop spends on it and no other pair costs "
           "anything (raw Embree time / (raw scoring time x the share of pairs in sight)); engine time / raw scoring "
           "time (1: as fast as the plain vectorised loop); the engine without its eyes' plane (which decides sight "
-          "lines where every node stands at one height), and raw Embree time / that engine time",
+          "lines where every node stands at one height), and raw Embree time / that engine time (-: not run, the "
+          "open plane has no walls and the engine would be the same)",
           {"workload", "nodes", "pairs", "conditions", "threads", "culled in sight [%]", "culled blocked [%]",
            "cast [%]", "classification [CPU s]", "scoring [CPU s]", "rays [CPU s]", "engine [CPU s]",
            "raw Embree [CPU s]", "raw scoring [CPU s]", "raw Embree / engine", "ceiling of raw Embree / engine",
