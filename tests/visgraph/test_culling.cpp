@@ -179,7 +179,8 @@ TEST_CASE("culling in the eyes' plane: walls ending just below or above the eyes
   // left to rays); hanging from 0.2 mm above h (the lines pass under it);
   // leaning 45 or 0.06 degrees off vertical (its trace at h is not its
   // foot).  Some eyes stand within the margin of a wall's plane, and a
-  // few above every wall, off the plane.  A fan that took any of them wrongly changes some pair's answer.
+  // few above every wall, off the plane.  A fan that took any of them
+  // wrongly changes some pair's answer.
   const double h = 1.5;
   std::mt19937_64 rng(4242);
   std::uniform_int_distribution<int> at(1, 39), length(1, 8), kind(0, 5), dir(0, 2);
@@ -189,9 +190,11 @@ TEST_CASE("culling in the eyes' plane: walls ending just below or above the eyes
     for (int w = 0; w < 30; ++w) {
       const double x = at(rng), y = at(rng), l = length(rng);
       const int d = dir(rng);
-      const Vector3d a(x, y, 0), b = d == 0 ? Vector3d(x + l, y, 0) : d == 1 ? Vector3d(x, y + l, 0) : Vector3d(x + l, y + l, 0);
+      const Vector3d a(x, y, 0);
+      const Vector3d b = d == 0 ? Vector3d(x + l, y, 0) : d == 1 ? Vector3d(x, y + l, 0) : Vector3d(x + l, y + l, 0);
       // The wall's normal direction in the plane, for leaning walls.
-      const Vector3d across = d == 0 ? Vector3d(0, 1, 0) : d == 1 ? Vector3d(-1, 0, 0) : Vector3d(-1, 1, 0).normalized();
+      const Vector3d across =
+          d == 0 ? Vector3d(0, 1, 0) : d == 1 ? Vector3d(-1, 0, 0) : Vector3d(-1, 1, 0).normalized();
       double bottom = 0, top = 4, lean = 0;
       switch (kind(rng)) {
         case 1: top = h - 2e-4; break;

@@ -266,7 +266,8 @@ void EyePlane::fill(double x, double y, Fan& fan) const {
         // other cells are tried with theirs).
         const float bound = i >= 0 && i < nx_ && ring >= 2 ? cell_bound(i, j, x, y, fan) : INFINITY;
         if (i >= 0 && i < nx_ && bound > cell_near_squared(i, j, x, y)) {
-          const Cell& c = cells_[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i)];
+          const Cell& c =
+              cells_[static_cast<std::size_t>(j) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(i)];
           for (std::uint32_t k = 0; k < c.count; ++k) {
             const Wall& w = walls_[wall_index_[c.first + k]];
             const double least = std::max(0.0, distance(w.cx - x, w.cy - y) - w.radius);
