@@ -337,12 +337,13 @@ void print_floors_header() {
               "shares measured in one more run with phase timing; ceiling: the most Embree/engine can be when each pair "
               "in sight costs what the scoring loop spends on it and no other pair costs anything; no plane: the "
               "engine without its eyes' plane (which decides sight lines where every node stands at one height)\n");
-  std::printf("%-26s %7s %11s %2s %3s %8s %8s %6s %8s %8s %8s %8s %9s %9s %9s %8s %8s %8s %8s %9s %8s\n", "workload",
-              "nodes", "pairs", "K", "thr", "sight[%]", "block[%]", "cast%", "cluster", "packets", "score", "rays",
-              "engine", "Embree", "scoring", "Embree/", "ceiling", "engine/", "ns/pair", "no plane", "Embree/");
-  std::printf("%-26s %7s %11s %2s %3s %8s %8s %6s %8s %8s %8s %8s %9s %9s %9s %8s %8s %8s %8s %9s %8s\n", "", "", "", "",
-              "", "", "", "", "[s]", "[s]", "[s]", "[s]", "cpu [s]", "cpu [s]", "cpu [s]", "engine", "", "scoring",
-              "engine", "cpu [s]", "no plane");
+  std::printf("%-26s %7s %11s %2s %3s %8s %8s %6s %8s %8s %8s %8s %9s %9s %9s %8s %8s %8s %8s %9s %8s %8s\n",
+              "workload", "nodes", "pairs", "K", "thr", "sight[%]", "block[%]", "cast%", "cluster", "packets", "score",
+              "rays", "engine", "Embree", "scoring", "Embree/", "ceiling", "engine/", "ns/pair", "no plane", "Embree/",
+              "cast%");
+  std::printf("%-26s %7s %11s %2s %3s %8s %8s %6s %8s %8s %8s %8s %9s %9s %9s %8s %8s %8s %8s %9s %8s %8s\n", "", "", "",
+              "", "", "", "", "", "[s]", "[s]", "[s]", "[s]", "cpu [s]", "cpu [s]", "cpu [s]", "engine", "", "scoring",
+              "engine", "cpu [s]", "no plane", "no plane");
 }
 
 void print_floors(const std::string& name, std::size_t K, int threads, const val::FloorComparison& f) {
@@ -357,15 +358,18 @@ void print_floors(const std::string& name, std::size_t K, int threads, const val
     std::snprintf(over_scoring, sizeof over_scoring, "%8.2f", f.over_scoring());
   }
   if (f.ceiling() > 0) std::snprintf(ceiling, sizeof ceiling, "%8.2f", f.ceiling());
-  char no_plane[32] = "-", over_no_plane[32] = "-";
-  if (f.engine_no_plane_cpu.best_s > 0) std::snprintf(no_plane, sizeof no_plane, "%9.3f", f.engine_no_plane_cpu.best_s);
+  char no_plane[32] = "-", over_no_plane[32] = "-", cast_no_plane[32] = "-";
+  if (f.engine_no_plane_cpu.best_s > 0) {
+    std::snprintf(no_plane, sizeof no_plane, "%9.3f", f.engine_no_plane_cpu.best_s);
+    std::snprintf(cast_no_plane, sizeof cast_no_plane, "%8.1f", f.cast_no_plane * percent);
+  }
   if (f.over_rays_no_plane() > 0) std::snprintf(over_no_plane, sizeof over_no_plane, "%8.2f", f.over_rays_no_plane());
   std::printf(
-      "%-26s %7zu %11llu %2zu %3d %8.1f %8.1f %6.1f %8.3f %8.3f %8.3f %8.3f %9.3f %9s %9s %8s %8s %8s %8.2f %9s %8s\n",
+      "%-26s %7zu %11llu %2zu %3d %8.1f %8.1f %6.1f %8.3f %8.3f %8.3f %8.3f %9.3f %9s %9s %8s %8s %8s %8.2f %9s %8s %8s\n",
       name.c_str(), f.nodes, static_cast<unsigned long long>(f.pairs), K, threads, f.culled_visible * percent,
       f.culled_blocked * percent, f.cast * percent, f.cluster_s, f.packet_s, f.score_s, f.rays_s, f.engine_cpu.best_s,
       rays, scoring, over_rays, ceiling, over_scoring, 1e9 * f.engine_cpu.best_s * percent / 100, no_plane,
-      over_no_plane);
+      over_no_plane, cast_no_plane);
   std::fflush(stdout);
 }
 

@@ -57,7 +57,9 @@ void add_row(Table& t, const Workload& w, int threads, const FloorComparison& f)
              Cell(f.score_s, 3), Cell(f.rays_s, 3), Cell(f.engine_cpu.best_s, 3), Cell(f.rays_cpu.best_s, 3),
              Cell(f.scoring_cpu.best_s, 3), Cell(f.over_rays(), 3), Cell(f.ceiling(), 3), Cell(f.over_scoring(), 3),
              f.engine_no_plane_cpu.best_s > 0 ? Cell(f.engine_no_plane_cpu.best_s, 3) : Cell("-"),
-             f.over_rays_no_plane() > 0 ? Cell(f.over_rays_no_plane(), 3) : Cell("-")});
+             f.over_rays_no_plane() > 0 ? Cell(f.over_rays_no_plane(), 3) : Cell("-"),
+             f.engine_no_plane_cpu.best_s > 0 ? Cell(100.0 * static_cast<double>(f.cast_no_plane) / pairs, 3)
+                                              : Cell("-")});
 }
 }  // namespace
 
@@ -99,12 +101,13 @@ void floors_table(Context& ctx, Section& s) {
           "can be when each pair in sight costs what the raw scoring loop spends on it and no other pair costs "
           "anything (raw Embree time / (raw scoring time x the share of pairs in sight)); engine time / raw scoring "
           "time (1: as fast as the plain vectorised loop); the engine without its eyes' plane (which decides sight "
-          "lines where every node stands at one height), and raw Embree time / that engine time (-: not run, the "
-          "open plane has no walls and the engine would be the same)",
+          "lines where every node stands at one height), raw Embree time / that engine time, and the pairs it cast (-: "
+          "not run, the open plane has no walls and the engine would be the same)",
           {"workload", "nodes", "pairs", "conditions", "threads", "culled in sight [%]", "culled blocked [%]",
            "cast [%]", "classification [CPU s]", "scoring [CPU s]", "rays [CPU s]", "engine [CPU s]",
            "raw Embree [CPU s]", "raw scoring [CPU s]", "raw Embree / engine", "ceiling of raw Embree / engine",
-           "engine / raw scoring", "engine without the eyes' plane [CPU s]", "raw Embree / engine without the plane"},
+           "engine / raw scoring", "engine without the eyes' plane [CPU s]", "raw Embree / engine without the plane",
+           "cast without the plane [%]"},
           {},
           ""};
   for (const Workload& w : work) {

@@ -164,16 +164,16 @@ bool EyePlane::trace_ends(const Wall& w, double inside, double& s_lo, double& s_
 }
 
 void EyePlane::build_grid() {
-  // Each wall's widest trace (inside = margin) by its box.
+  // Each wall's widest trace (inside = margin) by its box: the trace is
+  // the circle's diameter along t, so the box is (cx, cy) -+ radius |t|
+  // (radius already rounded up).
   std::vector<double> box(4 * walls_.size());
   double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
   for (std::size_t i = 0; i < walls_.size(); ++i) {
     const Wall& w = walls_[i];
-    double s_lo = 0, s_hi = 0;
-    trace_ends(w, margin_, s_lo, s_hi);  // not empty: add_wall kept it
-    const double x0 = w.px + s_lo * w.tx, x1 = w.px + s_hi * w.tx, y0 = w.py + s_lo * w.ty, y1 = w.py + s_hi * w.ty;
+    const double hx = w.radius * std::abs(w.tx), hy = w.radius * std::abs(w.ty);
     double* b = &box[4 * i];
-    b[0] = std::min(x0, x1), b[1] = std::min(y0, y1), b[2] = std::max(x0, x1), b[3] = std::max(y0, y1);
+    b[0] = w.cx - hx, b[1] = w.cy - hy, b[2] = w.cx + hx, b[3] = w.cy + hy;
     lo[0] = std::min(lo[0], b[0]), lo[1] = std::min(lo[1], b[1]);
     hi[0] = std::max(hi[0], b[2]), hi[1] = std::max(hi[1], b[3]);
   }
