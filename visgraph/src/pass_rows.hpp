@@ -78,9 +78,10 @@ struct ThreadState {
   std::vector<PacketCulling::Hints> packet_hints;  // per block: occluders that blocked its last packets
   PacketCulling::Hints near_hints;                  // of the leaf's rows, whatever the block
   std::vector<std::uint8_t> packet_misses;  // per block: packets in a row left undecided
-  std::vector<EyePlane::Fan> fan;           // one, once a row needs it: the row's fan in the eyes' plane
+  std::vector<EyePlane::Fan> fan;           // per row of a leaf, once rows need them: their fans in the eyes' plane
   std::vector<std::pair<std::uint32_t, double>> matches;
   std::vector<std::int64_t> c_fixed, row;  // row: per-lane totals of the current row
+  std::vector<std::int64_t> saved_rows;     // the lane totals of a leaf's rows, row after row
   std::uint64_t cast = 0, visible = 0, coincident = 0;
   // Pairs of cluster pairs left to rays that PacketCulling decided packet
   // by packet without them.
