@@ -78,6 +78,9 @@ class CullGeometry {
     int edges = 0;            // 3 or 4; 0: degenerate, blocks nothing
     double u[4][3], o[4];     // inward in-plane edge normals: u.x - o >= 0 inside
     double depth = 0;         // a quad's second triangle: largest distance from the plane
+    // A face of a closed convex solid: the sign of n.x - c inside the
+    // solid (+1 or -1); 0 for any other occluder.
+    int inside_sign = 0;
   };
   const std::vector<Occluder>& occluders() const { return occluders_; }
 

@@ -66,8 +66,12 @@ void CullGeometry::build_solids(const unsigned* index) {
     Solid solid;
     if (!convex_solid(tris, solid)) continue;
     const auto id = static_cast<std::int32_t>(solids_.size());
+    for (std::uint32_t t : tris) {
+      solid_of_[t] = id;
+      Occluder& o = occluders_[occluder_of_[t]];
+      if (o.edges) o.inside_sign = dot(o.n, solid.centre) - o.c < 0 ? -1 : 1;
+    }
     solids_.push_back(std::move(solid));
-    for (std::uint32_t t : tris) solid_of_[t] = id;
   }
 }
 

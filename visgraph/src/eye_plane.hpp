@@ -82,6 +82,7 @@ class EyePlane {
     bool fixed;
     double s_lo, s_hi;
     double cx, cy, radius;  // a circle around its widest trace
+    int inside_sign;        // Occluder::inside_sign: a face of a convex solid
   };
   struct Cell {
     std::uint32_t first, count;  // wall_index_[first, first + count)
