@@ -65,6 +65,17 @@ void direction_at(double p, double& x, double& y) {
   y = cy[quadrant] / l;
 }
 
+// The largest of a fan's bins.  Sixteen running maxima, which the
+// compiler keeps in vector registers: one chain through all 1,024 bins
+// waited on each maximum in turn, and that took 4 % of a layout's run.
+float largest_bin(const float* bins) {
+  float most[16] = {};
+  for (int b = 0; b < kBins; b += 16)
+    for (int l = 0; l < 16; ++l) most[l] = std::max(most[l], bins[b + l]);
+  for (int l = 1; l < 16; ++l) most[0] = std::max(most[0], most[l]);
+  return most[0];
+}
+
 // Bins [begin, end) of a fan lowered by a wall: the farthest point of the
 // bin beyond the wall's shifted line, k / min(n.d) over its two boundary
 // directions (none where the line is met at too grazing an angle).
@@ -261,9 +272,7 @@ void EyePlane::fill(double x, double y, Fan& fan) const {
     // every bin is decided nearer than that, no farther wall lowers one.
     if (ring > 0) {
       const double near = static_cast<double>(ring - 1) * cell_;
-      float farthest = 0;
-      for (int b = 0; b < kBins; ++b) farthest = std::max(farthest, fan.beyond_squared[b]);
-      if (farthest <= static_cast<float>(near * near)) break;
+      if (largest_bin(fan.beyond_squared) <= static_cast<float>(near * near)) break;
     }
     for (int j = cy - ring; j <= cy + ring; ++j) {
       if (j < 0 || j >= ny_) continue;
