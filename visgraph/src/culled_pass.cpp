@@ -126,10 +126,11 @@ Verdict decide_packet(const LeafPass& lp, std::size_t i, std::size_t j0, int k, 
 }
 
 // Row `row` (at position i) against its partners after it (x order) in
-// blocks [b0, b1) of ts.blocks, its lane totals in ts.row and `fan` its
+// blocks [b0, b1) of ts.blocks, with its lane totals `row_lanes` and its
 // fan; returns the partners.
 std::uint64_t row_through_blocks(const LeafPass& lp, std::size_t i, std::uint32_t row, std::size_t b0, std::size_t b1,
-                                 EyePlane::Fan& fan, ThreadState& ts, std::vector<Edge>* edges) {
+                                 std::int64_t* row_lanes, EyePlane::Fan& fan, ThreadState& ts,
+                                 std::vector<Edge>* edges) {
   std::uint64_t done = 0;
   for (std::size_t b = b0; b < b1; ++b) {
     const PairCulling::Block& block = ts.blocks[b];
@@ -141,7 +142,7 @@ std::uint64_t row_through_blocks(const LeafPass& lp, std::size_t i, std::uint32_
     const int k = static_cast<int>(partners + n - after);
     done += static_cast<std::uint64_t>(k);
     const Verdict v = block.verdict == Verdict::cast ? decide_packet(lp, i, j0, k, b, fan, ts) : block.verdict;
-    if (v != Verdict::blocked) add_packet(lp.pass, i, nullptr, j0, k, ts, edges, v == Verdict::cast);
+    if (v != Verdict::blocked) add_packet(lp.pass, i, nullptr, j0, k, row_lanes, ts, edges, v == Verdict::cast);
   }
   return done;
 }
@@ -172,36 +173,31 @@ void run_leaf_rows(const LeafPass& lp, std::size_t leaf, std::size_t row_begin, 
   // The rows take the blocks a chunk at a time, every row through one
   // chunk before the next, so that a chunk's partners stay in cache for
   // all the leaf's rows (at 1 m, one row's partners left to rays span more
-  // than a core's cache).  Each row keeps its lane totals (copied into
-  // ts.row for its turn) and its own fan.  Chunks rather than one partner
+  // than a core's cache).  Each row keeps its own lane totals and fan.  Chunks rather than one partner
   // leaf at a time: the near hints decide more packets when a row's
   // packets follow one another (docs/guide/visgraph-engine.md).
   const std::size_t row_count = static_cast<std::size_t>(to - from);
   const std::size_t lanes = ts.row.size();
-  ts.saved_rows.assign(row_count * lanes, 0);
+  ts.leaf_rows.assign(row_count * lanes, 0);
+  const auto lanes_of = [&](std::size_t q) { return ts.leaf_rows.data() + q * lanes; };
   if (ts.fan.size() < row_count) ts.fan.resize(row_count);
-  if (row_edges)
-    for (std::size_t q = 0; q < row_count; ++q) (*row_edges)[from[q] - row_begin].clear();
+  // The q-th row's position, and its edge list (or null).
+  const auto position = [&](std::size_t q) { return first + static_cast<std::size_t>(from + q - rows); };
+  const auto edges_of = [&](std::size_t q) { return row_edges ? &(*row_edges)[from[q] - row_begin] : nullptr; };
+  for (std::size_t q = 0; q < row_count && row_edges; ++q) edges_of(q)->clear();
   std::uint64_t done = 0;
   for (std::size_t chunk = 0; chunk < ts.blocks.size();) {
     std::size_t chunk_end = chunk, partners_in_chunk = 0;
     while (chunk_end < ts.blocks.size() && (chunk_end == chunk || partners_in_chunk < kChunkPartners))
       partners_in_chunk += ts.block_rows[chunk_end++].count;
-    for (std::size_t q = 0; q < row_count; ++q) {
-      const std::uint32_t row = from[q];
-      const std::size_t i = first + static_cast<std::size_t>(from + q - rows);  // position
-      std::vector<Edge>* edges = row_edges ? &(*row_edges)[row - row_begin] : nullptr;
-      std::copy_n(ts.saved_rows.begin() + static_cast<std::ptrdiff_t>(q * lanes), lanes, ts.row.begin());
-      done += row_through_blocks(lp, i, row, chunk, chunk_end, ts.fan[q], ts, edges);
-      std::copy_n(ts.row.begin(), lanes, ts.saved_rows.begin() + static_cast<std::ptrdiff_t>(q * lanes));
-    }
+    for (std::size_t q = 0; q < row_count; ++q)
+      done += row_through_blocks(lp, position(q), from[q], chunk, chunk_end, lanes_of(q), ts.fan[q], ts, edges_of(q));
     chunk = chunk_end;
   }
   for (std::size_t q = 0; q < row_count; ++q) {
-    const std::size_t i = first + static_cast<std::size_t>(from + q - rows);
-    std::copy_n(ts.saved_rows.begin() + static_cast<std::ptrdiff_t>(q * lanes), lanes, ts.row.begin());
-    end_row(pass, i, ts);
-    std::vector<Edge>* edges = row_edges ? &(*row_edges)[from[q] - row_begin] : nullptr;
+    const std::size_t i = position(q);
+    end_row(pass, i, lanes_of(q), ts);
+    std::vector<Edge>* edges = edges_of(q);
     if (edges) {
       const std::uint32_t self = pass.caller[i];
       std::sort(edges->begin(), edges->end(), [&](const Edge& a, const Edge& b) {

@@ -10,7 +10,6 @@
 namespace attenuvis::visgraph::detail {
 
 
-void begin_row(ThreadState& ts) { std::fill(ts.row.begin(), ts.row.end(), 0); }
 
 namespace {
 // Partner coordinates of a packet: contiguous rows j0.. (no copy), or the
@@ -45,8 +44,8 @@ void cast_packet(const Pass& pass, PairPacket& packet, ThreadState& ts) {
 }
 }  // namespace
 
-void add_packet(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t j0, int n, ThreadState& ts,
-                std::vector<Edge>* edges, bool cast_rays) {
+void add_packet(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t j0, int n,
+                std::int64_t* row_lanes, ThreadState& ts, std::vector<Edge>* edges, bool cast_rays) {
   const Points& S = *pass.sources;
   const int K = pass.K;
   const std::size_t N = pass.N;
@@ -74,7 +73,7 @@ void add_packet(const Pass& pass, std::size_t i, const std::uint32_t* cand, std:
     return;
   }
   contrast_lanes(packet.distance, packet.visible, pass.neg_sigma.data(), K, c, d_fixed);
-  accumulate_packet(packet, c, d_fixed, K, n, ts.row.data(), credit, N, j0);
+  accumulate_packet(packet, c, d_fixed, K, n, row_lanes, credit, N, j0);
   if (scatter || pass.keep_max || edges) {
     for (int l = 0; l < n; ++l) {
       if (packet.visible[l] == 0) continue;
@@ -95,10 +94,10 @@ void add_packet(const Pass& pass, std::size_t i, const std::uint32_t* cand, std:
   ts.seconds.score += clock.lap();
 }
 
-void end_row(const Pass& pass, std::size_t i, ThreadState& ts) {
+void end_row(const Pass& pass, std::size_t i, const std::int64_t* row_lanes, ThreadState& ts) {
   for (int s = 0; s < 2 + pass.K; ++s) {
     std::int64_t total = 0;
-    for (int l = 0; l < kLanes; ++l) total += ts.row[static_cast<std::size_t>(s * kLanes + l)];
+    for (int l = 0; l < kLanes; ++l) total += row_lanes[s * kLanes + l];
     ts.acc[static_cast<std::size_t>(s) * pass.N + i] += total;
     if (s == 0) ts.visible += static_cast<std::uint64_t>(total);
   }
@@ -106,12 +105,12 @@ void end_row(const Pass& pass, std::size_t i, ThreadState& ts) {
 
 void process_row(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t j0, std::size_t count,
                  ThreadState& ts, std::vector<Edge>* edges) {
-  begin_row(ts);
+  std::fill(ts.row.begin(), ts.row.end(), 0);
   for (std::size_t start = 0; start < count; start += kLanes) {
     const int n = static_cast<int>(std::min<std::size_t>(kLanes, count - start));
-    add_packet(pass, i, cand ? cand + start : nullptr, j0 + start, n, ts, edges, true);
+    add_packet(pass, i, cand ? cand + start : nullptr, j0 + start, n, ts.row.data(), ts, edges, true);
   }
-  end_row(pass, i, ts);
+  end_row(pass, i, ts.row.data(), ts);
 }
 
 }  // namespace attenuvis::visgraph::detail

@@ -80,8 +80,8 @@ struct ThreadState {
   std::vector<std::uint8_t> packet_misses;  // per block: packets in a row left undecided
   std::vector<EyePlane::Fan> fan;           // per row of a leaf, once rows need them: their fans in the eyes' plane
   std::vector<std::pair<std::uint32_t, double>> matches;
-  std::vector<std::int64_t> c_fixed, row;  // row: per-lane totals of the current row
-  std::vector<std::int64_t> saved_rows;     // the lane totals of a leaf's rows, row after row
+  std::vector<std::int64_t> c_fixed, row;  // row: per-lane totals of a row (process_row)
+  std::vector<std::int64_t> leaf_rows;      // the lane totals of a leaf's rows, row after row
   std::uint64_t cast = 0, visible = 0, coincident = 0;
   // Pairs of cluster pairs left to rays that PacketCulling decided packet
   // by packet without them.
@@ -119,16 +119,16 @@ inline Edge edge(const Pass& pass, std::size_t row, std::uint32_t partner, doubl
   return Edge{std::min(a, b), std::max(a, b), distance};
 }
 
-// A row is accumulated in three steps: begin_row, add_packet for each packet
-// of at most 16 partners, end_row (which adds the row's lane totals to its
-// node).  add_packet takes partners j0 .. j0 + n - 1 when `cand` is null,
-// else cand[0 .. n).  With cast_rays false the partners are known to be in
-// sight (culling): the packet goes through the same policy (coincident,
-// close, max distance) without Embree.
-void begin_row(ThreadState& ts);
-void add_packet(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t j0, int n, ThreadState& ts,
-                std::vector<Edge>* edges, bool cast_rays);
-void end_row(const Pass& pass, std::size_t i, ThreadState& ts);
+// A row is accumulated in lane totals row_lanes[s * 16 + l] (slots s =
+// degree, distance, one per sigma; (2 + K) * 16 values, zeroed first): by
+// add_packet for each packet of at most 16 partners, then end_row, which
+// adds the row's lane totals to its node.  add_packet takes partners
+// j0 .. j0 + n - 1 when `cand` is null, else cand[0 .. n).  With cast_rays
+// false the partners are known to be in sight (culling): the packet goes
+// through the same policy (coincident, close, max distance) without Embree.
+void add_packet(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t j0, int n,
+                std::int64_t* row_lanes, ThreadState& ts, std::vector<Edge>* edges, bool cast_rays);
+void end_row(const Pass& pass, std::size_t i, const std::int64_t* row_lanes, ThreadState& ts);
 // Row i against `count` partners in packets of 16 (see add_packet).
 void process_row(const Pass& pass, std::size_t i, const std::uint32_t* cand, std::size_t j0, std::size_t count,
                  ThreadState& ts, std::vector<Edge>* edges);
