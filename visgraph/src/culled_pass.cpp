@@ -173,9 +173,10 @@ void run_leaf_rows(const LeafPass& lp, std::size_t leaf, std::size_t row_begin, 
   // The rows take the blocks a chunk at a time, every row through one
   // chunk before the next, so that a chunk's partners stay in cache for
   // all the leaf's rows (at 1 m, one row's partners left to rays span more
-  // than a core's cache).  Each row keeps its own lane totals and fan.  Chunks rather than one partner
-  // leaf at a time: the near hints decide more packets when a row's
-  // packets follow one another (docs/guide/visgraph-engine.md).
+  // than a core's cache).  Each row keeps its own lane totals and fan.
+  // Chunks rather than one partner leaf at a time: the near hints decide
+  // more packets when a row's packets follow one another
+  // (docs/guide/visgraph-engine.md).
   const std::size_t row_count = static_cast<std::size_t>(to - from);
   const std::size_t lanes = ts.row.size();
   ts.leaf_rows.assign(row_count * lanes, 0);

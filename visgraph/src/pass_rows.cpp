@@ -9,8 +9,6 @@
 
 namespace attenuvis::visgraph::detail {
 
-
-
 namespace {
 // Partner coordinates of a packet: contiguous rows j0.. (no copy), or the
 // candidates gathered into g*.
