@@ -80,9 +80,12 @@ class EyePlane {
     // trace's ends for the largest `inside` any eye needs, [s_lo, s_hi],
     // so that no eye computes them; otherwise fixed is false.
     bool fixed;
+    // Occluder::inside_sign: a face of a convex solid.  Beside `fixed`, in
+    // the cache line fill_wall reads anyway (at the record's end it cost
+    // every wall of every eye one more line).
+    int inside_sign;
     double s_lo, s_hi;
     double cx, cy, radius;  // a circle around its widest trace
-    int inside_sign;        // Occluder::inside_sign: a face of a convex solid
   };
   struct Cell {
     std::uint32_t first, count;  // wall_index_[first, first + count)
