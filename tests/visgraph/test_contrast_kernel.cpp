@@ -73,3 +73,39 @@ TEST_CASE("contrast kernel: sigma d beyond 700 gives zero, sigma 0 gives one", "
     CHECK(c[L + l] == std::int64_t{1} << 40);      // exp(0) = 1 exactly
   }
 }
+
+// The instruction-set variants (baseline, AVX2, AVX-512 intrinsics) run the
+// same operations in the same order, so they must agree to the bit; the
+// baseline variant is the one checked against expl above on every CPU.
+TEST_CASE("contrast kernel: every instruction set gives the same bits", "[visgraph][kernel]") {
+  std::mt19937_64 rng(31);
+  const auto unit = [&] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+  constexpr int L = vd::kLanes;
+  // Sigma 0, the seed paper's four, steep ones that reach the -700 clamp,
+  // and K = 11 (more than one block of four).
+  const std::vector<double> neg_sigma = {-0.0, -1.5e-4, -0.0045, -0.02874311, -0.0374, -1.0, -37.0,
+                                         -0.3,  -2e-3,   -1e-6,   -9.0};
+  int compared = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    double distance[L], visible[L];
+    for (int l = 0; l < L; ++l) {
+      // 0, 1 mm to 20 km log-uniform, and exactly where sigma d = 700.
+      distance[l] = l == 0 ? 0.0 : l == 1 ? 700.0 / 37.0 : 1e-3 * std::pow(2e7, unit());
+      visible[l] = rng() % 4 == 0 ? 0.0 : 1.0;
+    }
+    const int K = 1 + trial % static_cast<int>(neg_sigma.size());
+    std::vector<std::int64_t> want_c(static_cast<std::size_t>(K) * L), want_d(L);
+    REQUIRE(vd::contrast_lanes_with(0, distance, visible, neg_sigma.data(), K, want_c.data(), want_d.data()));
+    for (int isa = 1; isa < 3; ++isa) {
+      std::vector<std::int64_t> c(want_c.size(), -1), d(L, -1);
+      if (!vd::contrast_lanes_with(isa, distance, visible, neg_sigma.data(), K, c.data(), d.data())) continue;
+      INFO("trial " << trial << ", instruction set " << isa << ", K " << K);
+      CHECK(c == want_c);
+      CHECK(d == want_d);
+      ++compared;
+    }
+  }
+  // Both wider variants where the CPU has them; none on one without AVX2.
+  INFO("variants compared: " << compared);
+  CHECK(compared % 3000 == 0);
+}

@@ -1,11 +1,13 @@
-// The per-pair exp is the bottleneck once rays come 16 at a time, so it is
-// written as branch-free loops over the 16 lanes that the compiler turns
-// into SIMD code, compiled for AVX-512, AVX2 and baseline x86-64 and picked
-// at run time (GCC target_clones).  GCC contracts a*b+c into FMA by default
-// in C++ (-ffp-contract=fast outside ISO C modes) wherever the target has
-// FMA, which the AVX-512 clone does: contraction is switched off for this
-// file so that every clone computes bit-identical results (clang's default
-// contracts only within one expression, and its pragma says off as well).
+// The per-pair exp is the bottleneck once rays come 16 at a time.  The
+// portable body is written as branch-free loops over the 16 lanes that the
+// compiler turns into SIMD code, compiled for AVX2 and baseline x86-64;
+// AVX-512 has a body of its own with intrinsics (contrast_kernel_avx512.cpp,
+// where the compiler's gathers of the exp table cost three times the rest).
+// The widest the CPU runs is picked once.  GCC contracts a*b+c into FMA by
+// default in C++ (-ffp-contract=fast outside ISO C modes) wherever the target
+// has FMA: contraction is switched off for this file so that every variant
+// computes bit-identical results (clang's default contracts only within one
+// expression, and its pragma says off as well).
 #if defined(__clang__)
 #pragma clang fp contract(off)
 #else
@@ -14,6 +16,7 @@
 
 #include <attenuvis/visgraph/detail/contrast_kernel.hpp>
 
+#include "contrast_kernel_isa.hpp"
 #include "fixed_point_exp.hpp"
 
 namespace attenuvis::visgraph::detail {
@@ -28,13 +31,9 @@ constexpr int kBlock = 4 * kLanes;
 inline void round_to_int64(const double* value, std::int64_t* out, int count) {
   for (int l = 0; l < count; ++l) out[l] = round_fixed(value[l]);
 }
-}  // namespace
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
-__attribute__((target_clones("avx512f", "avx2", "default")))
-#endif
-void contrast_lanes(const double* distance, const double* visible, const double* neg_sigma, int K,
-                    std::int64_t* c_fixed, std::int64_t* d_fixed) {
+inline void contrast_body(const double* distance, const double* visible, const double* neg_sigma, int K,
+                          std::int64_t* c_fixed, std::int64_t* d_fixed) {
   alignas(64) double scaled[kLanes];
   for (int l = 0; l < kLanes; ++l) scaled[l] = visible[l] * distance[l] * kDistanceScale;
   round_to_int64(scaled, d_fixed, kLanes);
@@ -53,6 +52,48 @@ void contrast_lanes(const double* distance, const double* visible, const double*
     for (int e = 0; e < m; ++e) result[e] = scaled_exp(x[e]) * vis[e];
     round_to_int64(result, c_fixed + k0 * kLanes, m);
   }
+}
+
+using ContrastFunction = void (*)(const double*, const double*, const double*, int, std::int64_t*, std::int64_t*);
+
+#ifdef ATTENUVIS_X86_DISPATCH
+__attribute__((target("avx2"), flatten)) void contrast_avx2(const double* distance, const double* visible,
+                                                            const double* neg_sigma, int K, std::int64_t* c_fixed,
+                                                            std::int64_t* d_fixed) {
+  contrast_body(distance, visible, neg_sigma, K, c_fixed, d_fixed);
+}
+#endif
+__attribute__((flatten)) void contrast_baseline(const double* distance, const double* visible,
+                                                const double* neg_sigma, int K, std::int64_t* c_fixed,
+                                                std::int64_t* d_fixed) {
+  contrast_body(distance, visible, neg_sigma, K, c_fixed, d_fixed);
+}
+
+ContrastFunction contrast_function(Isa isa) {
+#ifdef ATTENUVIS_X86_DISPATCH
+  if (isa == Isa::avx512) return contrast_lanes_avx512;
+  if (isa == Isa::avx2) return contrast_avx2;
+#endif
+  (void)isa;
+  return contrast_baseline;
+}
+}  // namespace
+
+void contrast_lanes(const double* distance, const double* visible, const double* neg_sigma, int K,
+                    std::int64_t* c_fixed, std::int64_t* d_fixed) {
+  static const ContrastFunction chosen = contrast_function(pick_isa());
+  chosen(distance, visible, neg_sigma, K, c_fixed, d_fixed);
+}
+
+bool contrast_lanes_with(int instruction_set, const double* distance, const double* visible, const double* neg_sigma,
+                         int K, std::int64_t* c_fixed, std::int64_t* d_fixed) {
+  const Isa wanted = instruction_set == 2 ? Isa::avx512 : instruction_set == 1 ? Isa::avx2 : Isa::baseline;
+  if (static_cast<int>(wanted) > static_cast<int>(pick_isa())) return false;
+#ifndef ATTENUVIS_X86_DISPATCH
+  if (wanted != Isa::baseline) return false;
+#endif
+  contrast_function(wanted)(distance, visible, neg_sigma, K, c_fixed, d_fixed);
+  return true;
 }
 
 }  // namespace attenuvis::visgraph::detail

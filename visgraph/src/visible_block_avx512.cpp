@@ -1,8 +1,7 @@
 // The AVX-512 body of score_visible_block (visible_block.hpp), written with
-// intrinsics: GCC's own vectorisation of the lane loops (visible_block.cpp)
-// gathers the exp table entry by entry and shuffles scalars, three times
-// slower.  Here the 32-entry table of 2^(j/32) sits in four registers and is
-// read with two two-register permutes; each row is two vectors of 8 lanes.
+// intrinsics around scaled_exp8 (exp_avx512.hpp): GCC's own vectorisation
+// of the lane loops (visible_block.cpp) is three times slower.  Each row is
+// two vectors of 8 lanes.
 //
 // Every operation is the one of fixed_point_exp.hpp and build_packet, in
 // the same order, without contraction into FMA (GCC would otherwise fuse
@@ -18,7 +17,7 @@
 
 #ifdef ATTENUVIS_X86_DISPATCH
 
-#include "fixed_point_exp.hpp"
+#include "exp_avx512.hpp"
 #include "pair_packet.hpp"
 
 #include <immintrin.h>
@@ -28,12 +27,6 @@
 namespace attenuvis::visgraph::detail {
 
 namespace {
-#define ATTENUVIS_AVX512 __attribute__((target("avx512f"), always_inline))
-
-struct ExpTable {
-  __m512d q0, q1, q2, q3;  // entries 0-7, 8-15, 16-23, 24-31 of kExp2TableScaled
-};
-
 // Sums and maxima of the 8 lanes.  Here and below, the masked forms with a
 // full mask: GCC 12 warns that the plain forms' undefined pass-through
 // operand is uninitialised.
@@ -46,34 +39,6 @@ ATTENUVIS_AVX512 inline double max_lanes(__m512d v) {
   const __m256d s = _mm256_max_pd(_mm512_maskz_extractf64x4_pd(0xF, v, 0), _mm512_maskz_extractf64x4_pd(0xF, v, 1));
   const __m128d t = _mm_max_pd(_mm256_castpd256_pd128(s), _mm256_extractf128_pd(s, 1));
   return std::max(_mm_cvtsd_f64(t), _mm_cvtsd_f64(_mm_unpackhi_pd(t, t)));
-}
-
-ATTENUVIS_AVX512 inline __m512i round_to_fixed(__m512d v) {
-  const __m512d shifted = _mm512_add_pd(v, _mm512_set1_pd(kTwo52));
-  return _mm512_sub_epi64(_mm512_castpd_si512(shifted), _mm512_set1_epi64(kTwo52Bits));
-}
-
-// scaled_exp (fixed_point_exp.hpp) on 8 lanes.
-ATTENUVIS_AVX512 inline __m512d scaled_exp8(__m512d x, const ExpTable& table) {
-  const __m512d t = _mm512_add_pd(_mm512_mul_pd(x, _mm512_set1_pd(k32ByLn2)), _mm512_set1_pd(kShifter));
-  const __m512i n = _mm512_sub_epi64(_mm512_castpd_si512(t), _mm512_set1_epi64(kShifterBits));
-  const __m512d dn = _mm512_sub_pd(t, _mm512_set1_pd(kShifter));
-  const __m512d r = _mm512_sub_pd(_mm512_sub_pd(x, _mm512_mul_pd(dn, _mm512_set1_pd(kLn2By32Hi))),
-                                  _mm512_mul_pd(dn, _mm512_set1_pd(kLn2By32Lo)));
-  __m512d p = _mm512_set1_pd(1.0 / 720.0);
-  p = _mm512_add_pd(_mm512_mul_pd(p, r), _mm512_set1_pd(1.0 / 120.0));
-  p = _mm512_add_pd(_mm512_mul_pd(p, r), _mm512_set1_pd(1.0 / 24.0));
-  p = _mm512_add_pd(_mm512_mul_pd(p, r), _mm512_set1_pd(1.0 / 6.0));
-  p = _mm512_add_pd(_mm512_mul_pd(p, r), _mm512_set1_pd(0.5));
-  p = _mm512_add_pd(_mm512_mul_pd(p, r), _mm512_set1_pd(1.0));
-  p = _mm512_add_pd(_mm512_mul_pd(p, r), _mm512_set1_pd(1.0));
-  // Entry n & 31: bits 0-3 pick within a pair of registers, bit 4 the pair.
-  const __m512d low = _mm512_permutex2var_pd(table.q0, n, table.q1);
-  const __m512d high = _mm512_permutex2var_pd(table.q2, n, table.q3);
-  const __mmask8 upper = _mm512_test_epi64_mask(n, _mm512_set1_epi64(16));
-  const __m512d entry = _mm512_mask_blend_pd(upper, low, high);
-  const __m512i scaled_bits = _mm512_add_epi64(_mm512_castpd_si512(entry), _mm512_maskz_slli_epi64(0xFF, _mm512_maskz_srai_epi64(0xFF, n, 5), 52));
-  return _mm512_mul_pd(_mm512_castsi512_pd(scaled_bits), p);
 }
 
 // Columns are taken 8 at a time, straight from the contiguous coordinate
@@ -202,8 +167,7 @@ ATTENUVIS_AVX512 inline void score_chunk(const BlockSide& rows, const BlockSide&
 __attribute__((target("avx512f"))) BlockCounts score_visible_block_avx512(
     const BlockSide& rows, const BlockSide& cols, bool same, const double* neg_sigma, int K, double max_distance,
     std::int64_t* acc, std::size_t N, double* max_distance_of) {
-  const ExpTable table{_mm512_loadu_pd(kExp2TableScaled.v), _mm512_loadu_pd(kExp2TableScaled.v + 8),
-                       _mm512_loadu_pd(kExp2TableScaled.v + 16), _mm512_loadu_pd(kExp2TableScaled.v + 24)};
+  const ExpTable table = load_exp_table();
   BlockCounts counts;
   // Sigmas four at a time (the distances are recomputed per chunk, a small
   // part of four exps); the first chunk also does the counts.

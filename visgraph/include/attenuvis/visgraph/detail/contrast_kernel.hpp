@@ -23,4 +23,11 @@ constexpr double kDistanceScale = 1048576.0;        // 2^20: distance in units o
 void contrast_lanes(const double* distance, const double* visible, const double* neg_sigma, int K,
                     std::int64_t* c_fixed, std::int64_t* d_fixed);
 
+// The same with the loops of one instruction set (0: baseline x86-64 or the
+// portable loops, 1: AVX2, 2: AVX-512F), for the test that every variant
+// gives the same bits; returns false, doing nothing, when this CPU or build
+// lacks that variant.
+bool contrast_lanes_with(int instruction_set, const double* distance, const double* visible, const double* neg_sigma,
+                         int K, std::int64_t* c_fixed, std::int64_t* d_fixed);
+
 }  // namespace attenuvis::visgraph::detail
