@@ -12,8 +12,6 @@
 
 namespace attenuvis::visgraph::detail {
 
-double end_gap(double d) { return 1e-4 + 1e-6 * d; }
-
 #ifdef ATTENUVIS_X86_DISPATCH
 #define ATTENUVIS_LANE_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
@@ -21,6 +19,12 @@ double end_gap(double d) { return 1e-4 + 1e-6 * d; }
 #endif
 
 namespace {
+// Excluded length at each end of a segment of length d (visibility.hpp):
+// 1e-4 m + 1e-6 d, without FMA contraction (this file).  Internal linkage:
+// an exported function may be interposed in a position-independent build,
+// so GCC would call it lane by lane instead of vectorising the loop.
+inline double end_gap(double d) { return 1e-4 + 1e-6 * d; }
+
 // The body of build_packet, compiled once per instruction set: each
 // target-specific wrapper below inlines it whole (flatten), so its loops are
 // vectorised for that wrapper's target.

@@ -15,10 +15,6 @@
 namespace attenuvis::visgraph::detail {
 
 constexpr double kCoincident = 1e-6;  // m: pairs closer than this are never cast nor counted
-// Excluded length at each end of a segment of length d (visibility.hpp):
-// 1e-4 m + 1e-6 d.  Defined in pair_packet.cpp, where it is evaluated without
-// FMA contraction and inlined into the lane loops.
-double end_gap(double d);
 
 struct PairPacket {
   RTCRay16 ray;
