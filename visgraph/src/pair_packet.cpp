@@ -138,12 +138,19 @@ void build_packet(double ox, double oy, double oz, const double* px, const doubl
 
 ATTENUVIS_LANE_CLONES
 void resolve_packet(PairPacket& p) {
-  double n_visible = 0;
+  // Arithmetic on 0/1 doubles and an integer count, which vectorise: a sum
+  // of doubles (which the compiler may not reorder) and selects mixing
+  // int, float and double lanes kept the loop scalar.
+  alignas(64) double cast[kLanes], clear[kLanes];
+  for (int l = 0; l < kLanes; ++l) cast[l] = static_cast<double>(-p.valid[l]);  // valid is -1 or 0
+  for (int l = 0; l < kLanes; ++l) clear[l] = static_cast<double>(p.ray.tfar[l]) >= 0.0 ? 1.0 : 0.0;
+  std::int32_t n_visible = 0;
   for (int l = 0; l < kLanes; ++l) {
-    p.visible[l] = p.valid[l] ? (p.ray.tfar[l] >= 0.0f ? 1.0 : 0.0) : p.visible[l];
-    n_visible += p.visible[l];
+    const double v = cast[l] * clear[l] + (1.0 - cast[l]) * p.visible[l];
+    p.visible[l] = v;
+    n_visible += static_cast<std::int32_t>(v);
   }
-  p.visible_count = static_cast<int>(n_visible);
+  p.visible_count = n_visible;
 }
 
 ATTENUVIS_LANE_CLONES
