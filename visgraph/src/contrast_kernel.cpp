@@ -1,9 +1,9 @@
 // The per-pair exp is the bottleneck once rays come 16 at a time.  The
 // portable body is written as branch-free loops over the 16 lanes that the
-// compiler turns into SIMD code, compiled for AVX2 and baseline x86-64;
-// AVX-512 has a body of its own with intrinsics (contrast_kernel_avx512.cpp,
-// where the compiler's gathers of the exp table cost three times the rest).
-// The widest the CPU runs is picked once.  GCC contracts a*b+c into FMA by
+// compiler turns into SIMD code, compiled for AVX2 and baseline x86-64.
+// AVX-512 has a body of its own with intrinsics (contrast_kernel_avx512.cpp):
+// GCC's AVX-512 code for the portable body read the exp table entry by
+// entry and took three times as long.  The widest the CPU runs is picked once.  GCC contracts a*b+c into FMA by
 // default in C++ (-ffp-contract=fast outside ISO C modes) wherever the target
 // has FMA: contraction is switched off for this file so that every variant
 // computes bit-identical results (clang's default contracts only within one
