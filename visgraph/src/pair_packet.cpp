@@ -157,7 +157,9 @@ ATTENUVIS_LANE_CLONES
 void accumulate_packet(const PairPacket& p, const std::int64_t* c_fixed, const std::int64_t* d_fixed, int K, int n,
                        std::int64_t* row_lanes, std::int64_t* acc, std::size_t N, std::size_t j0) {
   alignas(64) std::int64_t visible[kLanes];
-  for (int l = 0; l < kLanes; ++l) visible[l] = static_cast<std::int64_t>(p.visible[l]);
+  // A comparison, not a conversion: double to int64 has no vector
+  // instruction below AVX-512DQ, and the loop stayed scalar.
+  for (int l = 0; l < kLanes; ++l) visible[l] = p.visible[l] != 0.0 ? 1 : 0;
   // Lane-wise (vertical) adds; the row reduces its lanes once at its end.
   // Idle and invisible lanes hold zeros in every array.
   for (int l = 0; l < kLanes; ++l) row_lanes[l] += visible[l];
