@@ -22,6 +22,8 @@
 #include "contrast_kernel_isa.hpp"
 #include "fixed_point_exp.hpp"
 
+#include <optional>
+
 namespace attenuvis::visgraph::detail {
 
 namespace {
@@ -90,12 +92,9 @@ void contrast_lanes(const double* distance, const double* visible, const double*
 
 bool contrast_lanes_with(int instruction_set, const double* distance, const double* visible, const double* neg_sigma,
                          int K, std::int64_t* c_fixed, std::int64_t* d_fixed) {
-  const Isa wanted = instruction_set == 2 ? Isa::avx512 : instruction_set == 1 ? Isa::avx2 : Isa::baseline;
-  if (static_cast<int>(wanted) > static_cast<int>(pick_isa())) return false;
-#ifndef ATTENUVIS_X86_DISPATCH
-  if (wanted != Isa::baseline) return false;
-#endif
-  contrast_function(wanted)(distance, visible, neg_sigma, K, c_fixed, d_fixed);
+  const std::optional<Isa> isa = isa_numbered(instruction_set);
+  if (!isa) return false;
+  contrast_function(*isa)(distance, visible, neg_sigma, K, c_fixed, d_fixed);
   return true;
 }
 

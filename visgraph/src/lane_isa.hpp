@@ -13,6 +13,7 @@
 #include <attenuvis/visgraph/detail/contrast_kernel.hpp>
 
 #include <cmath>
+#include <optional>
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
 #define ATTENUVIS_X86_DISPATCH 1
@@ -63,6 +64,16 @@ inline Isa pick_isa() {
   if (__builtin_cpu_supports("avx2")) return Isa::avx2;
 #endif
   return Isa::baseline;
+}
+
+// The variant that the kernels' *_with functions are asked for by number
+// (0: baseline x86-64 or the portable loops, 1: AVX2, 2: AVX-512F), for the
+// tests that compare every variant's bits; none when this CPU lacks it (a
+// build without dispatch runs the baseline only: pick_isa() says so).
+inline std::optional<Isa> isa_numbered(int instruction_set) {
+  const Isa isa = instruction_set == 2 ? Isa::avx512 : instruction_set == 1 ? Isa::avx2 : Isa::baseline;
+  if (static_cast<int>(isa) > static_cast<int>(pick_isa())) return std::nullopt;
+  return isa;
 }
 
 }  // namespace attenuvis::visgraph::detail

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <optional>
 #include <vector>
 
 namespace attenuvis::visgraph::detail {
@@ -214,13 +215,9 @@ BlockFunction block_function(Isa isa) {
 bool score_visible_block_with(int instruction_set, const BlockSide& rows, const BlockSide& cols, bool same,
                               const double* neg_sigma, int K, double max_distance, std::int64_t* acc, std::size_t N,
                               double* max_distance_of, BlockCounts& counts) {
-  const Isa wanted = instruction_set == 2 ? Isa::avx512 : instruction_set == 1 ? Isa::avx2 : Isa::baseline;
-  const Isa best = pick_isa();
-  if (static_cast<int>(wanted) > static_cast<int>(best)) return false;
-#ifndef ATTENUVIS_X86_DISPATCH
-  if (wanted != Isa::baseline) return false;
-#endif
-  counts = block_function(wanted)(rows, cols, same, neg_sigma, K, max_distance, acc, N, max_distance_of);
+  const std::optional<Isa> isa = isa_numbered(instruction_set);
+  if (!isa) return false;
+  counts = block_function(*isa)(rows, cols, same, neg_sigma, K, max_distance, acc, N, max_distance_of);
   return true;
 }
 
